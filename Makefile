@@ -1,0 +1,40 @@
+# hylo: one entry point.
+#   make            build everything that exists (libraries, tools, tests)
+#   make test       install missing Debian packages, build, run every test
+#   make bench      run the benchmarks, write build/bench/results.json
+#   make deps       install missing Debian packages only
+#   make clean      remove build/
+# Every output goes under build/. Pieces are described in mk/*.mk.
+
+.DEFAULT_GOAL := all
+.DELETE_ON_ERROR:
+.SUFFIXES:
+
+include mk/config.mk
+include mk/msgs.mk
+include mk/onboard.mk
+include mk/trainer.mk
+include mk/bench.mk
+
+.PHONY: all test bench deps check-deps clean
+
+all: check-deps $(ALL_TARGETS)
+
+deps:
+	@tools/install-deps
+
+check-deps:
+	@tools/install-deps --check
+
+# Tests run in the order listed; the sanitizer builds run last.
+test: deps
+	@$(MAKE) --no-print-directory all
+	@tools/run-tests $(TESTS) $(TESTS_SAN)
+
+bench: deps
+	@$(MAKE) --no-print-directory all $(BENCH_TARGETS)
+	@mkdir -p $(BUILD)/bench
+	@tools/bench/run $(BUILD)
+
+clean:
+	rm -rf $(BUILD)

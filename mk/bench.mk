@@ -1,0 +1,1 @@
+# Benchmarks (make bench): filled in as benchmarks land.

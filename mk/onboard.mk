@@ -1,0 +1,68 @@
+# Onboard planner (C99): the planning core library, its tests, in a normal and
+# an ASan+UBSan build.
+#   build/lib/libhylo.a            core library (-O2)
+#   build/san/lib/libhylo.a        the same under ASan+UBSan
+#   build/test/onboard/test_*      one CMocka binary per module (tests/onboard/)
+#   build/san/test/onboard/test_*  the same binaries under ASan+UBSan
+
+ONBOARD_INC := -Ionboard/include -Ionboard
+ONBOARD_SRCS := \
+	onboard/src/status.c \
+	onboard/src/types.c \
+	onboard/src/rng.c \
+	$(filter-out onboard/src/status.c onboard/src/types.c onboard/src/rng.c,$(sort $(wildcard onboard/src/*.c)))
+ONBOARD_OBJS := $(ONBOARD_SRCS:%.c=$(BUILD)/obj/%.o)
+ONBOARD_OBJS_SAN := $(ONBOARD_SRCS:%.c=$(BUILD)/san/obj/%.o)
+ONBOARD_LIB := $(BUILD)/lib/libhylo.a
+ONBOARD_LIB_SAN := $(BUILD)/san/lib/libhylo.a
+
+$(BUILD)/obj/onboard/%.o: onboard/%.c
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(DEP_FLAGS) $(ONBOARD_INC) -c $< -o $@
+
+$(BUILD)/san/obj/onboard/%.o: onboard/%.c
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(ONBOARD_INC) -c $< -o $@
+
+$(ONBOARD_LIB): $(ONBOARD_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@ && $(AR) rcs $@ $^
+
+$(ONBOARD_LIB_SAN): $(ONBOARD_OBJS_SAN)
+	@mkdir -p $(@D)
+	rm -f $@ && $(AR) rcs $@ $^
+
+# Unit tests: tests/onboard/test_<module>.c. They may use the generated
+# message types (no liblcm) and libsvm as a reference.
+ONBOARD_TEST_SRCS := $(sort $(wildcard tests/onboard/test_*.c))
+ONBOARD_TEST_NAMES := $(basename $(notdir $(ONBOARD_TEST_SRCS)))
+ONBOARD_TESTS := $(ONBOARD_TEST_NAMES:%=$(BUILD)/test/onboard/%)
+ONBOARD_TESTS_SAN := $(ONBOARD_TEST_NAMES:%=$(BUILD)/san/test/onboard/%)
+TEST_INC := $(ONBOARD_INC) -Itests -I$(LCM_GEN_DIR)/c-nopubsub
+TEST_LIBS := $(SVM_LIBS) $(CMOCKA_LIBS) -lm
+# The allocation test wraps the allocator at link time (tests/onboard/test_nomalloc.c).
+WRAP_ALLOC := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
+TEST_LDFLAGS_test_nomalloc := $(WRAP_ALLOC)
+
+$(BUILD)/obj/tests/%.o: tests/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(DEP_FLAGS) $(TEST_INC) -c $< -o $@
+
+$(BUILD)/san/obj/tests/%.o: tests/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(TEST_INC) -c $< -o $@
+
+$(BUILD)/test/onboard/%: $(BUILD)/obj/tests/onboard/%.o $(ONBOARD_LIB) $(MSG_NOPUBSUB_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $< $(MSG_NOPUBSUB_OBJS) $(ONBOARD_LIB) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
+
+$(BUILD)/san/test/onboard/%: $(BUILD)/san/obj/tests/onboard/%.o $(ONBOARD_LIB_SAN) $(MSG_NOPUBSUB_OBJS_SAN)
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) $< $(MSG_NOPUBSUB_OBJS_SAN) $(ONBOARD_LIB_SAN) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
+
+ALL_TARGETS += $(ONBOARD_LIB) $(ONBOARD_LIB_SAN) $(ONBOARD_TESTS) $(ONBOARD_TESTS_SAN)
+TESTS += $(ONBOARD_TESTS)
+TESTS_SAN += $(ONBOARD_TESTS_SAN)
+
+-include $(ONBOARD_OBJS:.o=.d) $(ONBOARD_OBJS_SAN:.o=.d)
+-include $(wildcard $(BUILD)/obj/tests/onboard/*.d $(BUILD)/san/obj/tests/onboard/*.d)

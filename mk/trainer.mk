@@ -1,0 +1,1 @@
+# Trainer (C++17): filled in by the trainer work (issue 3).

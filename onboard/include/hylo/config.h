@@ -1,0 +1,82 @@
+/*
+ * Compile-time capacities of the onboard planner. Every one can be overridden
+ * with -D; the workspace (struct hylo_planner) grows with them. Exceeding a
+ * capacity at run time returns a status naming it (HYLO_E_CAP_*), never an
+ * out-of-bounds write.
+ */
+#ifndef HYLO_CONFIG_H
+#define HYLO_CONFIG_H
+
+/* Map cells, nx * ny (512 x 512). */
+#ifndef HYLO_MAX_CELLS
+#define HYLO_MAX_CELLS 262144
+#endif
+
+/* Sampled positions of all modes, guard copies, start and goal. */
+#ifndef HYLO_MAX_POSITIONS
+#define HYLO_MAX_POSITIONS 32768
+#endif
+
+/* Graph nodes: positions times their velocity/heading combinations. */
+#ifndef HYLO_MAX_NODES
+#define HYLO_MAX_NODES 262144
+#endif
+
+/* Position adjacency entries (an undirected neighbour pair counts twice). */
+#ifndef HYLO_MAX_ADJACENCY
+#define HYLO_MAX_ADJACENCY 1048576
+#endif
+
+/* Entries of each sampling grid (speeds, headings, flight speeds). */
+#ifndef HYLO_MAX_GRID
+#define HYLO_MAX_GRID 16
+#endif
+
+/* Velocity/heading combinations at one position. */
+#ifndef HYLO_MAX_COMBOS
+#define HYLO_MAX_COMBOS 128
+#endif
+
+/* Successors of one node, i.e. edge costs evaluated per expansion. */
+#ifndef HYLO_MAX_SUCCESSORS
+#define HYLO_MAX_SUCCESSORS 16384
+#endif
+
+/* Waypoints of one plan. */
+#ifndef HYLO_MAX_WAYPOINTS
+#define HYLO_MAX_WAYPOINTS 4096
+#endif
+
+/* Buckets of the spatial hash grids (sampling, neighbour search). */
+#ifndef HYLO_MAX_BUCKETS
+#define HYLO_MAX_BUCKETS 262144
+#endif
+
+/* Support vectors of one SVR model, and features of one model. */
+#ifndef HYLO_MAX_SV
+#define HYLO_MAX_SV 8192
+#endif
+#ifndef HYLO_MAX_FEATURES
+#define HYLO_MAX_FEATURES 9
+#endif
+
+/* Distinct values per feature kept by the SVR batch evaluator's kernel-factor
+ * cache (see svr.h). Memory: HYLO_MAX_FEATURES * this * HYLO_MAX_SV doubles. */
+#ifndef HYLO_SVR_CACHE_VALUES
+#define HYLO_SVR_CACHE_VALUES 18
+#endif
+
+/* Robots known to one planner, and length of names and reasons. */
+#ifndef HYLO_MAX_ROBOTS
+#define HYLO_MAX_ROBOTS 8
+#endif
+#define HYLO_NAME_LEN 32
+#define HYLO_REASON_LEN 200
+
+/* Relations the code relies on. */
+typedef char hylo_check_nodes_cover_positions[(HYLO_MAX_NODES >= HYLO_MAX_POSITIONS) ? 1 : -1];
+typedef char hylo_check_combos_cover_grid[(HYLO_MAX_COMBOS >= HYLO_MAX_GRID) ? 1 : -1];
+typedef char hylo_check_successors_cover_combos[(HYLO_MAX_SUCCESSORS >= HYLO_MAX_COMBOS) ? 1 : -1];
+typedef char hylo_check_positions_fit_u32[(HYLO_MAX_NODES < 0x7fffffffL) ? 1 : -1];
+
+#endif

@@ -1,0 +1,92 @@
+/*
+ * Map ingestion and the per-mode domains.
+ *
+ * The map is a grid of square cells; cell (ix, iy) covers
+ * [ox + ix*res, ox + (ix+1)*res] x [oy + iy*res, oy + (iy+1)*res] and is
+ * stored at index iy*nx + ix. Domains are closed sets:
+ *   ground:  the union of GROUND cells (z is ignored); a segment must also
+ *            not cross a height step larger than max_step between the
+ *            consecutive ground cells it passes through;
+ *   marine:  the union of WATER cells (z is ignored);
+ *   flight:  points (x, y, z) over the map with
+ *            h(x, y) + HYLO_AIR_CLEARANCE_M <= z <= ceiling, where on a cell
+ *            boundary h is the largest height of the touching cells;
+ *   di_neg:  non-OBSTACLE cells with x <= 0 (x is p, y is v);
+ *   di_pos:  non-OBSTACLE cells with x >= 0.
+ * Points outside the map's rectangle belong to no domain.
+ */
+#ifndef HYLO_MAP_H
+#define HYLO_MAP_H
+
+#include <stdint.h>
+#include "hylo/config.h"
+#include "hylo/status.h"
+#include "hylo/types.h"
+
+/* Terrain classes; values as map_t.TERRAIN_*. */
+typedef enum {
+	HYLO_TERRAIN_OBSTACLE = 0,
+	HYLO_TERRAIN_GROUND = 1,
+	HYLO_TERRAIN_WATER = 2
+} hylo_terrain;
+
+/* Flight positions keep at least this height above the terrain [m]. */
+#ifndef HYLO_AIR_CLEARANCE_M
+#define HYLO_AIR_CLEARANCE_M 0.5
+#endif
+
+/* A takeoff/landing point's flight twin hovers this high above it [m]
+ * (models.md section 6). */
+#define HYLO_TAKEOFF_HEIGHT_M 1.0
+
+/* The caller's view of a decoded map_t. Nothing is copied until
+ * hylo_map_ingest; the arrays may be freed afterwards. */
+typedef struct {
+	int64_t map_id;
+	const char *robot;        /* NUL-terminated robot name */
+	int32_t nx, ny;           /* cells along x and y */
+	hylo_real resolution;     /* cell edge [m], > 0 */
+	hylo_real origin_x, origin_y; /* corner of cell (0, 0) [m] */
+	hylo_real ceiling;        /* flight ceiling [m] */
+	hylo_real max_step;       /* largest drivable height step [m], >= 0 */
+	int32_t n_cells;          /* must equal nx * ny */
+	const int8_t *terrain;    /* n_cells terrain classes */
+	const float *height;      /* n_cells surface heights [m] */
+} hylo_map_view;
+
+/* An ingested map, held in the caller's workspace. */
+typedef struct {
+	int64_t map_id;
+	char robot[HYLO_NAME_LEN];
+	int32_t nx, ny;
+	hylo_real resolution, origin_x, origin_y, ceiling, max_step;
+	uint32_t n_ground, n_water, n_obstacle; /* cell counts per class */
+	int8_t terrain[HYLO_MAX_CELLS];
+	float height[HYLO_MAX_CELLS];
+} hylo_map;
+
+/**
+ * Validates v and copies it into m. Errors (m is left marked empty, map_id 0,
+ * nx = ny = 0): HYLO_E_NULL, HYLO_E_BAD_MAP (non-positive or inconsistent
+ * sizes, resolution not finite and > 0, unknown terrain class, robot name
+ * missing or longer than HYLO_NAME_LEN - 1), HYLO_E_BAD_VALUE (NaN or
+ * infinite height, origin, ceiling or step), HYLO_E_CAP_CELLS. The reason
+ * names the offending field and, for a cell, its (ix, iy).
+ * Does not allocate; O(n_cells).
+ */
+hylo_status hylo_map_ingest(hylo_map *m, const hylo_map_view *v, hylo_reason *r);
+
+/** Terrain height at (x, y): the height of the cell containing the point
+ * (on a boundary, the cell with the lower index); 0 outside the map. */
+hylo_real hylo_map_height(const hylo_map *m, hylo_real x, hylo_real y);
+
+/** 1 when p lies in the closed domain of mode (see the top of this file),
+ * 0 otherwise (also for an invalid mode or a NaN coordinate). */
+int hylo_domain_contains(const hylo_map *m, hylo_mode mode, hylo_point p);
+
+/** 1 when every point of the straight segment a-b lies in the domain of mode
+ * (exact: it walks the cells the segment passes through, no sampling), and
+ * for ground the height rule holds. 0 otherwise. Bounded: O(nx + ny). */
+int hylo_domain_segment(const hylo_map *m, hylo_mode mode, hylo_point a, hylo_point b);
+
+#endif

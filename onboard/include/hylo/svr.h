@@ -1,0 +1,93 @@
+/*
+ * Support-vector regression cost models (libsvm epsilon-SVR, RBF kernel).
+ *
+ * A model is plain constant data: the trainer exports each one as a C header
+ * (onboard/models/<robot>_<mode>.h, format in onboard/models/README.md) that
+ * defines `static const` arrays and one `static const hylo_svr_model`.
+ *
+ * Prediction of a raw feature vector x (n_features):
+ *   z_k  = (x_k - feature_offset[k]) / feature_scale[k]
+ *   d    = sum_i coef[i] * exp(-gamma * |z - sv_i|^2) - rho   (libsvm's decision value)
+ *   y    = d * label_scale + label_offset
+ *   cost = label_log ? exp(y) : y
+ * The planner then raises the cost to at least cost_floor_per_m times the
+ * edge's displacement (and to at least 0), counting how often it does.
+ */
+#ifndef HYLO_SVR_H
+#define HYLO_SVR_H
+
+#include <stdint.h>
+#include "hylo/config.h"
+#include "hylo/status.h"
+#include "hylo/types.h"
+
+typedef struct {
+	const char *name;              /* "<robot>_<mode>", a C identifier */
+	uint32_t n_sv;                 /* support vectors, <= HYLO_MAX_SV */
+	uint32_t n_features;           /* features, <= HYLO_MAX_FEATURES */
+	double gamma;                  /* RBF kernel width, > 0 */
+	double rho;                    /* libsvm's rho[0] */
+	const double *sv;              /* n_sv x n_features, row-major, standardized units */
+	const double *coef;            /* n_sv, libsvm's sv_coef[0] */
+	const double *feature_offset;  /* n_features */
+	const double *feature_scale;   /* n_features, each > 0 */
+	double label_offset;           /* y = d * label_scale + label_offset */
+	double label_scale;            /* > 0 */
+	int label_log;                 /* 1: cost = exp(y); 0: cost = y */
+	double cost_floor_per_m;       /* every true cost is >= this * displacement [J/m], >= 0 */
+	double max_distance_m;         /* training displacements reach this far [m] */
+	const char *provenance;        /* samples, seed, hashes, errors, version; may be NULL */
+} hylo_svr_model;
+
+/**
+ * Checks a model: non-NULL arrays, sizes within capacity (HYLO_E_CAP_SV),
+ * finite numbers, positive gamma and scales (HYLO_E_BAD_VALUE). O(n_sv).
+ */
+hylo_status hylo_svr_check(const hylo_svr_model *m, hylo_reason *r);
+
+/**
+ * libsvm's decision value for standardized features z (n_features):
+ * sum_i coef[i] * exp(-gamma*|z - sv_i|^2) - rho, summed in SV order exactly
+ * as svm_predict does. No allocation; O(n_sv * n_features).
+ */
+double hylo_svr_decision(const hylo_svr_model *m, const double *z);
+
+/**
+ * Cost for raw features x (n_features): standardize, decision value, label
+ * transform. Not clamped. No allocation; safe in a control loop.
+ */
+double hylo_svr_predict(const hylo_svr_model *m, const double *x);
+
+/*
+ * Batch evaluation for a search expansion: the planner evaluates many edges
+ * from one tail, whose features repeat values (the tail's speed, the grid of
+ * head headings and speeds, a head position's displacement shared by all its
+ * combinations). The RBF kernel factorizes per feature,
+ *   exp(-gamma*|z - s|^2) = prod_k exp(-gamma*(z_k - s_k)^2),
+ * so the cache keeps, per feature, the factor vectors (one value per SV) of
+ * the last HYLO_SVR_CACHE_VALUES distinct values seen, and a prediction costs
+ * n_features multiplications per SV instead of an exp.
+ */
+typedef struct {
+	const hylo_svr_model *model;   /* the cache is valid for this model only */
+	uint32_t n_used[HYLO_MAX_FEATURES];
+	uint32_t clock;                /* for least-recently-used replacement */
+	uint32_t last_use[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
+	double value[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
+	double factor[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES][HYLO_MAX_SV];
+	uint64_t hits, misses;         /* statistics */
+} hylo_svr_cache;
+
+/** Empties the cache (required before first use and when the model changes). */
+void hylo_svr_cache_reset(hylo_svr_cache *c);
+
+/**
+ * Costs of n raw feature vectors x (n x n_features, row-major) into cost[n],
+ * each equal to hylo_svr_predict to within about 1e-14 relative. Resets the
+ * cache itself when c->model differs from m. Errors: HYLO_E_NULL,
+ * HYLO_E_CAP_SV. No allocation.
+ */
+hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
+                                   const double *x, uint32_t n, double *cost);
+
+#endif

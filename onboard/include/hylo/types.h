@@ -1,0 +1,41 @@
+/* Basic types shared by every onboard module. */
+#ifndef HYLO_TYPES_H
+#define HYLO_TYPES_H
+
+#include <stdint.h>
+
+/* The planner's floating type. Double throughout: the SVR evaluator must
+ * match libsvm to 1e-9 relative. */
+typedef double hylo_real;
+
+/* Locomotion modes; the values are those of goal_t.MODE_* in msgs/. */
+typedef enum {
+	HYLO_MODE_NONE = 0,
+	HYLO_MODE_GROUND = 1,  /* skid-steer driving, x^s = (px, py, vx, theta) */
+	HYLO_MODE_MARINE = 2,  /* paddling, x^s = (px, py, vx, theta) */
+	HYLO_MODE_FLIGHT = 3,  /* quadrotor, x^s = (px, py, pz, vx, vy, vz) */
+	HYLO_MODE_DI_NEG = 4,  /* double integrator on p <= 0, x^s = (p, v) */
+	HYLO_MODE_DI_POS = 5,  /* double integrator on p >= 0, x^s = (p, v) */
+	HYLO_MODE_COUNT = 6
+} hylo_mode;
+
+/* Largest sampled-coordinate dimension (flight). */
+#define HYLO_XS_DIM 6
+
+/* A point in the planner's 3-D work space: (x, y, z) in metres. Ground and
+ * water points carry the surface height as z; the double integrator's phase
+ * plane uses (p, v, 0). */
+typedef struct {
+	hylo_real x, y, z;
+} hylo_point;
+
+/* Dimension of x^s for a mode; 0 for an invalid mode. */
+unsigned hylo_mode_dim(hylo_mode mode);
+
+/* Lower-case name of a mode ("ground", "di_neg", ...); "invalid" when out of range. */
+const char *hylo_mode_str(hylo_mode mode);
+
+/* 1 when mode is one of the five real modes. */
+int hylo_mode_valid(int mode);
+
+#endif
