@@ -32,13 +32,36 @@ $(ONBOARD_LIB_SAN): $(ONBOARD_OBJS_SAN)
 	@mkdir -p $(@D)
 	rm -f $@ && $(AR) rcs $@ $^
 
+# Message adaptors (decoded LCM types <-> core views): kept out of the core
+# so that the core needs no LCM header.
+MSG_ADAPT_SRCS := onboard/msg/convert.c
+MSG_ADAPT_LIB := $(BUILD)/lib/libhylo_msg.a
+MSG_ADAPT_LIB_SAN := $(BUILD)/san/lib/libhylo_msg.a
+MSG_ADAPT_INC := -Ionboard/msg -I$(LCM_GEN_DIR)/c-nopubsub
+
+$(BUILD)/obj/onboard/msg/%.o: onboard/msg/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(DEP_FLAGS) $(ONBOARD_INC) $(MSG_ADAPT_INC) -c $< -o $@
+
+$(BUILD)/san/obj/onboard/msg/%.o: onboard/msg/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(ONBOARD_INC) $(MSG_ADAPT_INC) -c $< -o $@
+
+$(MSG_ADAPT_LIB): $(MSG_ADAPT_SRCS:%.c=$(BUILD)/obj/%.o)
+	@mkdir -p $(@D)
+	rm -f $@ && $(AR) rcs $@ $^
+
+$(MSG_ADAPT_LIB_SAN): $(MSG_ADAPT_SRCS:%.c=$(BUILD)/san/obj/%.o)
+	@mkdir -p $(@D)
+	rm -f $@ && $(AR) rcs $@ $^
+
 # Unit tests: tests/onboard/test_<module>.c. They may use the generated
 # message types (no liblcm) and libsvm as a reference.
 ONBOARD_TEST_SRCS := $(sort $(wildcard tests/onboard/test_*.c))
 ONBOARD_TEST_NAMES := $(basename $(notdir $(ONBOARD_TEST_SRCS)))
 ONBOARD_TESTS := $(ONBOARD_TEST_NAMES:%=$(BUILD)/test/onboard/%)
 ONBOARD_TESTS_SAN := $(ONBOARD_TEST_NAMES:%=$(BUILD)/san/test/onboard/%)
-TEST_INC := $(ONBOARD_INC) -Itests -I$(LCM_GEN_DIR)/c-nopubsub
+TEST_INC := $(ONBOARD_INC) $(MSG_ADAPT_INC) -Itests
 TEST_LIBS := $(SVM_LIBS) $(CMOCKA_LIBS) -lm
 # The allocation test wraps the allocator at link time (tests/onboard/test_nomalloc.c).
 WRAP_ALLOC := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
@@ -52,15 +75,15 @@ $(BUILD)/san/obj/tests/%.o: tests/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(TEST_INC) -c $< -o $@
 
-$(BUILD)/test/onboard/%: $(BUILD)/obj/tests/onboard/%.o $(ONBOARD_LIB) $(MSG_NOPUBSUB_OBJS)
+$(BUILD)/test/onboard/%: $(BUILD)/obj/tests/onboard/%.o $(MSG_ADAPT_LIB) $(ONBOARD_LIB) $(MSG_NOPUBSUB_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $< $(MSG_NOPUBSUB_OBJS) $(ONBOARD_LIB) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
+	$(CC) $< $(MSG_NOPUBSUB_OBJS) $(MSG_ADAPT_LIB) $(ONBOARD_LIB) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
 
-$(BUILD)/san/test/onboard/%: $(BUILD)/san/obj/tests/onboard/%.o $(ONBOARD_LIB_SAN) $(MSG_NOPUBSUB_OBJS_SAN)
+$(BUILD)/san/test/onboard/%: $(BUILD)/san/obj/tests/onboard/%.o $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) $(MSG_NOPUBSUB_OBJS_SAN)
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) $< $(MSG_NOPUBSUB_OBJS_SAN) $(ONBOARD_LIB_SAN) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
+	$(CC) $(SAN_FLAGS) $< $(MSG_NOPUBSUB_OBJS_SAN) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
 
-ALL_TARGETS += $(ONBOARD_LIB) $(ONBOARD_LIB_SAN) $(ONBOARD_TESTS) $(ONBOARD_TESTS_SAN)
+ALL_TARGETS += $(ONBOARD_LIB) $(ONBOARD_LIB_SAN) $(MSG_ADAPT_LIB) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_TESTS) $(ONBOARD_TESTS_SAN)
 TESTS += $(ONBOARD_TESTS)
 TESTS_SAN += $(ONBOARD_TESTS_SAN)
 

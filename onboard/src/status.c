@@ -15,6 +15,7 @@ static const char *const status_names[HYLO_STATUS_COUNT] = {
 	[HYLO_E_OUTSIDE_DOMAIN] = "outside domain",
 	[HYLO_E_EMPTY_DOMAIN] = "empty domain",
 	[HYLO_E_BAD_COST] = "bad cost",
+	[HYLO_E_MAP_MISMATCH] = "map mismatch",
 	[HYLO_E_CAP_CELLS] = "capacity exceeded: cells",
 	[HYLO_E_CAP_POSITIONS] = "capacity exceeded: positions",
 	[HYLO_E_CAP_NODES] = "capacity exceeded: nodes",

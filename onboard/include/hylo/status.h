@@ -22,6 +22,7 @@ typedef enum {
 	HYLO_E_OUTSIDE_DOMAIN,  /* a start or goal lies outside its mode's domain */
 	HYLO_E_EMPTY_DOMAIN,    /* no part of the map belongs to any mode of the robot */
 	HYLO_E_BAD_COST,        /* a cost callback returned NaN, infinity or failed */
+	HYLO_E_MAP_MISMATCH,    /* the goal names a map other than the current one */
 	HYLO_E_CAP_CELLS,       /* map larger than HYLO_MAX_CELLS */
 	HYLO_E_CAP_POSITIONS,   /* more sampled positions than HYLO_MAX_POSITIONS */
 	HYLO_E_CAP_NODES,       /* more graph nodes than HYLO_MAX_NODES */

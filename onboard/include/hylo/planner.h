@@ -1,0 +1,150 @@
+/*
+ * hylo onboard planner: the public API.
+ *
+ *   static hylo_planner pl;              // one workspace, fixed size (sizeof)
+ *   hylo_planner_config cfg = { robots, n_robots, clock, clock_ctx };
+ *   hylo_planner_init(&pl, &cfg);        // once, at start-up
+ *   hylo_planner_set_map(&pl, &map);     // each new map
+ *   hylo_planner_plan(&pl, &goal, &plan); // each goal; reuses the roadmap
+ *
+ * The workspace holds every array the planner uses; its capacities are the
+ * compile-time constants of hylo/config.h. No function here allocates,
+ * recurses or touches the OS (time comes from an optional clock callback).
+ * Not thread-safe: one planner per thread.
+ */
+#ifndef HYLO_PLANNER_H
+#define HYLO_PLANNER_H
+
+#include <stdint.h>
+#include "hylo/config.h"
+#include "hylo/map.h"
+#include "hylo/roadmap.h"
+#include "hylo/robot.h"
+#include "hylo/search.h"
+#include "hylo/status.h"
+#include "hylo/svr.h"
+#include "hylo/types.h"
+
+typedef enum {
+	HYLO_ASTAR = 0,      /* values as goal_t.ALGORITHM_* */
+	HYLO_DIJKSTRA = 1
+} hylo_algorithm;
+
+/* A planning request; the caller's view of a decoded goal_t. */
+typedef struct {
+	int64_t request_id;
+	int64_t map_id;                 /* 0: the current map */
+	int algorithm;                  /* hylo_algorithm */
+	int start_mode;                 /* hylo_mode */
+	hylo_real start[HYLO_XS_DIM];   /* sampled coordinates */
+	int goal_mode;
+	hylo_real goal[HYLO_XS_DIM];
+	uint64_t seed;
+	hylo_real spacing, air_spacing, guard_spacing;
+	hylo_real connect_radius, air_connect_radius;
+	uint32_t n_speeds, n_headings, n_air_speeds;
+	const hylo_real *speeds;        /* n_speeds [m/s] */
+	const hylo_real *headings;      /* n_headings [rad] */
+	const hylo_real *air_speeds;    /* n_air_speeds [m/s] */
+	hylo_real time_budget_ms;       /* 0: no limit (needs a clock otherwise) */
+	uint64_t max_expansions;        /* 0: no limit */
+} hylo_goal;
+
+/* The answer to one goal. status says whether the request was valid;
+ * when it is HYLO_OK, outcome says what the search found. */
+typedef struct {
+	hylo_status status;
+	hylo_outcome outcome;
+	hylo_reason reason;
+	int64_t request_id;
+	int64_t map_id;
+	char robot[HYLO_NAME_LEN];
+	hylo_real total_cost;           /* predicted energy [J] */
+	uint32_t n_waypoints;
+	uint8_t mode[HYLO_MAX_WAYPOINTS];
+	hylo_real state[HYLO_MAX_WAYPOINTS][HYLO_XS_DIM];
+	hylo_real cost[HYLO_MAX_WAYPOINTS];   /* cumulative [J] */
+	uint8_t guard[HYLO_MAX_WAYPOINTS];    /* 1: a mode switch happens here */
+	uint32_t n_modes;
+	uint8_t mode_sequence[HYLO_MAX_WAYPOINTS];
+	/* statistics */
+	uint32_t n_nodes;
+	uint64_t n_edges;
+	uint64_t n_edges_evaluated;
+	uint64_t n_expansions;
+	uint64_t n_clamped;             /* costs raised to the floor (negative ones included) */
+	uint64_t n_negative;            /* of those, predictions below 0 */
+	int roadmap_reused;             /* 1: the roadmap of the previous goal was reused */
+	double plan_ms;                 /* 0 without a clock */
+} hylo_plan;
+
+typedef struct {
+	const hylo_robot *robots;       /* the robots this planner serves */
+	uint32_t n_robots;              /* <= HYLO_MAX_ROBOTS */
+	hylo_clock_fn clock;            /* optional monotonic clock [ms] */
+	void *clock_ctx;
+} hylo_planner_config;
+
+/* The workspace. Its fields are private; it is visible so that the caller
+ * can place it (static storage, or one allocation at start-up). */
+typedef struct {
+	hylo_planner_config cfg;
+	hylo_robot robots[HYLO_MAX_ROBOTS];
+	int initialized;
+	int has_map;
+	int64_t map_generation;         /* bumps at every set_map */
+	const hylo_robot *robot;        /* robot of the current map */
+	hylo_reason reason;             /* reason of the last failure */
+	hylo_map map;
+	hylo_roadmap roadmap;
+	hylo_roadmap_ws build_ws;
+	hylo_search search;
+	hylo_svr_cache svr_cache[2];    /* one per mode of the robot */
+	/* the current request */
+	uint32_t start_pos, goal_pos;   /* position ids of start and goal */
+	hylo_real start_xs[HYLO_XS_DIM], goal_xs[HYLO_XS_DIM];
+	uint32_t n_start_adj, n_goal_adj;
+	uint32_t start_adj[HYLO_MAX_SUCCESSORS];
+	uint32_t goal_adj[HYLO_MAX_SUCCESSORS];
+	int start_goal_linked;          /* a direct start -> goal edge exists */
+	uint8_t links_goal[HYLO_MAX_POSITIONS];
+	hylo_real h_pos[HYLO_MAX_POSITIONS + 2];  /* heuristic per position */
+	/* expansion scratch */
+	hylo_real head_xs[HYLO_MAX_SUCCESSORS][HYLO_XS_DIM];
+	hylo_real features[HYLO_MAX_SUCCESSORS * HYLO_MAX_FEATURES];
+	hylo_real head_dist[HYLO_MAX_SUCCESSORS];
+	uint32_t path[HYLO_MAX_WAYPOINTS];
+	uint64_t n_clamped, n_negative;
+	int heuristic_pass;             /* 1 while computing h_pos */
+	int use_heuristic;
+} hylo_planner;
+
+/**
+ * Prepares the workspace for the given robots (copied). Errors: HYLO_E_NULL,
+ * HYLO_E_CAP_ROBOTS, and hylo_robot_check's errors. Does not allocate.
+ */
+hylo_status hylo_planner_init(hylo_planner *pl, const hylo_planner_config *cfg);
+
+/**
+ * Ingests a map (copied; the view may be freed afterwards) and invalidates
+ * the roadmap. Errors: those of hylo_map_ingest, HYLO_E_UNKNOWN_ROBOT,
+ * HYLO_E_EMPTY_DOMAIN (no cell of any of the robot's modes). On error the
+ * planner has no map. O(cells); no allocation.
+ */
+hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map);
+
+/**
+ * Plans for goal on the current map: (re)builds the roadmap when the
+ * sampling options changed, connects start and goal, searches, extracts the
+ * path. Always fills plan (status, outcome, reason). Returns plan->status:
+ * HYLO_OK when the search ran (plan->outcome: found, no path, budget
+ * exhausted), otherwise HYLO_E_NO_MAP, HYLO_E_BAD_VALUE (NaN, bad options),
+ * HYLO_E_MAP_MISMATCH (a map_id naming a replaced map), HYLO_E_WRONG_MODE,
+ * HYLO_E_OUTSIDE_DOMAIN, HYLO_E_CAP_*, HYLO_E_BAD_COST. No allocation.
+ */
+hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan *plan);
+
+/** The reason for the last failure ("ok" after a success). Never NULL. */
+const char *hylo_planner_reason(const hylo_planner *pl);
+
+#endif

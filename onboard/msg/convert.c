@@ -1,0 +1,109 @@
+#include "hylo_msg.h"
+
+#include <string.h>
+
+void hylo_msg_map_view(const hylo_map_t *msg, hylo_map_view *v)
+{
+	v->map_id = msg->map_id;
+	v->robot = msg->robot;
+	v->nx = msg->nx;
+	v->ny = msg->ny;
+	v->resolution = msg->resolution_m;
+	v->origin_x = msg->origin_x_m;
+	v->origin_y = msg->origin_y_m;
+	v->ceiling = msg->ceiling_m;
+	v->max_step = msg->max_step_m;
+	v->n_cells = msg->n_cells;
+	v->terrain = msg->terrain;
+	v->height = msg->height_m;
+}
+
+static uint32_t count(int32_t n)
+{
+	/* A negative count from the wire is out of range: say so as too large. */
+	return n < 0 ? UINT32_MAX : (uint32_t)n;
+}
+
+void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
+{
+	memset(g, 0, sizeof *g);
+	g->request_id = msg->request_id;
+	g->map_id = msg->map_id;
+	g->algorithm = msg->algorithm;
+	g->start_mode = msg->start_mode;
+	g->goal_mode = msg->goal_mode;
+	memcpy(g->start, msg->start, sizeof g->start);
+	memcpy(g->goal, msg->goal, sizeof g->goal);
+	g->seed = (uint64_t)msg->seed;
+	g->spacing = msg->spacing_m;
+	g->air_spacing = msg->air_spacing_m;
+	g->guard_spacing = msg->guard_spacing_m;
+	g->connect_radius = msg->connect_radius_m;
+	g->air_connect_radius = msg->air_connect_radius_m;
+	g->n_speeds = count(msg->n_speeds);
+	g->n_headings = count(msg->n_headings);
+	g->n_air_speeds = count(msg->n_air_speeds);
+	g->speeds = msg->speeds_mps;
+	g->headings = msg->headings_rad;
+	g->air_speeds = msg->air_speeds_mps;
+	g->time_budget_ms = msg->time_budget_ms;
+	g->max_expansions = msg->max_expansions < 0 ? UINT64_MAX : (uint64_t)msg->max_expansions;
+}
+
+int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome)
+{
+	if (status == HYLO_OK) {
+		if (outcome == HYLO_FOUND)
+			return HYLO_PLAN_T_STATUS_OK;
+		if (outcome == HYLO_BUDGET_EXHAUSTED)
+			return HYLO_PLAN_T_STATUS_BUDGET_EXHAUSTED;
+		return HYLO_PLAN_T_STATUS_NO_PATH;
+	}
+	if (status >= HYLO_E_CAP_CELLS && status <= HYLO_E_CAP_ROBOTS)
+		return HYLO_PLAN_T_STATUS_OVER_CAPACITY;
+	switch (status) {
+	case HYLO_E_NO_MAP:
+		return HYLO_PLAN_T_STATUS_NO_MAP;
+	case HYLO_E_MAP_MISMATCH:
+		return HYLO_PLAN_T_STATUS_MAP_REPLACED;
+	case HYLO_E_NO_MODEL:
+		return HYLO_PLAN_T_STATUS_NO_MODEL;
+	default:
+		return HYLO_PLAN_T_STATUS_BAD_REQUEST;
+	}
+}
+
+void hylo_msg_plan(const hylo_plan *plan, int64_t utime, hylo_plan_msg_buf *buf,
+		   hylo_plan_t *msg)
+{
+	uint32_t k, n = plan->n_waypoints;
+
+	memset(msg, 0, sizeof *msg);
+	msg->utime = utime;
+	msg->request_id = plan->request_id;
+	msg->map_id = plan->map_id;
+	msg->status = hylo_msg_plan_status(plan->status, plan->outcome);
+	msg->reason = (char *)plan->reason.text;
+	msg->robot = (char *)plan->robot;
+	msg->total_cost_j = plan->total_cost;
+	msg->n_waypoints = (int32_t)n;
+	for (k = 0; k < n; k++) {
+		buf->mode[k] = (int8_t)plan->mode[k];
+		buf->guard[k] = (int8_t)plan->guard[k];
+		buf->state_rows[k] = (double *)plan->state[k];
+	}
+	for (k = 0; k < plan->n_modes; k++)
+		buf->mode_sequence[k] = (int8_t)plan->mode_sequence[k];
+	msg->mode = buf->mode;
+	msg->state = buf->state_rows;
+	msg->cost_j = (double *)plan->cost;
+	msg->guard = buf->guard;
+	msg->n_modes = (int32_t)plan->n_modes;
+	msg->mode_sequence = buf->mode_sequence;
+	msg->n_nodes = (int32_t)plan->n_nodes;
+	msg->n_edges = (int64_t)plan->n_edges;
+	msg->n_edges_evaluated = (int64_t)plan->n_edges_evaluated;
+	msg->n_expansions = (int64_t)plan->n_expansions;
+	msg->n_clamped = (int64_t)plan->n_clamped;
+	msg->plan_ms = plan->plan_ms;
+}

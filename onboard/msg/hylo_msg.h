@@ -1,0 +1,39 @@
+/*
+ * Conversion between decoded LCM messages (msgs/, generated C types) and the
+ * planning core's views. Lives outside the core so that the core needs no
+ * LCM header; nothing here allocates: views point into the message, and a
+ * plan message points into the caller's hylo_plan and hylo_plan_msg_buf.
+ */
+#ifndef HYLO_MSG_H
+#define HYLO_MSG_H
+
+#include "hylo/planner.h"
+#include "hylo_goal_t.h"
+#include "hylo_map_t.h"
+#include "hylo_plan_t.h"
+
+/** A view of map message msg (no copy; valid while msg lives). */
+void hylo_msg_map_view(const hylo_map_t *msg, hylo_map_view *view);
+
+/** A goal view of goal message msg (no copy; valid while msg lives). */
+void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *goal);
+
+/* Storage a plan message points into. */
+typedef struct {
+	int8_t mode[HYLO_MAX_WAYPOINTS];
+	int8_t guard[HYLO_MAX_WAYPOINTS];
+	int8_t mode_sequence[HYLO_MAX_WAYPOINTS];
+	double *state_rows[HYLO_MAX_WAYPOINTS];
+} hylo_plan_msg_buf;
+
+/** plan_t.STATUS_* for a plan's status and outcome. */
+int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome);
+
+/**
+ * Fills msg from plan (utime as given). msg's arrays point into plan and
+ * buf, which must outlive msg. The plan's reason becomes msg->reason.
+ */
+void hylo_msg_plan(const hylo_plan *plan, int64_t utime, hylo_plan_msg_buf *buf,
+                   hylo_plan_t *msg);
+
+#endif

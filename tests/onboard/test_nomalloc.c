@@ -1,0 +1,146 @@
+/*
+ * The planning core never allocates: the allocator is wrapped at link time
+ * (-Wl,--wrap=malloc,...; see mk/onboard.mk) and every call made while the
+ * planner runs is counted. The test itself allocates only while disarmed.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdlib.h>
+
+#include "onboard/testutil_planner.h"
+
+void *__real_malloc(size_t n);
+void *__real_calloc(size_t n, size_t size);
+void *__real_realloc(void *p, size_t n);
+void __real_free(void *p);
+
+static int armed;
+static long calls;
+
+void *__wrap_malloc(size_t n)
+{
+	calls += armed;
+	return __real_malloc(n);
+}
+
+void *__wrap_calloc(size_t n, size_t size)
+{
+	calls += armed;
+	return __real_calloc(n, size);
+}
+
+void *__wrap_realloc(void *p, size_t n)
+{
+	calls += armed;
+	return __real_realloc(p, n);
+}
+
+void __wrap_free(void *p)
+{
+	calls += armed;
+	__real_free(p);
+}
+
+/* A small SVR model, so that the built-in SVR path runs too. */
+#define NSV 24
+static double sv[NSV * HYLO_FEATURES_PLANAR], coef[NSV];
+static const double offset[HYLO_FEATURES_PLANAR] = { 0, 0, 0, 0.5, 0.5 };
+static const double scale[HYLO_FEATURES_PLANAR] = { 3, 3, 2, 0.5, 0.5 };
+static hylo_svr_model model = {
+	"test_ground", NSV, HYLO_FEATURES_PLANAR, 0.5, -20.0, sv, coef, offset, scale,
+	0.0, 1.0, 0, 3.0, 0.0, "test"
+};
+
+/* The control: the wrapper does see calls made from linked objects. */
+static void test_wrap_works(void **state)
+{
+	void *p;
+
+	(void)state;
+	calls = 0;
+	armed = 1;
+	p = malloc(16);
+	free(p);
+	armed = 0;
+	assert_int_equal(calls, 2);
+}
+
+static void run_scenes(hylo_planner *pl, hylo_plan *plan, tu_map *maps, int n_maps)
+{
+	hylo_goal goals[3] = { tu_goal_river(), tu_goal_chasm(), tu_goal_di() };
+	hylo_goal bad;
+	hylo_map_view v;
+	int k, alg;
+
+	for (k = 0; k < n_maps; k++) {
+		v = tu_view(&maps[k]);
+		assert_int_equal(hylo_planner_set_map(pl, &v), HYLO_OK);
+		for (alg = 0; alg < 2; alg++) {
+			goals[k].algorithm = alg;
+			assert_int_equal(hylo_planner_plan(pl, &goals[k], plan), HYLO_OK);
+			assert_int_equal(plan->outcome, HYLO_FOUND);
+		}
+		/* Failures format reasons: no allocation there either. */
+		bad = goals[k];
+		bad.start[0] = NAN;
+		assert_int_equal(hylo_planner_plan(pl, &bad, plan), HYLO_E_BAD_VALUE);
+		bad = goals[k];
+		bad.map_id = 77;
+		assert_int_equal(hylo_planner_plan(pl, &bad, plan), HYLO_E_MAP_MISMATCH);
+	}
+	v = tu_view(&maps[0]);
+	v.robot = "nobody";
+	assert_int_equal(hylo_planner_set_map(pl, &v), HYLO_E_UNKNOWN_ROBOT);
+}
+
+static void test_planner_never_allocates(void **state)
+{
+	hylo_planner *pl = malloc(sizeof *pl);
+	hylo_plan *plan = malloc(sizeof *plan);
+	hylo_robot robots[4];
+	hylo_planner_config cfg;
+	tu_cost costs;
+	tu_map maps[3];
+	int k;
+
+	(void)state;
+	assert_non_null(pl);
+	assert_non_null(plan);
+	for (k = 0; k < NSV * HYLO_FEATURES_PLANAR; k++)
+		sv[k] = ((k * 7919) % 200) / 100.0 - 1.0;
+	for (k = 0; k < NSV; k++)
+		coef[k] = 0.5 + 0.1 * (k % 5);
+	tu_robots(robots, &costs);
+	robots[0].modes[0].model = &model;   /* ambot drives on the SVR */
+	tu_river(&maps[0]);
+	tu_chasm(&maps[1]);
+	tu_di(&maps[2]);
+	memset(&cfg, 0, sizeof cfg);
+	cfg.robots = robots;
+	cfg.n_robots = 4;
+
+	calls = 0;
+	armed = 1;
+	assert_int_equal(hylo_planner_init(pl, &cfg), HYLO_OK);
+	run_scenes(pl, plan, maps, 3);
+	armed = 0;
+	assert_int_equal(calls, 0);
+	for (k = 0; k < 3; k++)
+		tu_map_free(&maps[k]);
+	free(plan);
+	free(pl);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_wrap_works),
+		cmocka_unit_test(test_planner_never_allocates),
+	};
+
+	return cmocka_run_group_tests_name("nomalloc", tests, NULL, NULL);
+}

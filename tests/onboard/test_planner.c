@@ -1,0 +1,750 @@
+/*
+ * The planner end to end through its public API, on three scenes: results
+ * against an independent full-graph Dijkstra, roadmap validity, reuse,
+ * determinism (encoded plan_t bytes) and bad input.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hylo_msg.h"
+#include "onboard/testutil_planner.h"
+
+static hylo_planner *planner;     /* ~tens of MB: allocated once */
+static hylo_planner *planner2;
+static hylo_plan *plan;
+static hylo_plan *plan2;
+static hylo_robot robots[4];
+static tu_cost costs;
+
+static void init_planner(hylo_planner *pl)
+{
+	hylo_planner_config cfg;
+
+	memset(&cfg, 0, sizeof cfg);
+	cfg.robots = robots;
+	cfg.n_robots = 4;
+	assert_int_equal(hylo_planner_init(pl, &cfg), HYLO_OK);
+}
+
+static void set_scene(hylo_planner *pl, tu_map *m)
+{
+	hylo_map_view v = tu_view(m);
+	hylo_status st = hylo_planner_set_map(pl, &v);
+
+	if (st != HYLO_OK)
+		fail_msg("set_map: %s: %s", hylo_status_str(st), hylo_planner_reason(pl));
+}
+
+static void plan_ok(hylo_planner *pl, const hylo_goal *g, hylo_plan *p)
+{
+	hylo_status st = hylo_planner_plan(pl, g, p);
+
+	if (st != HYLO_OK)
+		fail_msg("plan: %s: %s", hylo_status_str(st), p->reason.text);
+	if (p->outcome != HYLO_FOUND)
+		fail_msg("plan outcome: %s", hylo_outcome_str(p->outcome));
+}
+
+/* ---- an independent oracle: the full graph, every edge evaluated, plain
+ * O(V^2) Dijkstra ------------------------------------------------------ */
+
+typedef struct {
+	uint32_t n;
+	uint32_t *begin;     /* n + 1 */
+	uint32_t *head;
+	double *cost;
+} oracle_graph;
+
+static double node_xs(const hylo_planner *pl, uint32_t u, double *xs)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t i = rm->node_pos[u];
+
+	if (i == pl->start_pos)
+		memcpy(xs, pl->start_xs, sizeof pl->start_xs);
+	else if (i == pl->goal_pos)
+		memcpy(xs, pl->goal_xs, sizeof pl->goal_xs);
+	else
+		hylo_roadmap_state(rm, i, u - rm->pos[i].node_base, xs);
+	return 0;
+}
+
+static double clamp_cost(const hylo_planner *pl, hylo_mode mode, double c, double dist)
+{
+	int k = hylo_robot_mode_index(pl->robot, mode);
+	double lo = pl->robot->modes[k].cost_floor_per_m * dist;
+
+	return c < lo ? lo : c;
+}
+
+/* Out-edges of every node, from the roadmap's public data. */
+static void oracle_build(const hylo_planner *pl, oracle_graph *og)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t n = rm->n_nodes + 2, cap = 1u << 22, m = 0, u;
+
+	og->n = n;
+	og->begin = malloc((n + 1) * sizeof *og->begin);
+	og->head = malloc(cap * sizeof *og->head);
+	og->cost = malloc(cap * sizeof *og->cost);
+	for (u = 0; u < n; u++) {
+		uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
+		const hylo_position *p = &rm->pos[i];
+		double a[HYLO_XS_DIM], b[HYLO_XS_DIM];
+		uint32_t nb[HYLO_MAX_SUCCESSORS + 1], nn = 0, k, cc, combos[HYLO_MAX_COMBOS];
+
+		og->begin[u] = m;
+		if (i == pl->goal_pos)
+			continue;
+		node_xs(pl, u, a);
+		if (i == pl->start_pos) {
+			for (k = 0; k < pl->n_start_adj; k++)
+				nb[nn++] = pl->start_adj[k];
+			if (pl->start_goal_linked)
+				nb[nn++] = pl->goal_pos;
+		} else {
+			for (k = p->adj_begin; k < p->adj_end; k++)
+				nb[nn++] = rm->adjacency[k];
+			if (pl->links_goal[i])
+				nb[nn++] = pl->goal_pos;
+		}
+		for (k = 0; k < nn; k++) {
+			const hylo_position *q = &rm->pos[nb[k]];
+			double dist = hylo_roadmap_distance(p->p, q->p);
+
+			for (cc = 0; cc < q->n_combos; cc++) {
+				assert_true(m < cap);
+				og->head[m] = q->node_base + cc;
+				node_xs(pl, og->head[m], b);
+				og->cost[m] = clamp_cost(pl, (hylo_mode)p->mode,
+							 tu_edge_cost(&costs, (hylo_mode)p->mode, a, b),
+							 dist);
+				m++;
+			}
+		}
+		if (i < rm->n_positions && p->twin != HYLO_NO_POSITION) {
+			uint32_t ns = hylo_roadmap_switch_heads(rm, i, c, combos);
+			int dir = p->mode == pl->robot->modes[0].mode ? 0 : 1;
+
+			for (k = 0; k < ns; k++) {
+				og->head[m] = rm->pos[p->twin].node_base + combos[k];
+				og->cost[m] = pl->robot->switch_cost[dir];
+				m++;
+			}
+		}
+	}
+	og->begin[n] = m;
+}
+
+static double oracle_cost(const oracle_graph *og, uint32_t s, uint32_t t)
+{
+	double *d = malloc(og->n * sizeof *d), best;
+	char *done = calloc(og->n, 1);
+	uint32_t u, k, it;
+
+	for (u = 0; u < og->n; u++)
+		d[u] = INFINITY;
+	d[s] = 0;
+	for (it = 0; it < og->n; it++) {
+		uint32_t bu = UINT32_MAX;
+
+		for (u = 0; u < og->n; u++)
+			if (!done[u] && isfinite(d[u]) && (bu == UINT32_MAX || d[u] < d[bu]))
+				bu = u;
+		if (bu == UINT32_MAX)
+			break;
+		done[bu] = 1;
+		for (k = og->begin[bu]; k < og->begin[bu + 1]; k++)
+			if (d[bu] + og->cost[k] < d[og->head[k]])
+				d[og->head[k]] = d[bu] + og->cost[k];
+	}
+	best = d[t];
+	free(d);
+	free(done);
+	return best;
+}
+
+static void oracle_free(oracle_graph *og)
+{
+	free(og->begin);
+	free(og->head);
+	free(og->cost);
+}
+
+static void check_optimal(tu_map *m, hylo_goal g)
+{
+	oracle_graph og;
+	double best, astar;
+	uint64_t exp_astar, eval_astar;
+
+	set_scene(planner, m);
+	g.algorithm = HYLO_ASTAR;
+	plan_ok(planner, &g, plan);
+	astar = plan->total_cost;
+	exp_astar = plan->n_expansions;
+	eval_astar = plan->n_edges_evaluated;
+	oracle_build(planner, &og);
+	best = oracle_cost(&og, planner->roadmap.n_nodes, planner->roadmap.n_nodes + 1);
+	assert_true(plan->n_edges == og.begin[og.n]);
+	oracle_free(&og);
+	g.algorithm = HYLO_DIJKSTRA;
+	plan_ok(planner, &g, plan);
+	print_message("%s: %u nodes, %llu edges; optimum %.6f; A* %llu expansions %llu evaluations, Dijkstra %llu / %llu\n",
+		      m->robot, (unsigned)plan->n_nodes, (unsigned long long)plan->n_edges, best,
+		      (unsigned long long)exp_astar, (unsigned long long)eval_astar,
+		      (unsigned long long)plan->n_expansions,
+		      (unsigned long long)plan->n_edges_evaluated);
+	assert_true(isfinite(best));
+	assert_true(fabs(astar - best) <= 1e-9 * best);
+	assert_true(fabs(plan->total_cost - best) <= 1e-9 * best);
+	assert_true(exp_astar <= plan->n_expansions);
+	assert_true(eval_astar <= plan->n_edges_evaluated);
+	assert_true(plan->n_edges_evaluated <= plan->n_edges);
+}
+
+static void test_optimal_river(void **state)
+{
+	tu_map m;
+	hylo_goal g = tu_goal_river();
+	uint64_t seed;
+
+	(void)state;
+	tu_river(&m);
+	for (seed = 1; seed <= 3; seed++) {
+		g.seed = seed;
+		check_optimal(&m, g);
+	}
+	tu_map_free(&m);
+}
+
+static void test_optimal_chasm(void **state)
+{
+	tu_map m;
+
+	(void)state;
+	tu_chasm(&m);
+	check_optimal(&m, tu_goal_chasm());
+	tu_map_free(&m);
+}
+
+static void test_optimal_di(void **state)
+{
+	tu_map m;
+	hylo_goal g = tu_goal_di();
+
+	(void)state;
+	tu_di(&m);
+	check_optimal(&m, g);
+	g.start[0] = 0.7;
+	g.start[1] = -0.1;
+	g.goal[0] = -0.5;
+	g.goal[1] = 0.2;
+	check_optimal(&m, g);
+	tu_map_free(&m);
+}
+
+/* ---- the shape of a plan ---------------------------------------------- */
+
+static int on_shoreline(const tu_map *m, double x, double y)
+{
+	/* On a vertical cell edge with ground on one side, water on the other. */
+	double fx = (x - m->ox) / m->res, fy = (y - m->oy) / m->res;
+	long ix = lround(fx), iy = (long)floor(fy);
+
+	if (fabs(fx - ix) > 1e-9 || ix <= 0 || ix >= m->nx || iy < 0 || iy >= m->ny)
+		return 0;
+	return m->terrain[iy * m->nx + ix - 1] + m->terrain[iy * m->nx + ix] ==
+		       HYLO_TERRAIN_GROUND + HYLO_TERRAIN_WATER &&
+	       m->terrain[iy * m->nx + ix - 1] != m->terrain[iy * m->nx + ix];
+}
+
+static void test_river_plan_shape(void **state)
+{
+	tu_map m;
+	hylo_goal g = tu_goal_river();
+	uint32_t k, guards = 0;
+	double sum = 0;
+
+	(void)state;
+	tu_river(&m);
+	set_scene(planner, &m);
+	plan_ok(planner, &g, plan);
+	assert_int_equal(plan->request_id, 7);
+	assert_string_equal(plan->robot, "ambot");
+	assert_int_equal(plan->n_modes, 3);
+	assert_int_equal(plan->mode_sequence[0], HYLO_MODE_GROUND);
+	assert_int_equal(plan->mode_sequence[1], HYLO_MODE_MARINE);
+	assert_int_equal(plan->mode_sequence[2], HYLO_MODE_GROUND);
+	assert_memory_equal(plan->state[0], g.start, sizeof g.start);
+	assert_memory_equal(plan->state[plan->n_waypoints - 1], g.goal, sizeof g.goal);
+	assert_true(plan->cost[0] == 0);
+	for (k = 0; k + 1 < plan->n_waypoints; k++) {
+		const double *a = plan->state[k], *b = plan->state[k + 1];
+
+		assert_true(plan->cost[k + 1] >= plan->cost[k]);
+		if (plan->mode[k] != plan->mode[k + 1]) {
+			/* A switch: twin guard waypoints at one place, zero cost. */
+			assert_true(plan->guard[k] && plan->guard[k + 1]);
+			assert_true(a[0] == b[0] && a[1] == b[1]);
+			assert_true(on_shoreline(&m, a[0], a[1]));
+			assert_true(plan->cost[k + 1] == plan->cost[k]);
+			guards += 2;
+			continue;
+		}
+		sum += clamp_cost(planner, (hylo_mode)plan->mode[k],
+				  tu_edge_cost(&costs, (hylo_mode)plan->mode[k], a, b),
+				  hypot(b[0] - a[0], b[1] - a[1]));
+		assert_true(fabs(sum - plan->cost[k + 1]) <= 1e-9 * sum);
+		assert_true(hypot(b[0] - a[0], b[1] - a[1]) <= g.connect_radius);
+	}
+	assert_int_equal(guards, 4);
+	assert_true(plan->total_cost == plan->cost[plan->n_waypoints - 1]);
+	tu_map_free(&m);
+}
+
+static void test_chasm_plan_shape(void **state)
+{
+	tu_map m;
+	hylo_goal g = tu_goal_chasm();
+	uint32_t k;
+	int takeoffs = 0, landings = 0;
+
+	(void)state;
+	tu_chasm(&m);
+	set_scene(planner, &m);
+	plan_ok(planner, &g, plan);
+	for (k = 0; k + 1 < plan->n_waypoints; k++) {
+		const double *a = plan->state[k], *b = plan->state[k + 1];
+
+		if (plan->mode[k] == HYLO_MODE_GROUND && plan->mode[k + 1] == HYLO_MODE_FLIGHT) {
+			/* Takeoff: from rest on the ground to hover 1 m above. */
+			assert_true(a[2] == 0 && b[3] == 0 && b[4] == 0 && b[5] == 0);
+			assert_true(a[0] == b[0] && a[1] == b[1]);
+			assert_true(fabs(b[2] - (hylo_map_height(&planner->map, a[0], a[1]) + 1.0)) < 1e-12);
+			assert_true(fabs(plan->cost[k + 1] - plan->cost[k] - 300) < 1e-9);
+			takeoffs++;
+		}
+		if (plan->mode[k] == HYLO_MODE_FLIGHT && plan->mode[k + 1] == HYLO_MODE_GROUND) {
+			assert_true(b[2] == 0 && a[3] == 0 && a[4] == 0 && a[5] == 0);
+			assert_true(fabs(plan->cost[k + 1] - plan->cost[k] - 150) < 1e-9);
+			landings++;
+		}
+	}
+	/* The platforms are separated by walls: the robot must fly at least once. */
+	assert_true(takeoffs >= 1);
+	assert_int_equal(takeoffs, landings);
+	assert_int_equal(plan->mode_sequence[0], HYLO_MODE_GROUND);
+	assert_int_equal(plan->mode_sequence[plan->n_modes - 1], HYLO_MODE_GROUND);
+	tu_map_free(&m);
+}
+
+/* ---- the roadmap ------------------------------------------------------ */
+
+static int segment_dense(const hylo_map *m, hylo_mode mode, hylo_point a, hylo_point b)
+{
+	int k;
+
+	for (k = 0; k <= 400; k++) {
+		double t = k / 400.0;
+		hylo_point p = { a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), a.z + t * (b.z - a.z) };
+
+		if (!hylo_domain_contains(m, mode, p))
+			return 0;
+	}
+	return 1;
+}
+
+static void check_roadmap(tu_map *m, hylo_goal g)
+{
+	const hylo_roadmap *rm = &planner->roadmap;
+	const hylo_map *map = &planner->map;
+	uint32_t i, j, k, guards = 0;
+
+	set_scene(planner, m);
+	plan_ok(planner, &g, plan);
+	for (i = 0; i < rm->n_positions; i++) {
+		const hylo_position *p = &rm->pos[i];
+
+		assert_true(hylo_domain_contains(map, (hylo_mode)p->mode, p->p));
+		for (k = p->adj_begin; k < p->adj_end; k++) {
+			const hylo_position *q = &rm->pos[rm->adjacency[k]];
+			uint32_t back;
+			int found = 0;
+
+			assert_int_equal(q->mode, p->mode);
+			assert_true(hylo_roadmap_distance(p->p, q->p) <=
+				    hylo_roadmap_radius(rm, (hylo_mode)p->mode));
+			assert_true(segment_dense(map, (hylo_mode)p->mode, p->p, q->p));
+			for (back = q->adj_begin; back < q->adj_end; back++)
+				found |= rm->adjacency[back] == i;
+			assert_true(found);
+		}
+		if (p->twin != HYLO_NO_POSITION) {
+			const hylo_position *t = &rm->pos[p->twin];
+
+			guards++;
+			assert_int_equal(t->twin, i);
+			assert_true(t->mode != p->mode);
+			assert_true(p->p.x == t->p.x && p->p.y == t->p.y);
+			if (p->mode == HYLO_MODE_DI_NEG || p->mode == HYLO_MODE_DI_POS)
+				assert_true(p->p.x == 0);
+			if (p->mode == HYLO_MODE_FLIGHT)
+				assert_true(fabs(p->p.z - t->p.z - 1.0) < 1e-12);
+			if (p->mode == HYLO_MODE_MARINE)
+				assert_true(on_shoreline(m, p->p.x, p->p.y));
+		}
+	}
+	/* Completeness, by brute force over all pairs. */
+	for (i = 0; i < rm->n_positions; i++)
+		for (j = 0; j < rm->n_positions; j++) {
+			const hylo_position *p = &rm->pos[i], *q = &rm->pos[j];
+			int listed = 0;
+
+			if (i == j || p->mode != q->mode ||
+			    hylo_roadmap_distance(p->p, q->p) > hylo_roadmap_radius(rm, (hylo_mode)p->mode) ||
+			    !hylo_domain_segment(map, (hylo_mode)p->mode, p->p, q->p))
+				continue;
+			for (k = p->adj_begin; k < p->adj_end; k++)
+				listed |= rm->adjacency[k] == j;
+			assert_true(listed);
+		}
+	assert_int_equal(guards, 2 * rm->n_guards);
+	assert_true(rm->n_guards > 0);
+}
+
+static void test_roadmap_valid(void **state)
+{
+	tu_map m;
+
+	(void)state;
+	tu_river(&m);
+	check_roadmap(&m, tu_goal_river());
+	tu_map_free(&m);
+	tu_chasm(&m);
+	check_roadmap(&m, tu_goal_chasm());
+	tu_map_free(&m);
+	tu_di(&m);
+	check_roadmap(&m, tu_goal_di());
+	tu_map_free(&m);
+}
+
+/* ---- reuse and determinism -------------------------------------------- */
+
+static size_t encode(const hylo_plan *p, uint8_t *buf, size_t cap)
+{
+	static hylo_plan_msg_buf mb;
+	hylo_plan_t msg;
+	int n;
+
+	hylo_msg_plan(p, 0, &mb, &msg);
+	n = hylo_plan_t_encoded_size(&msg);
+	assert_true(n > 0 && (size_t)n <= cap);
+	assert_int_equal(hylo_plan_t_encode(buf, 0, n, &msg), n);
+	return (size_t)n;
+}
+
+static void assert_same_plan(const hylo_plan *a, const hylo_plan *b)
+{
+	static uint8_t ba[1 << 20], bb[1 << 20];
+	size_t na = encode(a, ba, sizeof ba), nb = encode(b, bb, sizeof bb);
+
+	assert_int_equal(na, nb);
+	assert_memory_equal(ba, bb, na);
+}
+
+static void test_roadmap_reuse(void **state)
+{
+	tu_map m;
+	hylo_goal g1 = tu_goal_river(), g2 = tu_goal_river();
+
+	(void)state;
+	tu_river(&m);
+	g2.start[0] = 27;
+	g2.start[1] = 18;
+	g2.start[2] = 0.5;
+	g2.goal[0] = 1;
+	g2.goal[1] = 2;
+	g2.goal[3] = TU_PI;
+	set_scene(planner, &m);
+	plan_ok(planner, &g1, plan);
+	assert_int_equal(plan->roadmap_reused, 0);
+	plan_ok(planner, &g2, plan);
+	assert_int_equal(plan->roadmap_reused, 1);
+	/* The same as planning g2 on a fresh planner. */
+	init_planner(planner2);
+	set_scene(planner2, &m);
+	plan_ok(planner2, &g2, plan2);
+	assert_int_equal(plan2->roadmap_reused, 0);
+	plan2->roadmap_reused = 1;
+	assert_same_plan(plan, plan2);
+	/* Back to g1: the old goal's links are gone. */
+	plan_ok(planner, &g1, plan);
+	plan_ok(planner2, &g1, plan2);
+	assert_same_plan(plan, plan2);
+	/* Other options or a new map rebuild. */
+	g1.seed = 99;
+	plan_ok(planner, &g1, plan);
+	assert_int_equal(plan->roadmap_reused, 0);
+	set_scene(planner, &m);
+	plan_ok(planner, &g1, plan);
+	assert_int_equal(plan->roadmap_reused, 0);
+	tu_map_free(&m);
+}
+
+static void test_determinism(void **state)
+{
+	tu_map m;
+	hylo_goal g = tu_goal_river();
+
+	(void)state;
+	tu_river(&m);
+	init_planner(planner2);
+	set_scene(planner, &m);
+	set_scene(planner2, &m);
+	plan_ok(planner, &g, plan);
+	plan_ok(planner2, &g, plan2);
+	assert_same_plan(plan, plan2);
+	/* Another seed gives another roadmap. */
+	g.seed = 2;
+	plan_ok(planner2, &g, plan2);
+	assert_true(plan->n_nodes != plan2->n_nodes || plan->total_cost != plan2->total_cost);
+	tu_map_free(&m);
+}
+
+static void test_negative_costs_clamped(void **state)
+{
+	tu_map m;
+	hylo_goal g = tu_goal_di();
+	uint32_t k;
+
+	(void)state;
+	tu_di(&m);
+	set_scene(planner, &m);
+	/* Rates 0 and a negative offset: many predictions below zero. */
+	costs.rate[HYLO_MODE_DI_NEG] = 0;
+	costs.rate[HYLO_MODE_DI_POS] = 0;
+	robots[2].modes[0].cost_floor_per_m = 0;
+	robots[2].modes[1].cost_floor_per_m = 0;
+	costs.offset = -0.2;
+	init_planner(planner);
+	set_scene(planner, &m);
+	plan_ok(planner, &g, plan);
+	assert_true(plan->n_negative > 0);
+	assert_true(plan->n_clamped >= plan->n_negative);
+	for (k = 0; k + 1 < plan->n_waypoints; k++)
+		assert_true(plan->cost[k + 1] >= plan->cost[k]);
+	tu_robots(robots, &costs);
+	init_planner(planner);
+	tu_map_free(&m);
+}
+
+/* ---- bad input -------------------------------------------------------- */
+
+static void expect(hylo_status want, hylo_status got, const hylo_plan *p)
+{
+	if (got != want)
+		fail_msg("expected %s, got %s: %s", hylo_status_str(want), hylo_status_str(got),
+			 p->reason.text);
+	assert_int_equal(p->status, want);
+	assert_true(strlen(p->reason.text) > 0 && strcmp(p->reason.text, "ok") != 0);
+	assert_int_equal(p->n_waypoints, 0);
+}
+
+/* After any bad request the planner still answers a good one correctly. */
+static void still_serves(tu_map *m, const hylo_goal *g, double want)
+{
+	set_scene(planner, m);
+	plan_ok(planner, g, plan);
+	assert_true(plan->total_cost == want);
+}
+
+static void test_bad_input(void **state)
+{
+	tu_map river, empty;
+	hylo_goal good = tu_goal_river(), g;
+	hylo_map_view v;
+	hylo_real many[HYLO_MAX_GRID + 1];
+	double want;
+	uint32_t k;
+
+	(void)state;
+	tu_river(&river);
+	assert_int_equal(hylo_planner_init(NULL, NULL), HYLO_E_NULL);
+	assert_int_equal(hylo_planner_set_map(planner, NULL), HYLO_E_NULL);
+	assert_int_equal(hylo_planner_plan(planner, NULL, plan), HYLO_E_NULL);
+	assert_int_equal(hylo_planner_plan(planner, &good, NULL), HYLO_E_NULL);
+
+	/* Goal before any map. */
+	init_planner(planner);
+	expect(HYLO_E_NO_MAP, hylo_planner_plan(planner, &good, plan), plan);
+
+	set_scene(planner, &river);
+	plan_ok(planner, &good, plan);
+	want = plan->total_cost;
+
+	g = good;
+	g.start[0] = NAN;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.goal[1] = INFINITY;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.start[0] = 3.5;   /* inside the obstacle block */
+	g.start[1] = 8;
+	expect(HYLO_E_OUTSIDE_DOMAIN, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.goal[0] = 31;     /* off the map */
+	expect(HYLO_E_OUTSIDE_DOMAIN, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.start[0] = 15;    /* in the river, but said to be on the ground */
+	expect(HYLO_E_WRONG_MODE, hylo_planner_plan(planner, &g, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "marine"));
+	g = good;
+	g.start_mode = HYLO_MODE_FLIGHT;   /* not a mode of ambot */
+	expect(HYLO_E_WRONG_MODE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.goal_mode = 42;
+	expect(HYLO_E_WRONG_MODE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.spacing = -1;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.connect_radius = NAN;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.algorithm = 7;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.time_budget_ms = 5;   /* this planner has no clock */
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.map_id = 12345;       /* a map that is not the current one */
+	expect(HYLO_E_MAP_MISMATCH, hylo_planner_plan(planner, &g, plan), plan);
+	g = good;
+	g.n_speeds = 2;
+	g.speeds = NULL;
+	expect(HYLO_E_NULL, hylo_planner_plan(planner, &g, plan), plan);
+
+	/* Grids: exactly HYLO_MAX_GRID entries work, one more does not. */
+	for (k = 0; k <= HYLO_MAX_GRID; k++)
+		many[k] = 0.05 * k;
+	g = good;
+	g.speeds = many;
+	g.n_speeds = HYLO_MAX_GRID + 1;
+	g.n_headings = 1;
+	expect(HYLO_E_CAP_GRID, hylo_planner_plan(planner, &g, plan), plan);
+	g.n_speeds = HYLO_MAX_GRID;
+	g.spacing = 4;
+	g.connect_radius = 5;
+	plan_ok(planner, &g, plan);
+	/* Combinations: speeds x headings past HYLO_MAX_COMBOS. */
+	g = good;
+	g.speeds = many;
+	g.n_speeds = HYLO_MAX_GRID;
+	g.headings = many;
+	g.n_headings = HYLO_MAX_COMBOS / HYLO_MAX_GRID + 1;
+	expect(HYLO_E_CAP_COMBOS, hylo_planner_plan(planner, &g, plan), plan);
+
+	/* The expansion budget runs out: a valid request, outcome says so. */
+	g = good;
+	g.max_expansions = 3;
+	assert_int_equal(hylo_planner_plan(planner, &g, plan), HYLO_OK);
+	assert_int_equal(plan->outcome, HYLO_BUDGET_EXHAUSTED);
+	assert_int_equal(plan->n_expansions, 3);
+	assert_int_equal(plan->n_waypoints, 0);
+	still_serves(&river, &good, want);
+
+	/* Unknown robot, inconsistent map, map without any usable cell. */
+	v = tu_view(&river);
+	v.robot = "submarine";
+	assert_int_equal(hylo_planner_set_map(planner, &v), HYLO_E_UNKNOWN_ROBOT);
+	assert_non_null(strstr(hylo_planner_reason(planner), "submarine"));
+	expect(HYLO_E_NO_MAP, hylo_planner_plan(planner, &good, plan), plan);
+	v = tu_view(&river);
+	v.n_cells = 5;
+	assert_int_equal(hylo_planner_set_map(planner, &v), HYLO_E_BAD_MAP);
+	tu_map_alloc(&empty, "ambot", 10, 10, 1.0, 0, 0);   /* all obstacle */
+	v = tu_view(&empty);
+	assert_int_equal(hylo_planner_set_map(planner, &v), HYLO_E_EMPTY_DOMAIN);
+	expect(HYLO_E_NO_MAP, hylo_planner_plan(planner, &good, plan), plan);
+	still_serves(&river, &good, want);
+
+	/* Unreachable: a ground-only rover cannot cross the river. */
+	river.robot = "rover";
+	set_scene(planner, &river);
+	assert_int_equal(hylo_planner_plan(planner, &good, plan), HYLO_OK);
+	assert_int_equal(plan->outcome, HYLO_NO_PATH);
+	assert_int_equal(plan->n_waypoints, 0);
+	assert_non_null(strstr(plan->reason.text, "no path"));
+	river.robot = "ambot";
+	still_serves(&river, &good, want);
+	tu_map_free(&empty);
+	tu_map_free(&river);
+}
+
+static void test_msg_status(void **state)
+{
+	(void)state;
+	assert_int_equal(hylo_msg_plan_status(HYLO_OK, HYLO_FOUND), HYLO_PLAN_T_STATUS_OK);
+	assert_int_equal(hylo_msg_plan_status(HYLO_OK, HYLO_NO_PATH), HYLO_PLAN_T_STATUS_NO_PATH);
+	assert_int_equal(hylo_msg_plan_status(HYLO_OK, HYLO_BUDGET_EXHAUSTED),
+			 HYLO_PLAN_T_STATUS_BUDGET_EXHAUSTED);
+	assert_int_equal(hylo_msg_plan_status(HYLO_E_NO_MAP, HYLO_NO_PATH), HYLO_PLAN_T_STATUS_NO_MAP);
+	assert_int_equal(hylo_msg_plan_status(HYLO_E_CAP_NODES, HYLO_NO_PATH),
+			 HYLO_PLAN_T_STATUS_OVER_CAPACITY);
+	assert_int_equal(hylo_msg_plan_status(HYLO_E_MAP_MISMATCH, HYLO_NO_PATH),
+			 HYLO_PLAN_T_STATUS_MAP_REPLACED);
+	assert_int_equal(hylo_msg_plan_status(HYLO_E_OUTSIDE_DOMAIN, HYLO_NO_PATH),
+			 HYLO_PLAN_T_STATUS_BAD_REQUEST);
+}
+
+static int setup(void **state)
+{
+	(void)state;
+	planner = malloc(sizeof *planner);
+	planner2 = malloc(sizeof *planner2);
+	plan = malloc(sizeof *plan);
+	plan2 = malloc(sizeof *plan2);
+	if (!planner || !planner2 || !plan || !plan2)
+		return -1;
+	tu_robots(robots, &costs);
+	init_planner(planner);
+	return 0;
+}
+
+static int teardown(void **state)
+{
+	(void)state;
+	free(planner);
+	free(planner2);
+	free(plan);
+	free(plan2);
+	return 0;
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_river_plan_shape),
+		cmocka_unit_test(test_chasm_plan_shape),
+		cmocka_unit_test(test_optimal_river),
+		cmocka_unit_test(test_optimal_chasm),
+		cmocka_unit_test(test_optimal_di),
+		cmocka_unit_test(test_roadmap_valid),
+		cmocka_unit_test(test_roadmap_reuse),
+		cmocka_unit_test(test_determinism),
+		cmocka_unit_test(test_negative_costs_clamped),
+		cmocka_unit_test(test_bad_input),
+		cmocka_unit_test(test_msg_status),
+	};
+
+	return cmocka_run_group_tests_name("planner", tests, setup, teardown);
+}

@@ -1,0 +1,277 @@
+/*
+ * Fixtures for the planner tests: three small scenes (a river for an
+ * Ambot-like robot, a chasm for a Drivocopter-like robot, the double
+ * integrator's phase plane), robots whose edge costs are analytic callbacks,
+ * and goals. Costs are positive, smooth in the states and at least the
+ * declared floor per metre, so the A* heuristic is admissible.
+ */
+#ifndef TESTUTIL_PLANNER_H
+#define TESTUTIL_PLANNER_H
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hylo/features.h"
+#include "hylo/planner.h"
+
+#define TU_PI 3.14159265358979323846
+
+typedef struct {
+	int32_t nx, ny;
+	double res, ox, oy, ceiling, max_step;
+	int8_t *terrain;
+	float *height;
+	const char *robot;
+	int64_t map_id;
+} tu_map;
+
+static inline void tu_map_alloc(tu_map *m, const char *robot, int32_t nx, int32_t ny, double res,
+				double ox, double oy)
+{
+	m->nx = nx;
+	m->ny = ny;
+	m->res = res;
+	m->ox = ox;
+	m->oy = oy;
+	m->ceiling = 0;
+	m->max_step = 0.1;
+	m->robot = robot;
+	m->map_id = 1;
+	m->terrain = calloc((size_t)nx * ny, 1);
+	m->height = calloc((size_t)nx * ny, sizeof(float));
+}
+
+static inline void tu_map_free(tu_map *m)
+{
+	free(m->terrain);
+	free(m->height);
+}
+
+static inline hylo_map_view tu_view(const tu_map *m)
+{
+	hylo_map_view v;
+
+	memset(&v, 0, sizeof v);
+	v.map_id = m->map_id;
+	v.robot = m->robot;
+	v.nx = m->nx;
+	v.ny = m->ny;
+	v.resolution = m->res;
+	v.origin_x = m->ox;
+	v.origin_y = m->oy;
+	v.ceiling = m->ceiling;
+	v.max_step = m->max_step;
+	v.n_cells = m->nx * m->ny;
+	v.terrain = m->terrain;
+	v.height = m->height;
+	return v;
+}
+
+/* 30 m x 20 m of ground with a 6 m river at x in [12, 18) and an obstacle
+ * block at x in [2.5, 4.5), y in [5, 13). */
+static inline void tu_river(tu_map *m)
+{
+	int32_t ix, iy;
+
+	tu_map_alloc(m, "ambot", 60, 40, 0.5, 0, 0);
+	for (iy = 0; iy < m->ny; iy++)
+		for (ix = 0; ix < m->nx; ix++) {
+			int8_t t = HYLO_TERRAIN_GROUND;
+
+			if (ix >= 24 && ix < 36)
+				t = HYLO_TERRAIN_WATER;
+			if (ix >= 5 && ix < 9 && iy >= 10 && iy < 26)
+				t = HYLO_TERRAIN_OBSTACLE;
+			m->terrain[iy * m->nx + ix] = t;
+		}
+}
+
+/* Two 6 m platforms (x < 15 and x >= 45) and a flat chasm floor between, all
+ * drivable, 6 m wide, ceiling 12 m: the walls are height steps. */
+static inline void tu_chasm(tu_map *m)
+{
+	int32_t ix, iy;
+
+	tu_map_alloc(m, "drivocopter", 60, 6, 1.0, 0, 0);
+	m->ceiling = 12;
+	for (iy = 0; iy < m->ny; iy++)
+		for (ix = 0; ix < m->nx; ix++) {
+			m->terrain[iy * m->nx + ix] = HYLO_TERRAIN_GROUND;
+			m->height[iy * m->nx + ix] = (ix < 15 || ix >= 45) ? 6.0f : 0.0f;
+		}
+}
+
+/* The phase plane p, v in [-1, 1], free but for an obstacle blob. */
+static inline void tu_di(tu_map *m)
+{
+	int32_t ix, iy;
+
+	tu_map_alloc(m, "di", 40, 40, 0.05, -1, -1);
+	for (iy = 0; iy < m->ny; iy++)
+		for (ix = 0; ix < m->nx; ix++)
+			m->terrain[iy * m->nx + ix] =
+				(ix >= 8 && ix < 12 && iy >= 4 && iy < 14) ? HYLO_TERRAIN_OBSTACLE
+									 : HYLO_TERRAIN_GROUND;
+}
+
+/* Analytic costs. Per-mode rate [J/m] is also the declared floor. */
+typedef struct {
+	double rate[HYLO_MODE_COUNT];
+	double offset;          /* added to every cost; negative to test clamping */
+	long calls;             /* edges evaluated through the callback */
+} tu_cost;
+
+static inline double tu_edge_cost(const tu_cost *tc, hylo_mode mode, const double *a,
+				  const double *b)
+{
+	double d, dv = 0, dth = 0;
+
+	if (mode == HYLO_MODE_FLIGHT) {
+		d = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+			 (b[2] - a[2]) * (b[2] - a[2]));
+		dv = sqrt((b[3] - a[3]) * (b[3] - a[3]) + (b[4] - a[4]) * (b[4] - a[4]) +
+			  (b[5] - a[5]) * (b[5] - a[5]));
+	} else {
+		d = sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
+		if (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) {
+			dv = fabs(b[2] - a[2]);
+			dth = fabs(hylo_wrap_angle(b[3] - a[3]));
+		}
+	}
+	return tc->rate[mode] * d * (1.0 + 0.2 * dv) + 0.3 * dth + 0.1 + tc->offset;
+}
+
+static inline hylo_status tu_cost_fn(void *ctx, hylo_mode mode, const hylo_real *tail,
+				     const hylo_real (*heads)[HYLO_XS_DIM], uint32_t n,
+				     hylo_real *cost, hylo_reason *r)
+{
+	tu_cost *tc = ctx;
+	uint32_t i;
+
+	(void)r;
+	for (i = 0; i < n; i++)
+		cost[i] = tu_edge_cost(tc, mode, tail, heads[i]);
+	tc->calls += n;
+	return HYLO_OK;
+}
+
+static inline hylo_mode_model tu_mode(hylo_mode mode, tu_cost *tc)
+{
+	hylo_mode_model mm;
+
+	memset(&mm, 0, sizeof mm);
+	mm.mode = mode;
+	mm.cost_fn = tu_cost_fn;
+	mm.cost_ctx = tc;
+	mm.cost_floor_per_m = tc->rate[mode];
+	return mm;
+}
+
+/* ambot, drivocopter, di and a ground-only rover, all on one cost context. */
+static inline void tu_robots(hylo_robot robots[4], tu_cost *tc)
+{
+	memset(tc, 0, sizeof *tc);
+	tc->rate[HYLO_MODE_GROUND] = 3.0;
+	tc->rate[HYLO_MODE_MARINE] = 9.0;
+	tc->rate[HYLO_MODE_FLIGHT] = 40.0;
+	tc->rate[HYLO_MODE_DI_NEG] = 1.0;
+	tc->rate[HYLO_MODE_DI_POS] = 2.0;
+	memset(robots, 0, 4 * sizeof *robots);
+	robots[0].name = "ambot";
+	robots[0].n_modes = 2;
+	robots[0].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
+	robots[0].modes[1] = tu_mode(HYLO_MODE_MARINE, tc);
+	robots[1].name = "drivocopter";
+	robots[1].n_modes = 2;
+	robots[1].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
+	robots[1].modes[1] = tu_mode(HYLO_MODE_FLIGHT, tc);
+	robots[1].switch_cost[0] = 300; /* takeoff */
+	robots[1].switch_cost[1] = 150; /* landing */
+	robots[2].name = "di";
+	robots[2].n_modes = 2;
+	robots[2].modes[0] = tu_mode(HYLO_MODE_DI_NEG, tc);
+	robots[2].modes[1] = tu_mode(HYLO_MODE_DI_POS, tc);
+	robots[3].name = "rover";
+	robots[3].n_modes = 1;
+	robots[3].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
+}
+
+static const hylo_real tu_speeds[] = { 0.0, 0.5, 1.0 };
+static const hylo_real tu_headings[] = { 0.0, TU_PI / 2, TU_PI, -TU_PI / 2 };
+static const hylo_real tu_air_speeds[] = { 0.0, 4.0 };
+static const hylo_real tu_headings_x[] = { 0.0, TU_PI };
+
+static inline hylo_goal tu_goal_river(void)
+{
+	hylo_goal g;
+
+	memset(&g, 0, sizeof g);
+	g.request_id = 7;
+	g.algorithm = HYLO_ASTAR;
+	g.start_mode = HYLO_MODE_GROUND;
+	g.start[0] = 2;
+	g.start[1] = 16;
+	g.goal_mode = HYLO_MODE_GROUND;
+	g.goal[0] = 28;
+	g.goal[1] = 4;
+	g.seed = 1;
+	g.spacing = 2.0;
+	g.guard_spacing = 2.0;
+	g.connect_radius = 4.5;
+	g.n_speeds = 3;
+	g.speeds = tu_speeds;
+	g.n_headings = 4;
+	g.headings = tu_headings;
+	return g;
+}
+
+static inline hylo_goal tu_goal_chasm(void)
+{
+	hylo_goal g;
+
+	memset(&g, 0, sizeof g);
+	g.request_id = 8;
+	g.algorithm = HYLO_ASTAR;
+	g.start_mode = HYLO_MODE_GROUND;
+	g.start[0] = 5;
+	g.start[1] = 3;
+	g.goal_mode = HYLO_MODE_GROUND;
+	g.goal[0] = 55;
+	g.goal[1] = 3;
+	g.seed = 2;
+	g.spacing = 3.0;
+	g.air_spacing = 4.0;
+	g.guard_spacing = 4.0;
+	g.connect_radius = 7.0;
+	g.air_connect_radius = 9.0;
+	g.n_speeds = 2;
+	g.speeds = tu_speeds;
+	g.n_headings = 2;
+	g.headings = tu_headings_x;
+	g.n_air_speeds = 2;
+	g.air_speeds = tu_air_speeds;
+	return g;
+}
+
+static inline hylo_goal tu_goal_di(void)
+{
+	hylo_goal g;
+
+	memset(&g, 0, sizeof g);
+	g.request_id = 9;
+	g.algorithm = HYLO_ASTAR;
+	g.start_mode = HYLO_MODE_DI_POS;
+	g.start[0] = 0.8;
+	g.start[1] = 0.2;
+	g.goal_mode = HYLO_MODE_DI_NEG;
+	g.goal[0] = -0.8;
+	g.goal[1] = 0.0;
+	g.seed = 3;
+	g.spacing = 0.15;
+	g.guard_spacing = 0.15;
+	g.connect_radius = 0.35;
+	return g;
+}
+
+#endif
