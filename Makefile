@@ -15,6 +15,7 @@ include mk/msgs.mk
 include mk/onboard.mk
 include mk/trainer.mk
 include mk/bench.mk
+include mk/bench_plan.mk
 
 .PHONY: all test bench deps check-deps clean
 

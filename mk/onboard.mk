@@ -83,6 +83,25 @@ $(BUILD)/san/test/onboard/%: $(BUILD)/san/obj/tests/onboard/%.o $(MSG_ADAPT_LIB_
 	@mkdir -p $(@D)
 	$(CC) $(SAN_FLAGS) $< $(MSG_NOPUBSUB_OBJS_SAN) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
 
+# Capacity test: the core compiled for small capacities that ordinary test
+# scenes exceed (tests/capacity/).
+CAPACITY_FLAGS := -DHYLO_MAX_POSITIONS=400 -DHYLO_MAX_NODES=2000 -DHYLO_MAX_ADJACENCY=6000 \
+	-DHYLO_MAX_SUCCESSORS=250 -DHYLO_MAX_WAYPOINTS=12 -DHYLO_MAX_SV=64 -DHYLO_MAX_COMBOS=32
+CAPACITY_TEST := $(BUILD)/test/capacity/test_capacity
+CAPACITY_TEST_SAN := $(BUILD)/san/test/capacity/test_capacity
+
+$(CAPACITY_TEST): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(wildcard onboard/include/hylo/*.h tests/onboard/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
+
+$(CAPACITY_TEST_SAN): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(wildcard onboard/include/hylo/*.h tests/onboard/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
+
+ALL_TARGETS += $(CAPACITY_TEST) $(CAPACITY_TEST_SAN)
+TESTS += $(CAPACITY_TEST)
+TESTS_SAN += $(CAPACITY_TEST_SAN)
+
 ALL_TARGETS += $(ONBOARD_LIB) $(ONBOARD_LIB_SAN) $(MSG_ADAPT_LIB) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_TESTS) $(ONBOARD_TESTS_SAN)
 TESTS += $(ONBOARD_TESTS)
 TESTS_SAN += $(ONBOARD_TESTS_SAN)

@@ -240,6 +240,11 @@ static hylo_status check_goal(hylo_planner *pl, const hylo_goal *g, hylo_point *
 
 	if (!pl->has_map)
 		return hylo_fail(&pl->reason, HYLO_E_NO_MAP, "no map has been set yet");
+	for (k = 0; k < pl->robot->n_modes; k++)
+		if (!pl->robot->modes[k].model && !pl->robot->modes[k].cost_fn)
+			return hylo_fail(&pl->reason, HYLO_E_NO_MODEL,
+					 "robot %s has no cost model for mode %s", pl->robot->name,
+					 hylo_mode_str(pl->robot->modes[k].mode));
 	if (g->map_id != 0 && g->map_id != pl->map.map_id)
 		return hylo_fail(&pl->reason, HYLO_E_MAP_MISMATCH,
 				 "goal is for map %lld, the current map is %lld",

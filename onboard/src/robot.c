@@ -48,9 +48,8 @@ static hylo_status check_mode(const hylo_robot *robot, const hylo_mode_model *mm
 					 hylo_feature_count(mm->mode));
 		return HYLO_OK;
 	}
-	if (!mm->cost_fn)
-		return hylo_fail(r, HYLO_E_NO_MODEL, "robot %s: mode %s has no cost model",
-				 robot->name, hylo_mode_str(mm->mode));
+	/* No model at all is allowed here: plans on such a robot's maps are
+	 * answered with HYLO_E_NO_MODEL. */
 	if (!isfinite(mm->cost_floor_per_m) || mm->cost_floor_per_m < 0 ||
 	    !isfinite(mm->max_distance_m) || mm->max_distance_m < 0)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,

@@ -21,7 +21,7 @@ static hylo_planner *planner;     /* ~tens of MB: allocated once */
 static hylo_planner *planner2;
 static hylo_plan *plan;
 static hylo_plan *plan2;
-static hylo_robot robots[4];
+static hylo_robot robots[TU_N_ROBOTS];
 static tu_cost costs;
 
 static void init_planner(hylo_planner *pl)
@@ -30,7 +30,7 @@ static void init_planner(hylo_planner *pl)
 
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
-	cfg.n_robots = 4;
+	cfg.n_robots = TU_N_ROBOTS;
 	assert_int_equal(hylo_planner_init(pl, &cfg), HYLO_OK);
 }
 
@@ -253,17 +253,37 @@ static void test_optimal_di(void **state)
 
 /* ---- the shape of a plan ---------------------------------------------- */
 
+static int terrain_at(const tu_map *m, long ix, long iy)
+{
+	if (ix < 0 || ix >= m->nx || iy < 0 || iy >= m->ny)
+		return -1;
+	return m->terrain[iy * m->nx + ix];
+}
+
+static int shore_pair(int a, int b)
+{
+	return (a == HYLO_TERRAIN_GROUND && b == HYLO_TERRAIN_WATER) ||
+	       (a == HYLO_TERRAIN_WATER && b == HYLO_TERRAIN_GROUND);
+}
+
+/* On a cell edge (endpoints included) with ground on one side and water on
+ * the other. */
 static int on_shoreline(const tu_map *m, double x, double y)
 {
-	/* On a vertical cell edge with ground on one side, water on the other. */
 	double fx = (x - m->ox) / m->res, fy = (y - m->oy) / m->res;
-	long ix = lround(fx), iy = (long)floor(fy);
+	long ix = lround(fx), iy = lround(fy), k;
 
-	if (fabs(fx - ix) > 1e-9 || ix <= 0 || ix >= m->nx || iy < 0 || iy >= m->ny)
-		return 0;
-	return m->terrain[iy * m->nx + ix - 1] + m->terrain[iy * m->nx + ix] ==
-		       HYLO_TERRAIN_GROUND + HYLO_TERRAIN_WATER &&
-	       m->terrain[iy * m->nx + ix - 1] != m->terrain[iy * m->nx + ix];
+	if (fabs(fx - ix) <= 1e-9)      /* on the vertical line x = ix */
+		for (k = (long)floor(fy + 1e-9) - 1; k <= (long)floor(fy - 1e-9) + 1; k++)
+			if (fy >= k - 1e-9 && fy <= k + 1 + 1e-9 &&
+			    shore_pair(terrain_at(m, ix - 1, k), terrain_at(m, ix, k)))
+				return 1;
+	if (fabs(fy - iy) <= 1e-9)      /* on the horizontal line y = iy */
+		for (k = (long)floor(fx + 1e-9) - 1; k <= (long)floor(fx - 1e-9) + 1; k++)
+			if (fx >= k - 1e-9 && fx <= k + 1 + 1e-9 &&
+			    shore_pair(terrain_at(m, k, iy - 1), terrain_at(m, k, iy)))
+				return 1;
+	return 0;
 }
 
 static void test_river_plan_shape(void **state)
@@ -642,8 +662,6 @@ static void test_bad_input(void **state)
 	g.n_headings = 1;
 	expect(HYLO_E_CAP_GRID, hylo_planner_plan(planner, &g, plan), plan);
 	g.n_speeds = HYLO_MAX_GRID;
-	g.spacing = 4;
-	g.connect_radius = 5;
 	plan_ok(planner, &g, plan);
 	/* Combinations: speeds x headings past HYLO_MAX_COMBOS. */
 	g = good;
@@ -676,6 +694,12 @@ static void test_bad_input(void **state)
 	assert_int_equal(hylo_planner_set_map(planner, &v), HYLO_E_EMPTY_DOMAIN);
 	expect(HYLO_E_NO_MAP, hylo_planner_plan(planner, &good, plan), plan);
 	still_serves(&river, &good, want);
+
+	/* A known robot without a cost model. */
+	river.robot = "ghost";
+	set_scene(planner, &river);
+	expect(HYLO_E_NO_MODEL, hylo_planner_plan(planner, &good, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "ghost"));
 
 	/* Unreachable: a ground-only rover cannot cross the river. */
 	river.robot = "rover";

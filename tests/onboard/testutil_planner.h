@@ -168,8 +168,10 @@ static inline hylo_mode_model tu_mode(hylo_mode mode, tu_cost *tc)
 	return mm;
 }
 
-/* ambot, drivocopter, di and a ground-only rover, all on one cost context. */
-static inline void tu_robots(hylo_robot robots[4], tu_cost *tc)
+/* ambot, drivocopter, di, a ground-only rover, all on one cost context, and
+ * a ghost robot that has no cost model. */
+#define TU_N_ROBOTS 5
+static inline void tu_robots(hylo_robot robots[TU_N_ROBOTS], tu_cost *tc)
 {
 	memset(tc, 0, sizeof *tc);
 	tc->rate[HYLO_MODE_GROUND] = 3.0;
@@ -177,7 +179,7 @@ static inline void tu_robots(hylo_robot robots[4], tu_cost *tc)
 	tc->rate[HYLO_MODE_FLIGHT] = 40.0;
 	tc->rate[HYLO_MODE_DI_NEG] = 1.0;
 	tc->rate[HYLO_MODE_DI_POS] = 2.0;
-	memset(robots, 0, 4 * sizeof *robots);
+	memset(robots, 0, TU_N_ROBOTS * sizeof *robots);
 	robots[0].name = "ambot";
 	robots[0].n_modes = 2;
 	robots[0].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
@@ -195,6 +197,9 @@ static inline void tu_robots(hylo_robot robots[4], tu_cost *tc)
 	robots[3].name = "rover";
 	robots[3].n_modes = 1;
 	robots[3].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
+	robots[4].name = "ghost";
+	robots[4].n_modes = 1;
+	robots[4].modes[0].mode = HYLO_MODE_GROUND;
 }
 
 static const hylo_real tu_speeds[] = { 0.0, 0.5, 1.0 };

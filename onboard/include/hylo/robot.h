@@ -24,7 +24,8 @@ typedef hylo_status (*hylo_cost_fn)(void *ctx, hylo_mode mode, const hylo_real *
                                     hylo_real *cost, hylo_reason *r);
 
 /* The cost model of one mode: either an SVR (model != NULL; the planner
- * evaluates it with its own cache) or a callback. */
+ * evaluates it with its own cache) or a callback. With neither, the robot is
+ * known but cannot be planned for: plans say HYLO_E_NO_MODEL. */
 typedef struct {
 	hylo_mode mode;
 	const hylo_svr_model *model;   /* built-in SVR evaluation, or NULL */
@@ -44,9 +45,9 @@ typedef struct {
 } hylo_robot;
 
 /**
- * Checks a robot description: name, 1-2 valid distinct modes, a model or a
- * callback for each, a known guard for a pair, finite non-negative switch
- * costs and floors, valid SVR models with the mode's feature count.
+ * Checks a robot description: name, 1-2 valid distinct modes, a known guard
+ * for a pair, finite non-negative switch costs and floors, valid SVR models
+ * with the mode's feature count.
  */
 hylo_status hylo_robot_check(const hylo_robot *robot, hylo_reason *r);
 

@@ -35,7 +35,7 @@ typedef struct {
 	double label_scale;            /* > 0 */
 	int label_log;                 /* 1: cost = exp(y); 0: cost = y */
 	double cost_floor_per_m;       /* every true cost is >= this * displacement [J/m], >= 0 */
-	double max_distance_m;         /* training displacements reach this far [m] */
+	double max_distance_m;         /* training displacements reach this far [m]; 0 = any */
 	const char *provenance;        /* samples, seed, hashes, errors, version; may be NULL */
 } hylo_svr_model;
 

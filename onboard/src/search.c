@@ -1,0 +1,374 @@
+#include "hylo/search.h"
+
+#include <math.h>
+
+/*
+ * heap_pos[] holds a node's index in the heap while it is open; these
+ * marks lie above any index (heap size <= HYLO_MAX_NODES < 0x7fffffff).
+ * A dead node has h = +inf: it cannot reach the goal, so it is never queued.
+ */
+#define SEARCH_UNSEEN HYLO_NO_NODE
+#define SEARCH_CLOSED (HYLO_NO_NODE - 1u)
+#define SEARCH_DEAD (HYLO_NO_NODE - 2u)
+
+/* Reading the clock costs more than a cheap expansion: look every so often. */
+#define SEARCH_CLOCK_EVERY 64u
+
+/* Heap order: smaller f, then larger g (deeper, nearer the goal), then smaller id. */
+static int heap_less(const hylo_search *s, uint32_t i, uint32_t j)
+{
+	hylo_real fi = s->heap_f[i], fj = s->heap_f[j];
+	uint32_t a = s->heap[i], b = s->heap[j];
+
+	if (fi != fj)
+		return fi < fj;
+	if (s->g[a] != s->g[b])
+		return s->g[a] > s->g[b];
+	return a < b;
+}
+
+static void heap_swap(hylo_search *s, uint32_t i, uint32_t j)
+{
+	uint32_t a = s->heap[i], b = s->heap[j];
+	hylo_real f = s->heap_f[i];
+
+	s->heap[i] = b;
+	s->heap[j] = a;
+	s->heap_f[i] = s->heap_f[j];
+	s->heap_f[j] = f;
+	s->heap_pos[b] = i;
+	s->heap_pos[a] = j;
+}
+
+/* Each step halves i, so at most log2(HYLO_MAX_NODES) steps. */
+static void heap_up(hylo_search *s, uint32_t i)
+{
+	while (i > 0) {
+		uint32_t p = (i - 1) / 2;
+
+		if (!heap_less(s, i, p))
+			break;
+		heap_swap(s, i, p);
+		i = p;
+	}
+}
+
+/* Each step at least doubles i, so at most log2(HYLO_MAX_NODES) steps. */
+static void heap_down(hylo_search *s, uint32_t i)
+{
+	for (;;) {
+		uint32_t l = 2 * i + 1, r = l + 1, m = i;
+
+		if (l < s->heap_size && heap_less(s, l, m))
+			m = l;
+		if (r < s->heap_size && heap_less(s, r, m))
+			m = r;
+		if (m == i)
+			break;
+		heap_swap(s, i, m);
+		i = m;
+	}
+}
+
+static void heap_push(hylo_search *s, uint32_t v, hylo_real f)
+{
+	uint32_t i = s->heap_size++;
+
+	s->heap[i] = v;
+	s->heap_f[i] = f;
+	s->heap_pos[v] = i;
+	heap_up(s, i);
+}
+
+static uint32_t heap_pop(hylo_search *s)
+{
+	uint32_t v = s->heap[0];
+
+	s->heap_size--;
+	if (s->heap_size > 0) {
+		s->heap[0] = s->heap[s->heap_size];
+		s->heap_f[0] = s->heap_f[s->heap_size];
+		s->heap_pos[s->heap[0]] = 0;
+		heap_down(s, 0);
+	}
+	s->heap_pos[v] = SEARCH_CLOSED;
+	return v;
+}
+
+/* h(v), or 0 for Dijkstra. +inf is allowed: no path from v to the goal. */
+static hylo_status heuristic(const hylo_graph *g, uint32_t v, hylo_real *h, hylo_reason *r)
+{
+	if (!g->heuristic) {
+		*h = 0;
+		return HYLO_OK;
+	}
+	*h = g->heuristic(g->ctx, v);
+	if (isnan(*h) || *h < 0)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "search: heuristic at node %lu is %g, must be >= 0 and not NaN",
+				 (unsigned long)v, *h);
+	return HYLO_OK;
+}
+
+static void reset(hylo_search *s, uint32_t n_nodes)
+{
+	uint32_t i;
+
+	s->n_nodes = n_nodes;
+	s->heap_size = 0;
+	s->stats.expansions = 0;
+	s->stats.edges_evaluated = 0;
+	s->stats.pushes = 0;
+	s->stats.decrease_keys = 0;
+	for (i = 0; i < n_nodes; i++) {
+		s->g[i] = INFINITY;
+		s->parent[i] = HYLO_NO_NODE;
+		s->heap_pos[i] = SEARCH_UNSEEN;
+	}
+}
+
+static hylo_status check_args(const hylo_graph *g, uint32_t start, uint32_t goal,
+			      const hylo_budget *b, hylo_reason *r)
+{
+	if (!g->expand)
+		return hylo_fail(r, HYLO_E_NULL, "hylo_search_run: graph has no expand callback");
+	if (g->n_nodes > HYLO_MAX_NODES)
+		return hylo_fail(r, HYLO_E_CAP_NODES,
+				 "search: %lu nodes, more than HYLO_MAX_NODES = %lu",
+				 (unsigned long)g->n_nodes, (unsigned long)HYLO_MAX_NODES);
+	if (start >= g->n_nodes || goal >= g->n_nodes)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "search: start %lu or goal %lu not below n_nodes = %lu",
+				 (unsigned long)start, (unsigned long)goal,
+				 (unsigned long)g->n_nodes);
+	if (isnan(b->time_budget_ms) || b->time_budget_ms < 0)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "search: time_budget_ms = %g must be >= 0", b->time_budget_ms);
+	if (b->time_budget_ms > 0 && !b->clock)
+		return hylo_fail(r, HYLO_E_NULL,
+				 "search: time_budget_ms = %g needs a clock", b->time_budget_ms);
+	return HYLO_OK;
+}
+
+/* Milliseconds since t0 into *elapsed; a broken clock stops the search. */
+static hylo_status clock_elapsed(const hylo_budget *b, double t0, double *elapsed,
+				 hylo_reason *r)
+{
+	double t = b->clock(b->clock_ctx);
+
+	if (!isfinite(t))
+		return hylo_fail(r, HYLO_E_BAD_VALUE, "search: clock returned %g", t);
+	*elapsed = t - t0;
+	return HYLO_OK;
+}
+
+/* Relaxes edge u -> v of cost c. Closed heads are final (consistent h). */
+static hylo_status relax(hylo_search *s, const hylo_graph *g, uint32_t goal, uint32_t u,
+			 uint32_t v, hylo_real c, hylo_reason *r)
+{
+	hylo_real ng, h;
+	hylo_status st;
+
+	if (v >= s->n_nodes)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "search: edge %lu -> %lu: head not below n_nodes = %lu",
+				 (unsigned long)u, (unsigned long)v, (unsigned long)s->n_nodes);
+	if (!isfinite(c) || c < 0)
+		return hylo_fail(r, HYLO_E_BAD_COST,
+				 "search: edge %lu -> %lu has cost %g, must be finite and >= 0",
+				 (unsigned long)u, (unsigned long)v, c);
+	if (s->heap_pos[v] == SEARCH_CLOSED || s->heap_pos[v] == SEARCH_DEAD)
+		return HYLO_OK;
+	ng = s->g[u] + c;
+	if (!isfinite(ng))
+		return hylo_fail(r, HYLO_E_BAD_COST,
+				 "search: cost to node %lu via %lu overflows (%g + %g)",
+				 (unsigned long)v, (unsigned long)u, s->g[u], c);
+	if (!(ng < s->g[v]))
+		return HYLO_OK;
+	/* h is not stored: asked again on a decrease-key, so f is exact. */
+	st = heuristic(g, v, &h, r);
+	if (st != HYLO_OK)
+		return st;
+	if (isinf(h) && v != goal) {
+		s->heap_pos[v] = SEARCH_DEAD;
+		return HYLO_OK;
+	}
+	s->g[v] = ng;
+	s->parent[v] = u;
+	if (s->heap_pos[v] == SEARCH_UNSEEN) {
+		heap_push(s, v, ng + h);
+		s->stats.pushes++;
+	} else {
+		s->heap_f[s->heap_pos[v]] = ng + h;
+		heap_up(s, s->heap_pos[v]);
+		s->stats.decrease_keys++;
+	}
+	return HYLO_OK;
+}
+
+static hylo_status expand(hylo_search *s, const hylo_graph *g, uint32_t goal, uint32_t u,
+			  hylo_reason *r)
+{
+	uint32_t k, n = 0;
+	hylo_status st;
+
+	/* An empty reason after a failure means expand gave none. */
+	r->text[0] = '\0';
+	st = g->expand(g->ctx, s, u, s->heads, s->costs, HYLO_MAX_SUCCESSORS, &n, r);
+	if (st != HYLO_OK) {
+		if (r->text[0] == '\0')
+			hylo_fail(r, st, "search: expand of node %lu failed: %s", (unsigned long)u,
+				  hylo_status_str(st));
+		return st;
+	}
+	if (n > HYLO_MAX_SUCCESSORS)
+		return hylo_fail(r, HYLO_E_CAP_SUCCESSORS,
+				 "search: node %lu has %lu successors, more than HYLO_MAX_SUCCESSORS = %lu",
+				 (unsigned long)u, (unsigned long)n,
+				 (unsigned long)HYLO_MAX_SUCCESSORS);
+	s->stats.edges_evaluated += n;
+	for (k = 0; k < n; k++) {
+		st = relax(s, g, goal, u, s->heads[k], s->costs[k], r);
+		if (st != HYLO_OK)
+			return st;
+	}
+	return HYLO_OK;
+}
+
+static hylo_status search_loop(hylo_search *s, const hylo_graph *g, uint32_t goal,
+			       const hylo_budget *b, double t0, hylo_outcome *outcome,
+			       hylo_reason *r)
+{
+	hylo_status st;
+	uint32_t u;
+
+	/* Each pass closes one node, so at most n_nodes + 1 passes. */
+	for (;;) {
+		if (s->heap_size == 0) {
+			*outcome = HYLO_NO_PATH;
+			return HYLO_OK;
+		}
+		if (b->max_expansions > 0 && s->stats.expansions >= b->max_expansions) {
+			*outcome = HYLO_BUDGET_EXHAUSTED;
+			return HYLO_OK;
+		}
+		if (b->time_budget_ms > 0 && s->stats.expansions > 0 &&
+		    s->stats.expansions % SEARCH_CLOCK_EVERY == 0) {
+			double elapsed = 0;
+
+			st = clock_elapsed(b, t0, &elapsed, r);
+			if (st != HYLO_OK)
+				return st;
+			if (elapsed >= b->time_budget_ms) {
+				*outcome = HYLO_BUDGET_EXHAUSTED;
+				return HYLO_OK;
+			}
+		}
+		u = heap_pop(s);
+		s->stats.expansions++;
+		if (u == goal) {
+			*outcome = HYLO_FOUND;
+			return HYLO_OK;
+		}
+		st = expand(s, g, goal, u, r);
+		if (st != HYLO_OK)
+			return st;
+	}
+}
+
+hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
+			    uint32_t goal, const hylo_budget *budget,
+			    hylo_outcome *outcome, hylo_reason *r)
+{
+	hylo_reason local;
+	hylo_real h;
+	double t0 = 0;
+	hylo_status st;
+
+	/* expand may write into r, so it always gets one. */
+	if (!r)
+		r = &local;
+	if (!s || !g || !budget || !outcome)
+		return hylo_fail(r, HYLO_E_NULL, "hylo_search_run: NULL argument");
+	*outcome = HYLO_NO_PATH;
+	/* A failed call leaves no stale results behind. */
+	reset(s, 0);
+	st = check_args(g, start, goal, budget, r);
+	if (st != HYLO_OK)
+		return st;
+	if (budget->time_budget_ms > 0) {
+		t0 = budget->clock(budget->clock_ctx);
+		if (!isfinite(t0))
+			return hylo_fail(r, HYLO_E_BAD_VALUE, "search: clock returned %g", t0);
+	}
+	reset(s, g->n_nodes);
+	st = heuristic(g, start, &h, r);
+	if (st != HYLO_OK)
+		return st;
+	if (isinf(h) && start != goal) {
+		s->heap_pos[start] = SEARCH_DEAD;
+	} else {
+		s->g[start] = 0;
+		heap_push(s, start, h);
+		s->stats.pushes++;
+	}
+	st = search_loop(s, g, goal, budget, t0, outcome, r);
+	if (st == HYLO_OK)
+		hylo_reason_clear(r);
+	return st;
+}
+
+int hylo_search_closed(const hylo_search *s, uint32_t v)
+{
+	return s && v < s->n_nodes && s->heap_pos[v] == SEARCH_CLOSED;
+}
+
+hylo_real hylo_search_cost(const hylo_search *s, uint32_t v)
+{
+	if (!s || v >= s->n_nodes)
+		return INFINITY;
+	return s->g[v];
+}
+
+uint32_t hylo_search_parent(const hylo_search *s, uint32_t v)
+{
+	if (!s || v >= s->n_nodes)
+		return HYLO_NO_NODE;
+	return s->parent[v];
+}
+
+hylo_status hylo_search_path(const hylo_search *s, uint32_t goal, uint32_t *out,
+			     uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	uint32_t len = 0, k, v;
+
+	if (n)
+		*n = 0;
+	if (!s || !out || !n)
+		return hylo_fail(r, HYLO_E_NULL, "hylo_search_path: NULL argument");
+	if (goal >= s->n_nodes || !isfinite(s->g[goal]))
+		return hylo_fail(r, HYLO_E_BAD_VALUE, "search: node %lu was not reached",
+				 (unsigned long)goal);
+	/* A path visits each node at most once; longer means a parent cycle. */
+	for (v = goal; v != HYLO_NO_NODE && len <= s->n_nodes; v = s->parent[v]) {
+		if (v >= s->n_nodes)
+			break;
+		len++;
+	}
+	if (v != HYLO_NO_NODE)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "search: parent chain of node %lu is broken at node %lu",
+				 (unsigned long)goal, (unsigned long)v);
+	if (len > cap)
+		return hylo_fail(r, HYLO_E_CAP_WAYPOINTS,
+				 "search: path to node %lu has %lu nodes, more than its capacity (HYLO_MAX_WAYPOINTS) cap = %lu",
+				 (unsigned long)goal, (unsigned long)len, (unsigned long)cap);
+	v = goal;
+	for (k = len; k > 0; k--) {
+		out[k - 1] = v;
+		v = s->parent[v];
+	}
+	*n = len;
+	return HYLO_OK;
+}

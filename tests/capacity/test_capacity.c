@@ -1,0 +1,167 @@
+/*
+ * Capacities past their limit, with the planning core compiled for small
+ * capacities (mk/onboard.mk: CAPACITY_FLAGS) so that ordinary scenes exceed
+ * them. Each exceeded capacity returns the status naming it, with a reason,
+ * and the planner keeps serving requests that fit. (Exact-at-capacity cases
+ * are in the module tests: cells in test_map, positions in test_poisson,
+ * nodes and successors in test_search, grids and combinations in
+ * test_planner.) The ASan build proves no write goes out of bounds.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdlib.h>
+
+#include "onboard/testutil_planner.h"
+
+static hylo_planner *pl;
+static hylo_plan *plan;
+static hylo_robot robots[TU_N_ROBOTS];
+static tu_cost costs;
+static tu_map river, di;
+
+static void expect_cap(hylo_status want, const hylo_goal *g)
+{
+	hylo_status st = hylo_planner_plan(pl, g, plan);
+
+	if (st != want)
+		fail_msg("expected %s, got %s: %s", hylo_status_str(want), hylo_status_str(st),
+			 plan->reason.text);
+	assert_true(strstr(plan->reason.text, "HYLO_MAX_") != NULL);
+	assert_int_equal(plan->n_waypoints, 0);
+}
+
+static void set(tu_map *m)
+{
+	hylo_map_view v = tu_view(m);
+
+	assert_int_equal(hylo_planner_set_map(pl, &v), HYLO_OK);
+}
+
+/* A request that fits, answered correctly after each failure. */
+static void fits(void)
+{
+	hylo_goal g = tu_goal_river();
+
+	g.spacing = 3;
+	g.guard_spacing = 3;
+	g.connect_radius = 5;
+	g.n_speeds = 1;
+	g.n_headings = 2;
+	set(&river);
+	assert_int_equal(hylo_planner_plan(pl, &g, plan), HYLO_OK);
+	assert_int_equal(plan->outcome, HYLO_FOUND);
+}
+
+static void test_positions(void **state)
+{
+	hylo_goal g = tu_goal_river();
+
+	(void)state;
+	set(&river);
+	g.spacing = 0.5;
+	expect_cap(HYLO_E_CAP_POSITIONS, &g);
+	fits();
+}
+
+static void test_nodes(void **state)
+{
+	hylo_goal g = tu_goal_river();
+
+	(void)state;
+	set(&river);
+	g.spacing = 1.5;     /* 241 positions x 12 combinations */
+	g.guard_spacing = 1.5;
+	g.connect_radius = 3;
+	expect_cap(HYLO_E_CAP_NODES, &g);
+	fits();
+}
+
+static void test_adjacency(void **state)
+{
+	hylo_goal g = tu_goal_river();
+
+	(void)state;
+	set(&river);
+	g.spacing = 1.5;     /* 215 positions, about 9000 neighbour entries */
+	g.guard_spacing = 4;
+	g.connect_radius = 10;
+	g.n_speeds = 1;
+	g.n_headings = 1;
+	expect_cap(HYLO_E_CAP_ADJACENCY, &g);
+	fits();
+}
+
+static void test_successors(void **state)
+{
+	hylo_goal g = tu_goal_river();
+
+	(void)state;
+	set(&river);
+	g.spacing = 3;       /* about 26 neighbours x 12 combinations */
+	g.guard_spacing = 3;
+	g.connect_radius = 14;
+	g.n_speeds = 3;
+	g.n_headings = 4;
+	expect_cap(HYLO_E_CAP_SUCCESSORS, &g);
+	fits();
+}
+
+static void test_waypoints(void **state)
+{
+	hylo_goal g = tu_goal_di();
+
+	(void)state;
+	set(&di);
+	g.spacing = 0.1;     /* a path of about 22 waypoints */
+	g.guard_spacing = 0.1;
+	g.connect_radius = 0.15;
+	expect_cap(HYLO_E_CAP_WAYPOINTS, &g);
+	fits();
+}
+
+static int setup(void **state)
+{
+	hylo_planner_config cfg;
+
+	(void)state;
+	pl = malloc(sizeof *pl);
+	plan = malloc(sizeof *plan);
+	if (!pl || !plan)
+		return -1;
+	tu_robots(robots, &costs);
+	memset(&cfg, 0, sizeof cfg);
+	cfg.robots = robots;
+	cfg.n_robots = TU_N_ROBOTS;
+	if (hylo_planner_init(pl, &cfg) != HYLO_OK)
+		return -1;
+	tu_river(&river);
+	tu_di(&di);
+	return 0;
+}
+
+static int teardown(void **state)
+{
+	(void)state;
+	tu_map_free(&river);
+	tu_map_free(&di);
+	free(pl);
+	free(plan);
+	return 0;
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_positions),
+		cmocka_unit_test(test_nodes),
+		cmocka_unit_test(test_adjacency),
+		cmocka_unit_test(test_successors),
+		cmocka_unit_test(test_waypoints),
+	};
+
+	return cmocka_run_group_tests_name("capacity", tests, setup, teardown);
+}
