@@ -9,6 +9,8 @@
 .DEFAULT_GOAL := all
 .DELETE_ON_ERROR:
 .SUFFIXES:
+# Keep intermediate objects so that a second `make` has nothing to do.
+.SECONDARY:
 
 include mk/config.mk
 include mk/msgs.mk

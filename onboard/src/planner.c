@@ -30,6 +30,11 @@ static hylo_real floor_per_m(const hylo_mode_model *mm)
 	return mm->model ? mm->model->cost_floor_per_m : mm->cost_floor_per_m;
 }
 
+static hylo_real floor_j(const hylo_mode_model *mm)
+{
+	return mm->model ? mm->model->cost_floor_j : mm->cost_floor_j;
+}
+
 static hylo_real max_distance(const hylo_mode_model *mm)
 {
 	return mm->model ? mm->model->max_distance_m : mm->max_distance_m;
@@ -375,7 +380,7 @@ static hylo_status evaluate(hylo_planner *pl, hylo_mode mode, const hylo_real *t
 {
 	const hylo_mode_model *mm = mode_model(pl, mode);
 	int k = hylo_robot_mode_index(pl->robot, mode);
-	hylo_real fl;
+	hylo_real fl, fj;
 	uint32_t i;
 	hylo_status st;
 
@@ -397,8 +402,9 @@ static hylo_status evaluate(hylo_planner *pl, hylo_mode mode, const hylo_real *t
 			return st;
 	}
 	fl = floor_per_m(mm);
+	fj = floor_j(mm);
 	for (i = 0; i < n; i++) {
-		hylo_real lo = fl * pl->head_dist[i];
+		hylo_real lo = fj + fl * pl->head_dist[i];
 
 		if (!isfinite(costs[i]))
 			return hylo_fail(&pl->reason, HYLO_E_BAD_COST,
@@ -480,7 +486,7 @@ static hylo_real node_heuristic(void *ctx, uint32_t u)
 /*
  * The A* heuristic: exact shortest distances to the goal on the position
  * graph, with each edge weighted by a lower bound of every node edge it
- * stands for (the mode's cost floor times its length, the switch cost).
+ * stands for (the mode's cost floors: per edge plus per metre; the switch cost).
  * Every node edge costs at least that (costs are raised to the floor), so
  * the heuristic is admissible and consistent, and it sees obstacles, water
  * and mode changes that a straight-line bound would not. Computed by a
@@ -490,9 +496,9 @@ static hylo_real node_heuristic(void *ctx, uint32_t u)
 static hylo_real lower_bound(const hylo_planner *pl, uint32_t a, uint32_t b)
 {
 	const hylo_position *pa = &pl->roadmap.pos[a];
+	const hylo_mode_model *mm = mode_model(pl, (hylo_mode)pa->mode);
 
-	return floor_per_m(mode_model(pl, (hylo_mode)pa->mode)) *
-	       hylo_roadmap_distance(pa->p, pl->roadmap.pos[b].p);
+	return floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(pa->p, pl->roadmap.pos[b].p);
 }
 
 static hylo_status expand_backward(void *ctx, const hylo_search *s, uint32_t u,

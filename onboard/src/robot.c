@@ -51,9 +51,10 @@ static hylo_status check_mode(const hylo_robot *robot, const hylo_mode_model *mm
 	/* No model at all is allowed here: plans on such a robot's maps are
 	 * answered with HYLO_E_NO_MODEL. */
 	if (!isfinite(mm->cost_floor_per_m) || mm->cost_floor_per_m < 0 ||
+	    !isfinite(mm->cost_floor_j) || mm->cost_floor_j < 0 ||
 	    !isfinite(mm->max_distance_m) || mm->max_distance_m < 0)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
-				 "robot %s: mode %s needs a finite cost floor and distance >= 0",
+				 "robot %s: mode %s needs finite cost floors and distance >= 0",
 				 robot->name, hylo_mode_str(mm->mode));
 	return HYLO_OK;
 }

@@ -80,7 +80,7 @@ static double node_xs(const hylo_planner *pl, uint32_t u, double *xs)
 static double clamp_cost(const hylo_planner *pl, hylo_mode mode, double c, double dist)
 {
 	int k = hylo_robot_mode_index(pl->robot, mode);
-	double lo = pl->robot->modes[k].cost_floor_per_m * dist;
+	double lo = pl->robot->modes[k].cost_floor_j + pl->robot->modes[k].cost_floor_per_m * dist;
 
 	return c < lo ? lo : c;
 }

@@ -165,6 +165,7 @@ static inline hylo_mode_model tu_mode(hylo_mode mode, tu_cost *tc)
 	mm.cost_fn = tu_cost_fn;
 	mm.cost_ctx = tc;
 	mm.cost_floor_per_m = tc->rate[mode];
+	mm.cost_floor_j = 0.1;     /* the constant of tu_edge_cost */
 	return mm;
 }
 

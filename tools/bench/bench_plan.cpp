@@ -91,6 +91,7 @@ hylo_svr_model water_model()
 	m.label_scale *= 3;
 	m.label_offset *= 3;
 	m.cost_floor_per_m *= 3;
+	m.cost_floor_j *= 3;
 	return m;
 }
 
@@ -188,7 +189,7 @@ double svm_cost(const svm_model *sm, const hylo_svr_model &m, const double *f, d
 	x[m.n_features] = {-1, 0};
 	double y = svm_predict(sm, x) * m.label_scale + m.label_offset;
 	double c = m.label_log ? std::exp(y) : y;
-	double lo = m.cost_floor_per_m * dist;
+	double lo = m.cost_floor_j + m.cost_floor_per_m * dist;
 	return c < lo ? lo : c;
 }
 

@@ -31,7 +31,8 @@ typedef struct {
 	const hylo_svr_model *model;   /* built-in SVR evaluation, or NULL */
 	hylo_cost_fn cost_fn;          /* used when model is NULL */
 	void *cost_ctx;
-	hylo_real cost_floor_per_m;    /* when model is NULL: every cost >= this * displacement, >= 0 */
+	hylo_real cost_floor_per_m;    /* when model is NULL: every cost >= this * displacement ... */
+	hylo_real cost_floor_j;        /* ... + this [J]; both >= 0 */
 	hylo_real max_distance_m;      /* when model is NULL: longest edge the costs are valid for; 0 = any */
 } hylo_mode_model;
 

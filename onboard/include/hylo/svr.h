@@ -10,8 +10,8 @@
  *   d    = sum_i coef[i] * exp(-gamma * |z - sv_i|^2) - rho   (libsvm's decision value)
  *   y    = d * label_scale + label_offset
  *   cost = label_log ? exp(y) : y
- * The planner then raises the cost to at least cost_floor_per_m times the
- * edge's displacement (and to at least 0), counting how often it does.
+ * The planner then raises the cost to at least cost_floor_j + cost_floor_per_m
+ * times the edge's displacement (so to at least 0), counting how often it does.
  */
 #ifndef HYLO_SVR_H
 #define HYLO_SVR_H
@@ -34,7 +34,8 @@ typedef struct {
 	double label_offset;           /* y = d * label_scale + label_offset */
 	double label_scale;            /* > 0 */
 	int label_log;                 /* 1: cost = exp(y); 0: cost = y */
-	double cost_floor_per_m;       /* every true cost is >= this * displacement [J/m], >= 0 */
+	double cost_floor_per_m;       /* every true cost is >= this * displacement [J/m] ... */
+	double cost_floor_j;           /* ... + this [J] (e.g. drain power * shortest time), >= 0 */
 	double max_distance_m;         /* training displacements reach this far [m]; 0 = any */
 	const char *provenance;        /* samples, seed, hashes, errors, version; may be NULL */
 } hylo_svr_model;
@@ -65,8 +66,13 @@ double hylo_svr_predict(const hylo_svr_model *m, const double *x);
  * combinations). The RBF kernel factorizes per feature,
  *   exp(-gamma*|z - s|^2) = prod_k exp(-gamma*(z_k - s_k)^2),
  * so the cache keeps, per feature, the factor vectors (one value per SV) of
- * the last HYLO_SVR_CACHE_VALUES distinct values seen, and a prediction costs
- * n_features multiplications per SV instead of an exp.
+ * the last HYLO_SVR_CACHE_VALUES distinct values seen. It also keeps the
+ * running products coef_i * f_o0 * f_o1 * ... of the previous prediction in
+ * a fixed feature order o (tail features first, then the displacement, then
+ * the head's speed, then the head's heading: the order in which the planner's
+ * edges vary least to most), so that an edge differing from the previous one
+ * only in its head heading costs one multiplication per SV. The product
+ * order is fixed, so results do not depend on what was evaluated before.
  */
 typedef struct {
 	const hylo_svr_model *model;   /* the cache is valid for this model only */
@@ -75,6 +81,9 @@ typedef struct {
 	uint32_t last_use[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
 	double value[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
 	double factor[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES][HYLO_MAX_SV];
+	uint32_t n_prefix;             /* valid running-product levels */
+	double prefix_value[HYLO_MAX_FEATURES];      /* feature value of each level */
+	double prefix[HYLO_MAX_FEATURES][HYLO_MAX_SV];
 	uint64_t hits, misses;         /* statistics */
 } hylo_svr_cache;
 

@@ -1,0 +1,237 @@
+#include "trainer/svr_export.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace hylo::trainer {
+namespace {
+
+const char *mode_enum(const std::string &mode)
+{
+	if (mode == "ground") return "HYLO_MODE_GROUND";
+	if (mode == "marine") return "HYLO_MODE_MARINE";
+	if (mode == "flight") return "HYLO_MODE_FLIGHT";
+	if (mode == "di_neg") return "HYLO_MODE_DI_NEG";
+	if (mode == "di_pos") return "HYLO_MODE_DI_POS";
+	throw std::invalid_argument("svr export: unknown mode '" + mode + "'");
+}
+
+int feature_count(const std::string &mode)
+{
+	if (mode == "ground" || mode == "marine") return 5;
+	if (mode == "flight") return 9;
+	return 4;
+}
+
+bool is_identifier(const std::string &s, bool upper)
+{
+	if (s.empty() || (s[0] >= '0' && s[0] <= '9'))
+		return false;
+	for (char c : s) {
+		bool ok = c == '_' || (c >= '0' && c <= '9') ||
+			  (upper ? (c >= 'A' && c <= 'Z') : (c >= 'a' && c <= 'z'));
+		if (!ok)
+			return false;
+	}
+	return true;
+}
+
+std::string upper(std::string s)
+{
+	for (char &c : s)
+		if (c >= 'a' && c <= 'z')
+			c = static_cast<char>(c - 'a' + 'A');
+	return s;
+}
+
+void require_finite(const std::vector<double> &v, const char *what)
+{
+	for (size_t i = 0; i < v.size(); i++)
+		if (!std::isfinite(v[i]))
+			throw std::invalid_argument(std::string("svr export: ") + what + "[" +
+						    std::to_string(i) + "] is not finite");
+}
+
+void require_finite(double v, const char *what)
+{
+	if (!std::isfinite(v))
+		throw std::invalid_argument(std::string("svr export: ") + what + " is not finite");
+}
+
+// A C string literal: only printable ASCII; quotes and backslashes escaped.
+std::string c_string(const std::string &s)
+{
+	std::string out = "\"";
+	for (char c : s) {
+		if (c == '"' || c == '\\')
+			out += '\\';
+		if (c == '\n')
+			out += "\\n";
+		else if (c >= 32 && c < 127)
+			out += c;
+		else
+			out += '?';
+	}
+	return out + "\"";
+}
+
+// Comment text: no "*/" may close the comment early.
+std::string comment_safe(std::string s)
+{
+	for (size_t i; (i = s.find("*/")) != std::string::npos;)
+		s.replace(i, 2, "* /");
+	for (char &c : s)
+		if (c == '\n')
+			c = ' ';
+	return s;
+}
+
+void check(const SvrExport &m)
+{
+	if (!is_identifier(m.robot, false))
+		throw std::invalid_argument("svr export: robot name '" + m.robot +
+					    "' is not a lower-case C identifier");
+	mode_enum(m.mode);
+	if (m.n_features != feature_count(m.mode))
+		throw std::invalid_argument("svr export: mode " + m.mode + " has " +
+					    std::to_string(feature_count(m.mode)) +
+					    " features, the model " + std::to_string(m.n_features));
+	if (m.coef.empty())
+		throw std::invalid_argument("svr export: the model has no support vectors");
+	if (m.sv.size() != m.coef.size() * static_cast<size_t>(m.n_features))
+		throw std::invalid_argument("svr export: sv has " + std::to_string(m.sv.size()) +
+					    " values, expected n_sv * n_features = " +
+					    std::to_string(m.coef.size() * m.n_features));
+	if (m.feature_offset.size() != static_cast<size_t>(m.n_features) ||
+	    m.feature_scale.size() != static_cast<size_t>(m.n_features))
+		throw std::invalid_argument("svr export: feature_offset/scale need n_features values");
+	require_finite(m.sv, "sv");
+	require_finite(m.coef, "coef");
+	require_finite(m.feature_offset, "feature_offset");
+	require_finite(m.feature_scale, "feature_scale");
+	for (double s : m.feature_scale)
+		if (!(s > 0))
+			throw std::invalid_argument("svr export: a feature scale is not > 0");
+	require_finite(m.gamma, "gamma");
+	require_finite(m.rho, "rho");
+	require_finite(m.label_offset, "label_offset");
+	require_finite(m.label_scale, "label_scale");
+	require_finite(m.cost_floor_per_m, "cost_floor_per_m");
+	require_finite(m.cost_floor_j, "cost_floor_j");
+	require_finite(m.max_distance_m, "max_distance_m");
+	if (!(m.gamma > 0) || !(m.label_scale > 0) || m.cost_floor_per_m < 0 || m.cost_floor_j < 0 ||
+	    m.max_distance_m < 0)
+		throw std::invalid_argument("svr export: gamma and label_scale must be > 0, "
+					    "cost floors and max_distance_m >= 0");
+	for (const auto &c : m.constants) {
+		if (!is_identifier(c.key, true))
+			throw std::invalid_argument("svr export: constant '" + c.key +
+						    "' is not an upper-case C identifier");
+		require_finite(c.value, c.key.c_str());
+	}
+}
+
+void array(std::string &out, const std::string &type_name, const std::string &size,
+	   const std::vector<double> &v, size_t per_line)
+{
+	out += "static const double " + type_name + "[" + size + "] = {\n";
+	for (size_t i = 0; i < v.size(); i++) {
+		out += (i % per_line == 0) ? "\t" : " ";
+		out += format_double(v[i]) + ",";
+		if (i % per_line == per_line - 1 || i + 1 == v.size())
+			out += "\n";
+	}
+	out += "};\n\n";
+}
+
+}  // namespace
+
+std::string format_double(double v)
+{
+	char buf[64];
+	auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 17);
+	if (r.ec != std::errc())
+		throw std::invalid_argument("svr export: cannot format a number");
+	return std::string(buf, r.ptr);
+}
+
+std::string svr_header_text(const SvrExport &m)
+{
+	check(m);
+	const std::string name = m.robot + "_" + m.mode;
+	const std::string id = "hylo_model_" + name;
+	const std::string mac = "HYLO_MODEL_" + upper(name);
+	std::string prov;
+	for (const auto &p : m.provenance)
+		prov += p.first + ": " + p.second + "\n";
+
+	std::string out;
+	out += "/*\n * " + name + ": SVR edge-cost model of the hylo onboard planner.\n";
+	out += " * Generated by the hylo trainer; do not edit (regenerate with `make models`).\n";
+	out += " * Format: onboard/models/README.md.\n *\n";
+	for (const auto &p : m.provenance)
+		out += " * " + comment_safe(p.first + ": " + p.second) + "\n";
+	out += " */\n";
+	out += "#ifndef " + mac + "_H\n#define " + mac + "_H\n\n";
+	out += "#include \"hylo/svr.h\"\n\n";
+	out += "#define " + mac + "_MODE " + mode_enum(m.mode) + "\n";
+	out += "#define " + mac + "_N_SV " + std::to_string(m.coef.size()) + "\n";
+	out += "#define " + mac + "_N_FEATURES " + std::to_string(m.n_features) + "\n";
+	for (const auto &c : m.constants)
+		out += "#define " + mac + "_" + c.key + " " + format_double(c.value) + "  /* " +
+		       comment_safe(c.comment) + " */\n";
+	out += "\n";
+	array(out, id + "_sv", mac + "_N_SV * " + mac + "_N_FEATURES", m.sv,
+	      static_cast<size_t>(m.n_features));
+	array(out, id + "_coef", mac + "_N_SV", m.coef, 4);
+	array(out, id + "_feature_offset", mac + "_N_FEATURES", m.feature_offset,
+	      static_cast<size_t>(m.n_features));
+	array(out, id + "_feature_scale", mac + "_N_FEATURES", m.feature_scale,
+	      static_cast<size_t>(m.n_features));
+	out += "static const hylo_svr_model " + id + " = {\n";
+	out += "\t.name = \"" + name + "\",\n";
+	out += "\t.n_sv = " + mac + "_N_SV,\n";
+	out += "\t.n_features = " + mac + "_N_FEATURES,\n";
+	out += "\t.gamma = " + format_double(m.gamma) + ",\n";
+	out += "\t.rho = " + format_double(m.rho) + ",\n";
+	out += "\t.sv = " + id + "_sv,\n";
+	out += "\t.coef = " + id + "_coef,\n";
+	out += "\t.feature_offset = " + id + "_feature_offset,\n";
+	out += "\t.feature_scale = " + id + "_feature_scale,\n";
+	out += "\t.label_offset = " + format_double(m.label_offset) + ",\n";
+	out += "\t.label_scale = " + format_double(m.label_scale) + ",\n";
+	out += std::string("\t.label_log = ") + (m.label_log ? "1" : "0") + ",\n";
+	out += "\t.cost_floor_per_m = " + format_double(m.cost_floor_per_m) + ",\n";
+	out += "\t.cost_floor_j = " + format_double(m.cost_floor_j) + ",\n";
+	out += "\t.max_distance_m = " + format_double(m.max_distance_m) + ",\n";
+	out += "\t.provenance = " + c_string(prov) + ",\n";
+	out += "};\n\n#endif\n";
+	return out;
+}
+
+void write_svr_header(const SvrExport &m, const std::string &path)
+{
+	const std::string text = svr_header_text(m);
+	const std::string tmp = path + ".tmp";
+	{
+		std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+		if (!f)
+			throw std::runtime_error("cannot write " + tmp);
+		f << text;
+		f.flush();
+		if (!f) {
+			std::remove(tmp.c_str());
+			throw std::runtime_error("error while writing " + tmp);
+		}
+	}
+	if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+		std::remove(tmp.c_str());
+		throw std::runtime_error("cannot rename " + tmp + " to " + path);
+	}
+}
+
+}  // namespace hylo::trainer

@@ -1,0 +1,54 @@
+// Export of a fitted SVR as the C header the onboard planner compiles in
+// (format: onboard/models/README.md). Deterministic: the same model gives
+// the same bytes (no dates; numbers in %.17g, locale-independent).
+#ifndef HYLO_TRAINER_SVR_EXPORT_HPP
+#define HYLO_TRAINER_SVR_EXPORT_HPP
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hylo::trainer {
+
+// A named constant written as `#define HYLO_MODEL_<NAME>_<key> value`,
+// e.g. the takeoff and landing energies in the Drivocopter flight header.
+struct HeaderConstant {
+	std::string key;      // upper-case C identifier suffix, e.g. "TAKEOFF_J"
+	double value;
+	std::string comment;  // one line, units included
+};
+
+// Everything the header holds. Field meanings: onboard/include/hylo/svr.h.
+struct SvrExport {
+	std::string robot;              // lower-case C identifier, e.g. "ambot"
+	std::string mode;               // "ground", "marine", "flight", "di_neg", "di_pos"
+	int n_features = 0;
+	double gamma = 0, rho = 0;
+	std::vector<double> sv;         // n_sv * n_features, standardized, row-major
+	std::vector<double> coef;       // n_sv
+	std::vector<double> feature_offset, feature_scale;  // n_features each
+	double label_offset = 0, label_scale = 1;
+	bool label_log = false;
+	double cost_floor_per_m = 0, cost_floor_j = 0, max_distance_m = 0;
+	// Provenance lines "key: value", in the order given (sample count, seed,
+	// hashes, errors, version). Written into a comment and a string.
+	std::vector<std::pair<std::string, std::string>> provenance;
+	std::vector<HeaderConstant> constants;
+};
+
+// The header text. Throws std::invalid_argument naming the problem (bad
+// identifier, size mismatch, non-finite number, no support vectors).
+std::string svr_header_text(const SvrExport &m);
+
+// Writes svr_header_text(m) to path atomically (temporary file + rename);
+// nothing is written when the model is invalid. Throws std::runtime_error
+// on I/O errors.
+void write_svr_header(const SvrExport &m, const std::string &path);
+
+// Shortest round-trip-exact text of v with 17 significant digits, "%.17g"
+// in the C locale.
+std::string format_double(double v);
+
+}  // namespace hylo::trainer
+
+#endif
