@@ -16,6 +16,7 @@ include mk/config.mk
 include mk/msgs.mk
 include mk/onboard.mk
 include mk/trainer.mk
+include mk/node.mk
 include mk/bench.mk
 include mk/bench_plan.mk
 

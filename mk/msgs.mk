@@ -27,9 +27,12 @@ $(BUILD)/obj/gen/%.o: $(BUILD)/gen/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(LCM_GEN_CFLAGS) $(DEP_FLAGS) -c $< -o $@
 
+# LCM 1.3.1's array coders call memcpy(NULL, src, 0) for empty arrays (its
+# lcm_coretypes.h): harmless, but UBSan's nonnull check would stop every test
+# that decodes an empty array. Only the generated code is exempted.
 $(BUILD)/san/obj/gen/%.o: $(BUILD)/gen/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(LCM_GEN_CFLAGS) $(SAN_FLAGS) $(DEP_FLAGS) -c $< -o $@
+	$(CC) $(LCM_GEN_CFLAGS) $(SAN_FLAGS) -fno-sanitize=nonnull-attribute $(DEP_FLAGS) -c $< -o $@
 
 MSG_NOPUBSUB_OBJS := $(MSG_NAMES:%=$(BUILD)/obj/gen/lcm/c-nopubsub/hylo_%.o)
 MSG_NOPUBSUB_OBJS_SAN := $(MSG_NAMES:%=$(BUILD)/san/obj/gen/lcm/c-nopubsub/hylo_%.o)

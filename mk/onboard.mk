@@ -34,7 +34,7 @@ $(ONBOARD_LIB_SAN): $(ONBOARD_OBJS_SAN)
 
 # Message adaptors (decoded LCM types <-> core views): kept out of the core
 # so that the core needs no LCM header.
-MSG_ADAPT_SRCS := onboard/msg/convert.c
+MSG_ADAPT_SRCS := onboard/msg/convert.c onboard/msg/wire.c
 MSG_ADAPT_LIB := $(BUILD)/lib/libhylo_msg.a
 MSG_ADAPT_LIB_SAN := $(BUILD)/san/lib/libhylo_msg.a
 MSG_ADAPT_INC := -Ionboard/msg -I$(LCM_GEN_DIR)/c-nopubsub

@@ -12,6 +12,19 @@
 #include "hylo_map_t.h"
 #include "hylo_plan_t.h"
 
+/**
+ * Checks an encoded goal_t (buf, len bytes) before decoding: fingerprint,
+ * non-negative array counts, exact length. HYLO_OK, or HYLO_E_BAD_VALUE with
+ * a reason naming the field. *request_id gets the goal's request id when the
+ * buffer reaches it, else -1, so that even a corrupt goal can be answered.
+ * No allocation.
+ */
+hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
+                                hylo_reason *r);
+
+/** The same for an encoded map_t; *map_id as far as readable, else 0. */
+hylo_status hylo_msg_check_map(const void *buf, int len, int64_t *map_id, hylo_reason *r);
+
 /** A view of map message msg (no copy; valid while msg lives). */
 void hylo_msg_map_view(const hylo_map_t *msg, hylo_map_view *view);
 

@@ -1,0 +1,75 @@
+# The LCM planner node (C99, links liblcm) and its robot registry.
+#   build/bin/hylo-planner   the node, with the models of onboard/models/
+# The registry lists the committed model headers (tools/gen-model-registry).
+
+NODE_SRCS := onboard/node/node.c
+NODE_INC := $(ONBOARD_INC) -Ionboard/msg -I$(LCM_GEN_DIR)/c -Ionboard/models
+NODE_CFLAGS := $(C99_FLAGS) -D_POSIX_C_SOURCE=200809L
+MODEL_HEADERS := $(sort $(wildcard onboard/models/*.h))
+REGISTRY_C := $(BUILD)/gen/models/registry.c
+
+$(REGISTRY_C): tools/gen-model-registry $(MODEL_HEADERS)
+	@mkdir -p $(@D)
+	tools/gen-model-registry $@ onboard/models
+
+$(BUILD)/obj/node/%.o: onboard/node/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -c $< -o $@
+
+$(BUILD)/obj/node/registry_models.o: $(REGISTRY_C) $(MODEL_HEADERS)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -c $< -o $@
+
+NODE_OBJS := $(NODE_SRCS:onboard/node/%.c=$(BUILD)/obj/node/%.o)
+# The msg adaptors, compiled against the pub/sub bindings (same structs).
+NODE_MSG_OBJS := $(BUILD)/obj/node/msg_convert.o $(BUILD)/obj/node/msg_wire.o
+
+$(BUILD)/obj/node/msg_%.o: onboard/msg/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -c $< -o $@
+
+HYLO_PLANNER := $(BUILD)/bin/hylo-planner
+
+$(HYLO_PLANNER): $(BUILD)/obj/node/main.o $(BUILD)/obj/node/registry.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry_models.o $(MSG_OBJS) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $^ $(LCM_LIBS) -lm -o $@
+
+ALL_TARGETS += $(HYLO_PLANNER)
+
+# Node tests (tests/node/): the node in-process over memq://, normal and
+# ASan+UBSan builds.
+NODE_TEST_SRCS := $(sort $(wildcard tests/node/test_*.c))
+NODE_TEST_NAMES := $(basename $(notdir $(NODE_TEST_SRCS)))
+NODE_TESTS := $(NODE_TEST_NAMES:%=$(BUILD)/test/node/%)
+NODE_TESTS_SAN := $(NODE_TEST_NAMES:%=$(BUILD)/san/test/node/%)
+NODE_OBJS_SAN := $(NODE_SRCS:onboard/node/%.c=$(BUILD)/san/obj/node/%.o)
+NODE_MSG_OBJS_SAN := $(BUILD)/san/obj/node/msg_convert.o $(BUILD)/san/obj/node/msg_wire.o
+MSG_OBJS_SAN := $(MSG_NAMES:%=$(BUILD)/san/obj/gen/lcm/c/hylo_%.o)
+
+$(BUILD)/san/obj/node/%.o: onboard/node/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(NODE_INC) -c $< -o $@
+
+$(BUILD)/san/obj/node/msg_%.o: onboard/msg/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(NODE_INC) -c $< -o $@
+
+$(BUILD)/obj/node-tests/%.o: tests/node/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -Itests -c $< -o $@
+
+$(BUILD)/san/obj/node-tests/%.o: tests/node/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(NODE_INC) -Itests -c $< -o $@
+
+$(BUILD)/test/node/%: $(BUILD)/obj/node-tests/%.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(MSG_OBJS) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
+
+$(BUILD)/san/test/node/%: $(BUILD)/san/obj/node-tests/%.o $(NODE_OBJS_SAN) $(NODE_MSG_OBJS_SAN) $(MSG_OBJS_SAN) $(ONBOARD_LIB_SAN)
+	@mkdir -p $(@D)
+	$(CC) $(SAN_FLAGS) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
+
+ALL_TARGETS += $(NODE_TESTS) $(NODE_TESTS_SAN)
+TESTS += $(NODE_TESTS)
+TESTS_SAN += $(NODE_TESTS_SAN)

@@ -1,0 +1,77 @@
+#include <string.h>
+
+#include "node/registry.h"
+
+static const struct {
+	const char *name;
+	hylo_mode modes[2];
+} standard[] = {
+	{ "ambot", { HYLO_MODE_GROUND, HYLO_MODE_MARINE } },
+	{ "drivocopter", { HYLO_MODE_GROUND, HYLO_MODE_FLIGHT } },
+	{ "di", { HYLO_MODE_DI_NEG, HYLO_MODE_DI_POS } },
+};
+#define N_STANDARD (sizeof standard / sizeof standard[0])
+
+static int find_robot(const hylo_robot *robots, uint32_t n, const char *name)
+{
+	uint32_t k;
+
+	for (k = 0; k < n; k++)
+		if (strcmp(robots[k].name, name) == 0)
+			return (int)k;
+	return -1;
+}
+
+/* Binds model entry e to its robot's mode, adding the mode if the robot
+ * does not have it yet (non-standard robots). */
+static void bind(hylo_robot *rb, const hylo_registry_model *e)
+{
+	int k = hylo_robot_mode_index(rb, e->mode);
+
+	if (k < 0) {
+		if (rb->n_modes >= 2)
+			return;
+		k = (int)rb->n_modes++;
+		memset(&rb->modes[k], 0, sizeof rb->modes[k]);
+		rb->modes[k].mode = e->mode;
+	}
+	rb->modes[k].model = e->model;
+	if (e->takeoff_j >= 0 && e->landing_j >= 0) {
+		rb->switch_cost[0] = e->takeoff_j;   /* modes[0] (ground) -> flight */
+		rb->switch_cost[1] = e->landing_j;
+	}
+}
+
+uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason)
+{
+	uint32_t n = 0, k, m;
+
+	for (k = 0; k < N_STANDARD; k++) {
+		if (n == cap)
+			goto full;
+		memset(&robots[n], 0, sizeof robots[n]);
+		robots[n].name = standard[k].name;
+		robots[n].n_modes = 2;
+		for (m = 0; m < 2; m++)
+			robots[n].modes[m].mode = standard[k].modes[m];
+		n++;
+	}
+	for (k = 0; k < hylo_registry_n_models; k++) {
+		const hylo_registry_model *e = &hylo_registry_models[k];
+		int r = find_robot(robots, n, e->robot);
+
+		if (r < 0) {
+			if (n == cap)
+				goto full;
+			memset(&robots[n], 0, sizeof robots[n]);
+			robots[n].name = e->robot;
+			r = (int)n++;
+		}
+		bind(&robots[r], e);
+	}
+	return n;
+full:
+	hylo_fail(reason, HYLO_E_CAP_ROBOTS, "more robots than HYLO_MAX_ROBOTS = %d",
+		  HYLO_MAX_ROBOTS);
+	return 0;
+}

@@ -1,0 +1,473 @@
+/*
+ * The planner node in-process over LCM's memq:// provider: real messages,
+ * encoded and decoded by the generated bindings, through the node's
+ * subscriptions. Checks that the plan equals the library's own answer, that
+ * every bad input of the matrix gets exactly one plan with the right status
+ * and a reason while the next valid request is still answered correctly, and
+ * a soak of 10,000 goals with flat resident memory.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "node/node.h"
+#include "onboard/testutil_planner.h"
+
+#define MAX_PLANS 64
+
+static lcm_t *lcm;
+static hylo_node node;
+static hylo_planner *planner, *reference;
+static hylo_plan *plan, *ref_plan;
+static hylo_plan_msg_buf *buf;
+static hylo_robot robots[TU_N_ROBOTS];
+static tu_cost costs;
+static tu_map river;
+static hylo_plan_t_subscription_t *plan_sub;
+
+/* Plans received on HYLO_PLAN since the last reset. */
+static hylo_plan_t *received[MAX_PLANS];
+static int n_received;
+static uint64_t n_total;
+
+static void on_plan(const lcm_recv_buf_t *rbuf, const char *channel, const hylo_plan_t *msg,
+		    void *user)
+{
+	(void)rbuf;
+	(void)channel;
+	(void)user;
+	n_total++;
+	if (n_received < MAX_PLANS)
+		received[n_received++] = hylo_plan_t_copy(msg);
+}
+
+static void clear_received(void)
+{
+	int k;
+
+	for (k = 0; k < n_received; k++)
+		hylo_plan_t_destroy(received[k]);
+	n_received = 0;
+}
+
+static void pump(void)
+{
+	while (lcm_handle_timeout(lcm, 0) > 0)
+		;
+}
+
+static void map_msg(const tu_map *m, hylo_map_t *msg)
+{
+	memset(msg, 0, sizeof *msg);
+	msg->utime = 1;
+	msg->map_id = m->map_id;
+	msg->robot = (char *)m->robot;
+	msg->nx = m->nx;
+	msg->ny = m->ny;
+	msg->resolution_m = m->res;
+	msg->origin_x_m = m->ox;
+	msg->origin_y_m = m->oy;
+	msg->ceiling_m = m->ceiling;
+	msg->max_step_m = m->max_step;
+	msg->n_cells = m->nx * m->ny;
+	msg->terrain = m->terrain;
+	msg->height_m = m->height;
+}
+
+static void goal_msg(const hylo_goal *g, hylo_goal_t *msg)
+{
+	memset(msg, 0, sizeof *msg);
+	msg->utime = 2;
+	msg->request_id = g->request_id;
+	msg->map_id = g->map_id;
+	msg->algorithm = (int8_t)g->algorithm;
+	msg->start_mode = (int8_t)g->start_mode;
+	msg->goal_mode = (int8_t)g->goal_mode;
+	memcpy(msg->start, g->start, sizeof msg->start);
+	memcpy(msg->goal, g->goal, sizeof msg->goal);
+	msg->seed = (int64_t)g->seed;
+	msg->spacing_m = g->spacing;
+	msg->air_spacing_m = g->air_spacing;
+	msg->guard_spacing_m = g->guard_spacing;
+	msg->connect_radius_m = g->connect_radius;
+	msg->air_connect_radius_m = g->air_connect_radius;
+	msg->n_speeds = (int32_t)g->n_speeds;
+	msg->speeds_mps = (double *)g->speeds;
+	msg->n_headings = (int32_t)g->n_headings;
+	msg->headings_rad = (double *)g->headings;
+	msg->n_air_speeds = (int32_t)g->n_air_speeds;
+	msg->air_speeds_mps = (double *)g->air_speeds;
+	msg->time_budget_ms = g->time_budget_ms;
+	msg->max_expansions = (int32_t)g->max_expansions;
+}
+
+static void send_map(const tu_map *m)
+{
+	hylo_map_t msg;
+
+	map_msg(m, &msg);
+	assert_int_equal(hylo_map_t_publish(lcm, "HYLO_MAP", &msg), 0);
+	pump();
+}
+
+/* Sends goal g and returns the one plan that answers it. */
+static const hylo_plan_t *ask(const hylo_goal *g)
+{
+	hylo_goal_t msg;
+
+	clear_received();
+	goal_msg(g, &msg);
+	assert_int_equal(hylo_goal_t_publish(lcm, "HYLO_GOAL", &msg), 0);
+	pump();
+	assert_int_equal(n_received, 1);
+	assert_true(received[0]->request_id == g->request_id);
+	return received[0];
+}
+
+/* Sends raw bytes on a channel and returns the one plan answering them. */
+static const hylo_plan_t *ask_raw(const void *data, int len)
+{
+	clear_received();
+	assert_int_equal(lcm_publish(lcm, "HYLO_GOAL", data, (unsigned)len), 0);
+	pump();
+	assert_int_equal(n_received, 1);
+	return received[0];
+}
+
+/* The plan message equals what the library answers directly. */
+static void assert_same_as_library(const hylo_plan_t *got, const tu_map *m, const hylo_goal *g)
+{
+	hylo_map_view v = tu_view(m);
+	int8_t want_status;
+	uint32_t k;
+
+	assert_int_equal(hylo_planner_set_map(reference, &v), HYLO_OK);
+	hylo_planner_plan(reference, g, ref_plan);
+	want_status = hylo_msg_plan_status(ref_plan->status, ref_plan->outcome);
+	assert_int_equal(got->status, want_status);
+	assert_string_equal(got->reason, ref_plan->reason.text);
+	assert_true(got->total_cost_j == ref_plan->total_cost);
+	assert_int_equal(got->n_waypoints, ref_plan->n_waypoints);
+	for (k = 0; k < ref_plan->n_waypoints; k++) {
+		assert_int_equal(got->mode[k], ref_plan->mode[k]);
+		assert_true(got->cost_j[k] == ref_plan->cost[k]);
+		assert_memory_equal(got->state[k], ref_plan->state[k], sizeof got->state[k]);
+		assert_int_equal(got->guard[k], ref_plan->guard[k]);
+	}
+	assert_int_equal(got->n_modes, ref_plan->n_modes);
+	assert_true(got->n_edges_evaluated == (int64_t)ref_plan->n_edges_evaluated);
+	assert_true(got->n_expansions == (int64_t)ref_plan->n_expansions);
+}
+
+static void test_end_to_end(void **state)
+{
+	hylo_goal g = tu_goal_river();
+	const hylo_plan_t *p;
+
+	(void)state;
+	send_map(&river);
+	p = ask(&g);
+	assert_int_equal(p->status, HYLO_PLAN_T_STATUS_OK);
+	assert_true(p->n_waypoints >= 2);
+	assert_true(p->map_id == river.map_id);
+	assert_string_equal(p->robot, "ambot");
+	assert_int_equal(p->n_modes, 3);   /* ground, marine, ground */
+	assert_same_as_library(p, &river, &g);
+	/* A second goal on the same map: new start, same roadmap. */
+	g.request_id = 8;
+	g.start[1] = 4;
+	g.algorithm = HYLO_DIJKSTRA;
+	p = ask(&g);
+	assert_int_equal(p->status, HYLO_PLAN_T_STATUS_OK);
+	assert_same_as_library(p, &river, &g);
+}
+
+/* Encodes goal g into a fresh buffer; returns its length. */
+static int encode_goal(const hylo_goal *g, uint8_t **out)
+{
+	hylo_goal_t msg;
+	int len;
+
+	goal_msg(g, &msg);
+	len = hylo_goal_t_encoded_size(&msg);
+	*out = malloc((size_t)len);
+	assert_non_null(*out);
+	assert_int_equal(hylo_goal_t_encode(*out, 0, len, &msg), len);
+	return len;
+}
+
+static void expect(const hylo_plan_t *p, int8_t status, const char *needle)
+{
+	if (p->status != status || !strstr(p->reason, needle))
+		fail_msg("expected status %d with '%s', got %d: %s", status, needle, p->status,
+			 p->reason);
+	assert_int_equal(p->n_waypoints, 0);
+}
+
+/* After each bad input, a valid request is still answered correctly. */
+static void still_serving(void)
+{
+	hylo_goal g = tu_goal_river();
+	const hylo_plan_t *p;
+
+	send_map(&river);
+	g.request_id = 1000;
+	p = ask(&g);
+	assert_int_equal(p->status, HYLO_PLAN_T_STATUS_OK);
+	assert_same_as_library(p, &river, &g);
+}
+
+static void test_bad_messages(void **state)
+{
+	hylo_goal g = tu_goal_river();
+	uint8_t *bytes;
+	int len, cut;
+	hylo_plan_t other;
+	const hylo_plan_t *p;
+
+	(void)state;
+	send_map(&river);
+	g.request_id = 41;
+	len = encode_goal(&g, &bytes);
+	/* Truncated anywhere: answered with the request id when it was readable. */
+	for (cut = 0; cut < len; cut += 37) {
+		p = ask_raw(bytes, cut);
+		expect(p, HYLO_PLAN_T_STATUS_BAD_REQUEST, "goal_t");
+		assert_true(p->request_id == (cut >= 24 ? 41 : -1));
+	}
+	still_serving();
+	/* Trailing garbage. */
+	{
+		uint8_t *longer = calloc((size_t)len + 3, 1);
+
+		memcpy(longer, bytes, (size_t)len);
+		expect(ask_raw(longer, len + 3), HYLO_PLAN_T_STATUS_BAD_REQUEST, "after its last field");
+		free(longer);
+	}
+	/* Wrong type fingerprint: a plan_t sent as a goal. */
+	{
+		uint8_t raw[4096];
+		int n;
+
+		memset(&other, 0, sizeof other);
+		other.reason = "";
+		other.robot = "";
+		n = hylo_plan_t_encode(raw, 0, sizeof raw, &other);
+		assert_true(n > 0);
+		expect(ask_raw(raw, n), HYLO_PLAN_T_STATUS_BAD_REQUEST, "fingerprint");
+	}
+	/* A negative array size: n_speeds (after the fixed part) set to -1. */
+	{
+		int at = 8 + 8 + 8 + 8 + 1 + 1 + 48 + 1 + 48 + 8 + 40;
+
+		bytes[at] = bytes[at + 1] = bytes[at + 2] = bytes[at + 3] = 0xff;
+		p = ask_raw(bytes, len);
+		expect(p, HYLO_PLAN_T_STATUS_BAD_REQUEST, "n_speeds is -1");
+		assert_true(p->request_id == 41);
+	}
+	free(bytes);
+	still_serving();
+}
+
+static void test_bad_requests(void **state)
+{
+	hylo_goal g;
+	tu_map m;
+	hylo_real many[HYLO_MAX_GRID + 1] = { 0 };
+	int k;
+
+	(void)state;
+	/* Goal before any map: a fresh node. */
+	{
+		hylo_goal first = tu_goal_river();
+		hylo_map_t msg;
+
+		(void)msg;
+		assert_int_equal(hylo_planner_set_map(planner, NULL), HYLO_E_NULL);
+		expect(ask(&first), HYLO_PLAN_T_STATUS_NO_MAP, "map");
+	}
+	send_map(&river);
+	g = tu_goal_river();
+	g.n_speeds = HYLO_MAX_GRID + 1;   /* over capacity */
+	g.speeds = many;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_OVER_CAPACITY, "HYLO_MAX_GRID");
+	g = tu_goal_river();
+	g.start[0] = NAN;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "start");
+	g = tu_goal_river();
+	g.goal[1] = INFINITY;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "goal");
+	g = tu_goal_river();
+	g.start[0] = 3.5;                  /* in the obstacle */
+	g.start[1] = 8;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "start");
+	g = tu_goal_river();
+	g.goal[0] = 3.5;                   /* goal in the obstacle */
+	g.goal[1] = 8;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "goal");
+	g = tu_goal_river();
+	g.start[0] = 15;                   /* in the river, said to be driving */
+	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "marine");
+	still_serving();
+
+	/* Unreachable goal: a wall of obstacles across the map. */
+	tu_river(&m);
+	m.map_id = 5;
+	for (k = 0; k < m.ny; k++)
+		m.terrain[k * m.nx + 45] = HYLO_TERRAIN_OBSTACLE;
+	send_map(&m);
+	g = tu_goal_river();
+	expect(ask(&g), HYLO_PLAN_T_STATUS_NO_PATH, "");
+	/* A goal for the map that was just replaced. */
+	send_map(&river);
+	g = tu_goal_river();
+	g.map_id = 5;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_MAP_REPLACED, "5");
+	still_serving();
+
+	/* Unknown robot: the map is refused and goals say why. */
+	m.robot = "submarine";
+	m.map_id = 6;
+	send_map(&m);
+	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "submarine");
+	/* A map with no drivable cell. */
+	m.robot = "ambot";
+	m.map_id = 7;
+	memset(m.terrain, HYLO_TERRAIN_OBSTACLE, (size_t)m.nx * m.ny);
+	send_map(&m);
+	g.map_id = 0;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "7");
+	/* A robot without a cost model. */
+	m.robot = "ghost";
+	m.map_id = 8;
+	memset(m.terrain, HYLO_TERRAIN_GROUND, (size_t)m.nx * m.ny);
+	send_map(&m);
+	expect(ask(&g), HYLO_PLAN_T_STATUS_NO_MODEL, "");
+	tu_map_free(&m);
+	still_serving();
+}
+
+static long resident_kb(void)
+{
+	FILE *f = fopen("/proc/self/statm", "r");
+	long pages = 0, rss = 0;
+
+	if (!f)
+		return -1;
+	if (fscanf(f, "%ld %ld", &pages, &rss) != 2)
+		rss = -1;
+	fclose(f);
+	return rss * 4;
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+#define SOAK_GOALS 1000     /* ASan keeps freed memory in quarantine: no RSS check */
+#else
+#define SOAK_GOALS 10000
+#endif
+
+static void test_soak(void **state)
+{
+	tu_map di;
+	hylo_goal g = tu_goal_di();
+	hylo_goal_t msg;
+	long rss100 = 0, rss_end;
+	uint64_t before;
+	int k;
+
+	(void)state;
+	tu_di(&di);
+	send_map(&di);
+	before = n_total;
+	for (k = 0; k < SOAK_GOALS; k++) {
+		g.request_id = 100000 + k;
+		g.start[1] = -0.5 + 0.7 * ((k * 37) % 100) / 100.0;
+		g.algorithm = k % 2;
+		if (k % 10 == 9)
+			g.start[0] = NAN;   /* every tenth request is bad */
+		else
+			g.start[0] = 0.8;
+		clear_received();
+		goal_msg(&g, &msg);
+		assert_int_equal(hylo_goal_t_publish(lcm, "HYLO_GOAL", &msg), 0);
+		pump();
+		assert_int_equal(n_received, 1);
+		assert_true(received[0]->request_id == g.request_id);
+		assert_int_equal(received[0]->status, k % 10 == 9 ? HYLO_PLAN_T_STATUS_BAD_REQUEST
+								  : HYLO_PLAN_T_STATUS_OK);
+		if (k == 99)
+			rss100 = resident_kb();
+	}
+	clear_received();
+	rss_end = resident_kb();
+	assert_true(n_total - before == SOAK_GOALS);
+	print_message("soak: %d goals answered; resident %ld kB after 100, %ld kB after %d\n",
+		      SOAK_GOALS, rss100, rss_end, SOAK_GOALS);
+#if !defined(__SANITIZE_ADDRESS__)
+	assert_true(rss_end - rss100 <= 256);
+#endif
+	tu_map_free(&di);
+}
+
+static int setup(void **state)
+{
+	hylo_planner_config cfg;
+
+	(void)state;
+	planner = malloc(sizeof *planner);
+	reference = malloc(sizeof *reference);
+	plan = malloc(sizeof *plan);
+	ref_plan = malloc(sizeof *ref_plan);
+	buf = malloc(sizeof *buf);
+	lcm = lcm_create("memq://");
+	if (!planner || !reference || !plan || !ref_plan || !buf || !lcm)
+		return -1;
+	tu_robots(robots, &costs);
+	memset(&cfg, 0, sizeof cfg);
+	cfg.robots = robots;
+	cfg.n_robots = TU_N_ROBOTS;
+	if (hylo_planner_init(planner, &cfg) != HYLO_OK ||
+	    hylo_planner_init(reference, &cfg) != HYLO_OK)
+		return -1;
+	if (hylo_node_init(&node, lcm, lcm, "", planner, plan, buf, NULL, 0) != 0)
+		return -1;
+	plan_sub = hylo_plan_t_subscribe(lcm, "HYLO_PLAN", on_plan, NULL);
+	if (!plan_sub)
+		return -1;
+	tu_river(&river);
+	return 0;
+}
+
+static int teardown(void **state)
+{
+	(void)state;
+	clear_received();
+	tu_map_free(&river);
+	hylo_plan_t_unsubscribe(lcm, plan_sub);
+	lcm_destroy(lcm);
+	free(planner);
+	free(reference);
+	free(plan);
+	free(ref_plan);
+	free(buf);
+	return 0;
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_bad_requests),   /* first: it starts without a map */
+		cmocka_unit_test(test_end_to_end),
+		cmocka_unit_test(test_bad_messages),
+		cmocka_unit_test(test_soak),
+	};
+
+	return cmocka_run_group_tests_name("node", tests, setup, teardown);
+}
