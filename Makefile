@@ -16,9 +16,12 @@ include mk/config.mk
 include mk/msgs.mk
 include mk/onboard.mk
 include mk/trainer.mk
-include mk/node.mk
 include mk/bench.mk
 include mk/bench_plan.mk
+include mk/node.mk
+
+# Header dependencies of everything compiled so far (-MMD -MP).
+-include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
 .PHONY: all test bench deps check-deps clean
 

@@ -73,3 +73,66 @@ $(BUILD)/san/test/node/%: $(BUILD)/san/obj/node-tests/%.o $(NODE_OBJS_SAN) $(NOD
 ALL_TARGETS += $(NODE_TESTS) $(NODE_TESTS_SAN)
 TESTS += $(NODE_TESTS)
 TESTS_SAN += $(NODE_TESTS_SAN)
+
+# hylo-listen: prints plans and trajectories (tools/listen/).
+HYLO_LISTEN := $(BUILD)/bin/hylo-listen
+
+$(BUILD)/obj/tools/listen/%.o: tools/listen/%.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) -I$(LCM_GEN_DIR)/c -c $< -o $@
+
+$(HYLO_LISTEN): $(BUILD)/obj/tools/listen/hylo_listen.o $(MSG_OBJS)
+	@mkdir -p $(@D)
+	$(CC) $^ $(LCM_LIBS) -lm -o $@
+
+ALL_TARGETS += $(HYLO_LISTEN)
+
+# hylo-scene: validates scene files and publishes their map and goal
+# (tools/scene/, C++17, yaml-cpp).
+HYLO_SCENE := $(BUILD)/bin/hylo-scene
+SCENE_OBJS := $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/tools/scene/hylo_scene.o
+
+$(BUILD)/obj/tools/scene/%.o: tools/scene/%.cpp $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) $(DEP_FLAGS) -I. -I$(LCM_GEN_DIR)/cpp -c $< -o $@
+
+$(HYLO_SCENE): $(SCENE_OBJS)
+	@mkdir -p $(@D)
+	$(CXX) $^ $(YAML_LIBS) $(LCM_LIBS) -o $@
+
+ALL_TARGETS += $(HYLO_SCENE)
+
+# A node built with the synthetic benchmark model as robot "synthetic" (ground
+# only), so that the process-level tests plan with a real SVR whatever models
+# are committed; and plan_check, which compares a node's plans in a log with
+# the library's answers.
+REGISTRY_SYNTH_C := $(BUILD)/gen/models-test/registry.c
+HYLO_PLANNER_SYNTH := $(BUILD)/test/node/hylo-planner-synthetic
+PLAN_CHECK := $(BUILD)/test/node/plan_check
+
+$(REGISTRY_SYNTH_C): tools/gen-model-registry $(MODEL_HEADERS) $(SYNTH_HEADER)
+	@mkdir -p $(@D)
+	tools/gen-model-registry $@ onboard/models $(BUILD)/gen/bench
+
+$(BUILD)/obj/node/registry_synth.o: $(REGISTRY_SYNTH_C) $(SYNTH_HEADER)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -I$(BUILD)/gen/bench -c $< -o $@
+
+$(HYLO_PLANNER_SYNTH): $(BUILD)/obj/node/main.o $(BUILD)/obj/node/registry.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $^ $(LCM_LIBS) -lm -o $@
+
+$(BUILD)/obj/node-tests/plan_check.o: tests/node/plan_check.c $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -c $< -o $@
+
+$(PLAN_CHECK): $(BUILD)/obj/node-tests/plan_check.o $(BUILD)/obj/node/registry.o $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $^ $(LCM_LIBS) -lm -o $@
+
+ALL_TARGETS += $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK)
+
+# Process-level tests (shell, TAP): file:// logs, signals, usage.
+NODE_SCRIPT_TESTS := tests/node/test_logs.sh
+$(NODE_SCRIPT_TESTS): $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK) $(HYLO_SCENE) $(HYLO_LISTEN)
+TESTS += $(NODE_SCRIPT_TESTS)

@@ -106,5 +106,3 @@ ALL_TARGETS += $(ONBOARD_LIB) $(ONBOARD_LIB_SAN) $(MSG_ADAPT_LIB) $(MSG_ADAPT_LI
 TESTS += $(ONBOARD_TESTS)
 TESTS_SAN += $(ONBOARD_TESTS_SAN)
 
--include $(ONBOARD_OBJS:.o=.d) $(ONBOARD_OBJS_SAN:.o=.d)
--include $(wildcard $(BUILD)/obj/tests/onboard/*.d $(BUILD)/san/obj/tests/onboard/*.d)

@@ -164,6 +164,7 @@ int main(int argc, char **argv)
 		rc = 1;
 		goto done;
 	}
+	node.goal_limit = once ? 1 : 0;
 	if (verbose) {
 		fprintf(stderr, "hylo-planner: listening on %sHYLO_MAP, %sHYLO_GOAL; workspace %zu bytes\n",
 			prefix, prefix, sizeof *planner);

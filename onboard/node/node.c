@@ -71,6 +71,9 @@ void hylo_node_goal(hylo_node *node, const void *data, int len)
 	hylo_reason r;
 	int64_t request_id;
 
+	/* --once: a provider may deliver several messages in one handle call. */
+	if (node->goal_limit && node->n_goals >= node->goal_limit)
+		return;
 	node->n_goals++;
 	if (hylo_msg_check_goal(data, len, &request_id, &r) != HYLO_OK ||
 	    hylo_goal_t_decode(data, 0, len, &msg) < 0) {
@@ -78,11 +81,6 @@ void hylo_node_goal(hylo_node *node, const void *data, int len)
 	} else {
 		hylo_msg_goal_view(&msg, &goal);
 		hylo_planner_plan(node->planner, &goal, node->plan);
-		/* The planner has no map because the last one was refused: say why,
-		 * with the refusal's status (unknown robot, over capacity, ...). */
-		if (node->plan->status == HYLO_E_NO_MAP && node->map_rejected)
-			node->plan->status = hylo_fail(&node->plan->reason, node->map_status,
-						       "%s", node->map_error);
 		hylo_goal_t_decode_cleanup(&msg);
 	}
 	publish_plan(node, node->plan);
@@ -109,13 +107,10 @@ void hylo_node_map(hylo_node *node, const void *data, int len)
 	hylo_msg_map_view(&msg, &view);
 	st = hylo_planner_set_map(node->planner, &view);
 	node->map_id = msg.map_id;
-	node->map_rejected = st != HYLO_OK;
-	node->map_status = st;
 	if (st != HYLO_OK) {
-		snprintf(node->map_error, sizeof node->map_error, "map %" PRId64 " was refused: %s",
-			 msg.map_id, hylo_planner_reason(node->planner));
 		if (node->log)
-			fprintf(node->log, "%s\n", node->map_error);
+			fprintf(node->log, "map %" PRId64 " refused: %s\n", msg.map_id,
+				hylo_planner_reason(node->planner));
 	} else if (node->log && node->verbose) {
 		fprintf(node->log, "map %" PRId64 ": robot %s, %d x %d cells of %g m\n",
 			msg.map_id, msg.robot, msg.nx, msg.ny, msg.resolution_m);

@@ -26,10 +26,8 @@ typedef struct {
 	FILE *log;                      /* one line per request; NULL: silent */
 	int verbose;
 	int64_t map_id;                 /* id of the current map, 0 before any */
-	int map_rejected;               /* 1: the last map message was refused */
-	hylo_status map_status;         /* why */
-	char map_error[HYLO_REASON_LEN];
 	uint64_t n_goals, n_maps;       /* messages answered / ingested or refused */
+	uint64_t goal_limit;            /* stop answering after this many goals; 0 = no limit */
 	uint64_t n_publish_errors;
 } hylo_node;
 

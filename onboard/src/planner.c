@@ -50,6 +50,7 @@ hylo_status hylo_planner_init(hylo_planner *pl, const hylo_planner_config *cfg)
 			  : HYLO_E_NULL;
 	pl->initialized = 0;
 	pl->has_map = 0;
+	pl->map_status = HYLO_E_NO_MAP;
 	pl->robot = NULL;
 	pl->roadmap.built = 0;
 	pl->n_goal_adj = 0;
@@ -115,15 +116,10 @@ static int map_has_domain(const hylo_map *m, const hylo_robot *robot)
 	return 0;
 }
 
-hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map)
+static hylo_status ingest_map(hylo_planner *pl, const hylo_map_view *map)
 {
 	hylo_status st;
 
-	if (!pl || !map)
-		return pl ? hylo_fail(&pl->reason, HYLO_E_NULL, "hylo_planner_set_map: NULL argument")
-			  : HYLO_E_NULL;
-	if (!pl->initialized)
-		return hylo_fail(&pl->reason, HYLO_E_NULL, "planner not initialized");
 	pl->has_map = 0;
 	pl->roadmap.built = 0;
 	pl->map_generation++;
@@ -144,6 +140,24 @@ hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map)
 	pl->has_map = 1;
 	hylo_reason_clear(&pl->reason);
 	return HYLO_OK;
+}
+
+hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map)
+{
+	hylo_status st;
+
+	if (!pl || !map)
+		return pl ? hylo_fail(&pl->reason, HYLO_E_NULL, "hylo_planner_set_map: NULL argument")
+			  : HYLO_E_NULL;
+	if (!pl->initialized)
+		return hylo_fail(&pl->reason, HYLO_E_NULL, "planner not initialized");
+	st = ingest_map(pl, map);
+	/* Goals until the next map are answered with why this one was refused. */
+	pl->map_status = st;
+	if (st != HYLO_OK)
+		hylo_fail(&pl->map_reason, st, "map %lld was refused: %s", (long long)map->map_id,
+			  pl->reason.text);
+	return st;
 }
 
 /* ---- request validation ------------------------------------------------ */
@@ -244,7 +258,9 @@ static hylo_status check_goal(hylo_planner *pl, const hylo_goal *g, hylo_point *
 	uint32_t k;
 
 	if (!pl->has_map)
-		return hylo_fail(&pl->reason, HYLO_E_NO_MAP, "no map has been set yet");
+		return pl->map_status == HYLO_E_NO_MAP
+			       ? hylo_fail(&pl->reason, HYLO_E_NO_MAP, "no map has been set yet")
+			       : hylo_fail(&pl->reason, pl->map_status, "%s", pl->map_reason.text);
 	for (k = 0; k < pl->robot->n_modes; k++)
 		if (!pl->robot->modes[k].model && !pl->robot->modes[k].cost_fn)
 			return hylo_fail(&pl->reason, HYLO_E_NO_MODEL,

@@ -685,14 +685,17 @@ static void test_bad_input(void **state)
 	v.robot = "submarine";
 	assert_int_equal(hylo_planner_set_map(planner, &v), HYLO_E_UNKNOWN_ROBOT);
 	assert_non_null(strstr(hylo_planner_reason(planner), "submarine"));
-	expect(HYLO_E_NO_MAP, hylo_planner_plan(planner, &good, plan), plan);
+	/* Goals on a refused map say why it was refused. */
+	expect(HYLO_E_UNKNOWN_ROBOT, hylo_planner_plan(planner, &good, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "map 1 was refused"));
+	assert_non_null(strstr(plan->reason.text, "submarine"));
 	v = tu_view(&river);
 	v.n_cells = 5;
 	assert_int_equal(hylo_planner_set_map(planner, &v), HYLO_E_BAD_MAP);
 	tu_map_alloc(&empty, "ambot", 10, 10, 1.0, 0, 0);   /* all obstacle */
 	v = tu_view(&empty);
 	assert_int_equal(hylo_planner_set_map(planner, &v), HYLO_E_EMPTY_DOMAIN);
-	expect(HYLO_E_NO_MAP, hylo_planner_plan(planner, &good, plan), plan);
+	expect(HYLO_E_EMPTY_DOMAIN, hylo_planner_plan(planner, &good, plan), plan);
 	still_serves(&river, &good, want);
 
 	/* A known robot without a cost model. */

@@ -95,6 +95,8 @@ typedef struct {
 	int64_t map_generation;         /* bumps at every set_map */
 	const hylo_robot *robot;        /* robot of the current map */
 	hylo_reason reason;             /* reason of the last failure */
+	hylo_status map_status;         /* outcome of the last set_map; HYLO_E_NO_MAP before any */
+	hylo_reason map_reason;         /* why that map was refused */
 	hylo_map map;
 	hylo_roadmap roadmap;
 	hylo_roadmap_ws build_ws;
@@ -129,7 +131,8 @@ hylo_status hylo_planner_init(hylo_planner *pl, const hylo_planner_config *cfg);
  * Ingests a map (copied; the view may be freed afterwards) and invalidates
  * the roadmap. Errors: those of hylo_map_ingest, HYLO_E_UNKNOWN_ROBOT,
  * HYLO_E_EMPTY_DOMAIN (no cell of any of the robot's modes). On error the
- * planner has no map. O(cells); no allocation.
+ * planner has no map, and plans answer with this error's status and a
+ * reason "map N was refused: ..." until the next map. O(cells); no allocation.
  */
 hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map);
 

@@ -1,0 +1,283 @@
+/*
+ * hylo-listen: prints the plans (<prefix>HYLO_PLAN) and trajectories
+ * (<prefix>HYLO_TRAJ) seen on the bus, as text or as JSON lines. See --help.
+ * Exit codes: 0 after --count messages or a signal or the end of a file://
+ * log, 1 when --timeout passes with nothing received or LCM fails, 2 usage.
+ */
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <lcm/lcm.h>
+
+#include "hylo_plan_t.h"
+#include "hylo_traj_t.h"
+
+static volatile sig_atomic_t stop_requested;
+static int json, waypoints;
+static long count;
+static const char *status_names[] = { "ok", "no map", "no path", "bad request", "over capacity",
+				      "budget exhausted", "map replaced", "no model" };
+static const char *mode_names[] = { "none", "ground", "marine", "flight", "di_neg", "di_pos" };
+
+static void on_signal(int sig)
+{
+	(void)sig;
+	stop_requested = 1;
+}
+
+static const char *status_str(int s)
+{
+	return s >= 0 && s < 8 ? status_names[s] : "unknown";
+}
+
+static const char *mode_str(int m)
+{
+	return m >= 0 && m < 6 ? mode_names[m] : "invalid";
+}
+
+/* JSON number: NaN and infinities are not JSON; they become null. */
+static void jnum(double v)
+{
+	if (isfinite(v))
+		printf("%.17g", v);
+	else
+		printf("null");
+}
+
+static void jstr(const char *s)
+{
+	putchar('"');
+	for (; s && *s; s++) {
+		unsigned char c = (unsigned char)*s;
+
+		if (c == '"' || c == '\\')
+			printf("\\%c", c);
+		else if (c < 0x20)
+			printf("\\u%04x", c);
+		else
+			putchar(c);
+	}
+	putchar('"');
+}
+
+static void print_plan_json(const hylo_plan_t *p)
+{
+	int k, j;
+
+	printf("{\"type\":\"plan\",\"request_id\":%lld,\"map_id\":%lld,\"status\":",
+	       (long long)p->request_id, (long long)p->map_id);
+	jstr(status_str(p->status));
+	printf(",\"reason\":");
+	jstr(p->reason);
+	printf(",\"robot\":");
+	jstr(p->robot);
+	printf(",\"total_cost_j\":");
+	jnum(p->total_cost_j);
+	printf(",\"mode_sequence\":[");
+	for (k = 0; k < p->n_modes; k++)
+		printf("%s\"%s\"", k ? "," : "", mode_str(p->mode_sequence[k]));
+	printf("],\"waypoints\":[");
+	for (k = 0; k < p->n_waypoints; k++) {
+		printf("%s{\"mode\":\"%s\",\"state\":[", k ? "," : "", mode_str(p->mode[k]));
+		for (j = 0; j < 6; j++) {
+			if (j)
+				putchar(',');
+			jnum(p->state[k][j]);
+		}
+		printf("],\"cost_j\":");
+		jnum(p->cost_j[k]);
+		printf(",\"guard\":%d}", p->guard[k]);
+	}
+	printf("],\"n_nodes\":%d,\"n_edges\":%lld,\"n_edges_evaluated\":%lld,"
+	       "\"n_expansions\":%lld,\"n_clamped\":%lld,\"plan_ms\":",
+	       p->n_nodes, (long long)p->n_edges, (long long)p->n_edges_evaluated,
+	       (long long)p->n_expansions, (long long)p->n_clamped);
+	jnum(p->plan_ms);
+	printf("}\n");
+}
+
+static void print_plan_text(const hylo_plan_t *p)
+{
+	int k;
+
+	printf("plan %lld (map %lld, %s): %s", (long long)p->request_id, (long long)p->map_id,
+	       p->robot[0] ? p->robot : "-", status_str(p->status));
+	if (p->status == HYLO_PLAN_T_STATUS_OK) {
+		printf(", %.6g J, %d waypoints, modes ", p->total_cost_j, p->n_waypoints);
+		for (k = 0; k < p->n_modes; k++)
+			printf("%s%s", k ? " > " : "", mode_str(p->mode_sequence[k]));
+	} else {
+		printf(" (%s)", p->reason);
+	}
+	printf("; %d nodes, %lld edges, %lld evaluated, %.2f ms\n", p->n_nodes,
+	       (long long)p->n_edges, (long long)p->n_edges_evaluated, p->plan_ms);
+	if (waypoints)
+		for (k = 0; k < p->n_waypoints; k++)
+			printf("  %3d %-7s (%10.4f %10.4f %10.4f %10.4f %10.4f %10.4f) %12.6g J%s\n", k,
+			       mode_str(p->mode[k]), p->state[k][0], p->state[k][1], p->state[k][2],
+			       p->state[k][3], p->state[k][4], p->state[k][5], p->cost_j[k],
+			       p->guard[k] ? "  guard" : "");
+}
+
+static void print_traj(const hylo_traj_t *t)
+{
+	if (json) {
+		int k;
+
+		printf("{\"type\":\"traj\",\"request_id\":%lld,\"map_id\":%lld,\"status\":",
+		       (long long)t->request_id, (long long)t->map_id);
+		jstr(status_str(t->status));
+		printf(",\"reason\":");
+		jstr(t->reason);
+		printf(",\"robot\":");
+		jstr(t->robot);
+		printf(",\"energy_j\":");
+		jnum(t->energy_j);
+		printf(",\"replay_energy_j\":");
+		jnum(t->replay_energy_j);
+		printf(",\"replay_error\":");
+		jnum(t->replay_error);
+		printf(",\"t_s\":[");
+		for (k = 0; k < t->n_samples; k++) {
+			if (k)
+				putchar(',');
+			jnum(t->t_s[k]);
+		}
+		printf("],\"n_samples\":%d}\n", t->n_samples);
+		return;
+	}
+	printf("traj %lld (map %lld, %s): %s, energy %.6g J, replay %.6g J, replay error %.3g, "
+	       "%d samples, %.3f s\n", (long long)t->request_id, (long long)t->map_id,
+	       t->robot[0] ? t->robot : "-", status_str(t->status), t->energy_j,
+	       t->replay_energy_j, t->replay_error, t->n_samples,
+	       t->n_samples > 0 ? t->t_s[t->n_samples - 1] : 0.0);
+}
+
+static long received;
+
+static void on_plan(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_plan_t *msg, void *u)
+{
+	(void)rbuf;
+	(void)ch;
+	(void)u;
+	if (json)
+		print_plan_json(msg);
+	else
+		print_plan_text(msg);
+	fflush(stdout);
+	received++;
+}
+
+static void on_traj(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_traj_t *msg, void *u)
+{
+	(void)rbuf;
+	(void)ch;
+	(void)u;
+	print_traj(msg);
+	fflush(stdout);
+	received++;
+}
+
+static void usage(FILE *f)
+{
+	fprintf(f,
+		"usage: hylo-listen [options]\n"
+		"Prints every plan (<prefix>HYLO_PLAN) and smoothed trajectory (<prefix>HYLO_TRAJ).\n"
+		"\n"
+		"  --lcm-url URL        LCM provider (default: $LCM_DEFAULT_URL, else LCM's default)\n"
+		"  --channel-prefix P   prefix of the channel names (default: none)\n"
+		"  --json               one JSON object per line instead of text\n"
+		"  --waypoints          text mode: also print every waypoint\n"
+		"  --count N            exit after N messages (default: run until a signal)\n"
+		"  --timeout S          exit with status 1 if S seconds pass without a message\n"
+		"                       (default: wait forever)\n"
+		"  --help               this text\n");
+}
+
+int main(int argc, char **argv)
+{
+	const char *url = NULL, *prefix = "";
+	double timeout_s = 0;
+	char ch_plan[160], ch_traj[160];
+	struct sigaction sa;
+	struct timespec last, now;
+	lcm_t *lcm;
+	int i, rc = 0;
+
+	for (i = 1; i < argc; i++) {
+		const char *a = argv[i];
+		char *end = NULL;
+
+		if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+			usage(stdout);
+			return 0;
+		} else if (strcmp(a, "--json") == 0) {
+			json = 1;
+		} else if (strcmp(a, "--waypoints") == 0) {
+			waypoints = 1;
+		} else if (strcmp(a, "--lcm-url") == 0 && i + 1 < argc) {
+			url = argv[++i];
+		} else if (strcmp(a, "--channel-prefix") == 0 && i + 1 < argc) {
+			prefix = argv[++i];
+		} else if (strcmp(a, "--count") == 0 && i + 1 < argc) {
+			count = strtol(argv[++i], &end, 10);
+			if (*end || count <= 0) {
+				fprintf(stderr, "hylo-listen: --count needs a positive integer, not '%s'\n", argv[i]);
+				return 2;
+			}
+		} else if (strcmp(a, "--timeout") == 0 && i + 1 < argc) {
+			timeout_s = strtod(argv[++i], &end);
+			if (*end || !(timeout_s > 0)) {
+				fprintf(stderr, "hylo-listen: --timeout needs a positive number of seconds, not '%s'\n", argv[i]);
+				return 2;
+			}
+		} else {
+			fprintf(stderr, "hylo-listen: unknown or incomplete option '%s' (see --help)\n", a);
+			return 2;
+		}
+	}
+	if (strlen(prefix) > 100) {
+		fprintf(stderr, "hylo-listen: channel prefix too long\n");
+		return 2;
+	}
+	snprintf(ch_plan, sizeof ch_plan, "%sHYLO_PLAN", prefix);
+	snprintf(ch_traj, sizeof ch_traj, "%sHYLO_TRAJ", prefix);
+	lcm = lcm_create(url);
+	if (!lcm) {
+		fprintf(stderr, "hylo-listen: cannot open LCM provider '%s'\n", url ? url : "(default)");
+		return 1;
+	}
+	hylo_plan_t_subscribe(lcm, ch_plan, on_plan, NULL);
+	hylo_traj_t_subscribe(lcm, ch_traj, on_traj, NULL);
+	memset(&sa, 0, sizeof sa);
+	sa.sa_handler = on_signal;
+	sigemptyset(&sa.sa_mask);
+	sigaction(SIGINT, &sa, NULL);
+	sigaction(SIGTERM, &sa, NULL);
+	clock_gettime(CLOCK_MONOTONIC, &last);
+	while (!stop_requested && !(count > 0 && received >= count)) {
+		long before = received;
+		int r = lcm_handle_timeout(lcm, 100);
+
+		if (r < 0) {
+			if (!(url && strncmp(url, "file://", 7) == 0))
+				rc = 1;
+			break;
+		}
+		clock_gettime(CLOCK_MONOTONIC, &now);
+		if (received != before)
+			last = now;
+		else if (timeout_s > 0 && (double)(now.tv_sec - last.tv_sec) +
+						  1e-9 * (double)(now.tv_nsec - last.tv_nsec) > timeout_s) {
+			fprintf(stderr, "hylo-listen: nothing received for %g s\n", timeout_s);
+			rc = 1;
+			break;
+		}
+	}
+	lcm_destroy(lcm);
+	return rc;
+}

@@ -1,0 +1,209 @@
+// hylo-scene: validates a scene file and publishes its map (and, with
+// --goal, its default goal) on LCM. See --help. Exit codes: 0 published (or
+// valid, with --check), 1 invalid scene or LCM failure, 2 usage error.
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <string>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "hylo/goal_t.hpp"
+#include "hylo/map_t.hpp"
+#include "tools/scene/scene.hpp"
+
+namespace {
+
+using hylo::scene::Scene;
+
+void usage(FILE *f)
+{
+	std::fprintf(f,
+		"usage: hylo-scene SCENE.yaml [options]\n"
+		"Validates a scene file (format: scenes/README.md) and publishes its map on\n"
+		"<prefix>HYLO_MAP, and with --goal its default goal on <prefix>HYLO_GOAL.\n"
+		"\n"
+		"  --goal                 also publish the scene's goal\n"
+		"  --start MODE:x,...     override the goal's start (e.g. ground:2,16,0,0)\n"
+		"  --goal-state MODE:x,.. override the goal's goal state\n"
+		"  --request-id N         request id of the goal (default: 1)\n"
+		"  --seed N               override the sampling seed\n"
+		"  --lcm-url URL          LCM provider (default: $LCM_DEFAULT_URL, else LCM's default)\n"
+		"  --channel-prefix P     prefix of the channel names (default: none)\n"
+		"  --check                validate and print a summary; publish nothing\n"
+		"  --help                 this text\n");
+}
+
+int64_t utime_now()
+{
+	struct timespec t;
+	clock_gettime(CLOCK_REALTIME, &t);
+	return static_cast<int64_t>(t.tv_sec) * 1000000 + t.tv_nsec / 1000;
+}
+
+hylo::map_t map_message(const Scene &sc)
+{
+	hylo::map_t m;
+	m.utime = utime_now();
+	m.map_id = sc.map_id;
+	m.robot = sc.robot;
+	m.nx = sc.nx;
+	m.ny = sc.ny;
+	m.resolution_m = sc.resolution_m;
+	m.origin_x_m = sc.origin_x_m;
+	m.origin_y_m = sc.origin_y_m;
+	m.ceiling_m = sc.ceiling_m;
+	m.max_step_m = sc.max_step_m;
+	m.n_cells = sc.nx * sc.ny;
+	m.terrain = sc.terrain;
+	m.height_m = sc.height_m;
+	return m;
+}
+
+hylo::goal_t goal_message(const Scene &sc, int64_t request_id)
+{
+	const hylo::scene::Goal &g = sc.goal;
+	hylo::goal_t m;
+	m.utime = utime_now();
+	m.request_id = request_id;
+	m.map_id = sc.map_id;
+	m.algorithm = static_cast<int8_t>(g.algorithm);
+	m.start_mode = static_cast<int8_t>(g.start.mode);
+	m.goal_mode = static_cast<int8_t>(g.goal.mode);
+	for (int k = 0; k < 6; k++) {
+		m.start[k] = g.start.x[static_cast<size_t>(k)];
+		m.goal[k] = g.goal.x[static_cast<size_t>(k)];
+	}
+	m.seed = g.seed;
+	m.spacing_m = g.spacing_m;
+	m.air_spacing_m = g.air_spacing_m;
+	m.guard_spacing_m = g.guard_spacing_m;
+	m.connect_radius_m = g.connect_radius_m;
+	m.air_connect_radius_m = g.air_connect_radius_m;
+	m.n_speeds = static_cast<int32_t>(g.speeds_mps.size());
+	m.speeds_mps = g.speeds_mps;
+	m.n_headings = static_cast<int32_t>(g.headings_rad.size());
+	m.headings_rad = g.headings_rad;
+	m.n_air_speeds = static_cast<int32_t>(g.air_speeds_mps.size());
+	m.air_speeds_mps = g.air_speeds_mps;
+	m.time_budget_ms = g.time_budget_ms;
+	m.max_expansions = g.max_expansions;
+	return m;
+}
+
+void summary(const Scene &sc)
+{
+	size_t counts[3] = {0, 0, 0};
+	for (int8_t t : sc.terrain)
+		counts[t >= 0 && t < 3 ? t : 0]++;
+	std::printf("%s: robot %s, map %lld, %d x %d cells of %g m (%zu ground, %zu water, %zu "
+		    "obstacle), ceiling %g m\n",
+		    sc.path.c_str(), sc.robot.c_str(), static_cast<long long>(sc.map_id), sc.nx,
+		    sc.ny, sc.resolution_m, counts[1], counts[2], counts[0], sc.ceiling_m);
+	if (sc.has_goal) {
+		const auto &g = sc.goal;
+		std::printf("goal: %s (%g, %g) -> %s (%g, %g), seed %lld, spacing %g m\n",
+			    hylo::scene::mode_name(g.start.mode), g.start.x[0], g.start.x[1],
+			    hylo::scene::mode_name(g.goal.mode), g.goal.x[0], g.goal.x[1],
+			    static_cast<long long>(g.seed), g.spacing_m);
+	}
+}
+
+int run(int argc, char **argv)
+{
+	std::string path, url, prefix, start, goal_state;
+	bool with_goal = false, check = false;
+	int64_t request_id = 1, seed = -1;
+	for (int i = 1; i < argc; i++) {
+		std::string a = argv[i];
+		auto value = [&](const char *name) -> std::string {
+			if (i + 1 >= argc)
+				throw std::invalid_argument(std::string(name) + " needs a value");
+			return argv[++i];
+		};
+		if (a == "--help" || a == "-h") {
+			usage(stdout);
+			return 0;
+		} else if (a == "--goal") {
+			with_goal = true;
+		} else if (a == "--check") {
+			check = true;
+		} else if (a == "--start") {
+			start = value("--start");
+		} else if (a == "--goal-state") {
+			goal_state = value("--goal-state");
+		} else if (a == "--lcm-url") {
+			url = value("--lcm-url");
+		} else if (a == "--channel-prefix") {
+			prefix = value("--channel-prefix");
+		} else if (a == "--request-id" || a == "--seed") {
+			std::string v = value(a.c_str());
+			size_t used = 0;
+			long long n = 0;
+			try {
+				n = std::stoll(v, &used);
+			} catch (const std::exception &) {
+				used = 0;
+			}
+			if (used != v.size() || n < 0)
+				throw std::invalid_argument(a + " needs a non-negative integer, not '" + v + "'");
+			(a == "--seed" ? seed : request_id) = n;
+		} else if (!a.empty() && a[0] == '-') {
+			throw std::invalid_argument("unknown option '" + a + "' (see --help)");
+		} else if (path.empty()) {
+			path = a;
+		} else {
+			throw std::invalid_argument("more than one scene file given");
+		}
+	}
+	if (path.empty())
+		throw std::invalid_argument("no scene file given (see --help)");
+
+	Scene sc = hylo::scene::load(path);
+	if ((with_goal || !start.empty() || !goal_state.empty()) && !sc.has_goal)
+		throw hylo::scene::Error(path + ": the scene has no goal section");
+	if (!start.empty())
+		sc.goal.start = hylo::scene::parse_state(start, "--start");
+	if (!goal_state.empty())
+		sc.goal.goal = hylo::scene::parse_state(goal_state, "--goal-state");
+	if (seed >= 0)
+		sc.goal.seed = seed;
+	if (check) {
+		summary(sc);
+		return 0;
+	}
+	lcm::LCM lcm(url);
+	if (!lcm.good()) {
+		std::fprintf(stderr, "hylo-scene: cannot open LCM provider '%s'\n",
+			     url.empty() ? "(default)" : url.c_str());
+		return 1;
+	}
+	hylo::map_t map = map_message(sc);
+	if (lcm.publish(prefix + "HYLO_MAP", &map) != 0) {
+		std::fprintf(stderr, "hylo-scene: publishing the map failed\n");
+		return 1;
+	}
+	if (with_goal) {
+		hylo::goal_t goal = goal_message(sc, request_id);
+		if (lcm.publish(prefix + "HYLO_GOAL", &goal) != 0) {
+			std::fprintf(stderr, "hylo-scene: publishing the goal failed\n");
+			return 1;
+		}
+	}
+	return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+	try {
+		return run(argc, argv);
+	} catch (const std::invalid_argument &e) {
+		std::fprintf(stderr, "hylo-scene: %s\n", e.what());
+		return 2;
+	} catch (const std::exception &e) {
+		std::fprintf(stderr, "hylo-scene: %s\n", e.what());
+		return 1;
+	}
+}
