@@ -23,12 +23,19 @@ include mk/node.mk
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test bench deps check-deps clean
+.PHONY: all test bench deps venv check-deps clean
 
 all: check-deps $(ALL_TARGETS)
 
 deps:
 	@tools/install-deps
+
+# Python clients and tools: PyPI packages in a git-ignored venv.
+venv: .venv/.stamp
+.venv/.stamp: tools/requirements.txt
+	python3 -m venv .venv
+	.venv/bin/pip install -q -r tools/requirements.txt
+	@touch $@
 
 check-deps:
 	@tools/install-deps --check
@@ -36,6 +43,7 @@ check-deps:
 # Tests run in the order listed; the sanitizer builds run last.
 test: deps
 	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory venv || echo "make test: no Python venv (is PyPI reachable?); Python client checks will be skipped"
 	@tools/run-tests $(TESTS) $(TESTS_SAN)
 
 bench: deps

@@ -133,6 +133,6 @@ $(PLAN_CHECK): $(BUILD)/obj/node-tests/plan_check.o $(BUILD)/obj/node/registry.o
 ALL_TARGETS += $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK)
 
 # Process-level tests (shell, TAP): file:// logs, signals, usage.
-NODE_SCRIPT_TESTS := tests/node/test_logs.sh
+NODE_SCRIPT_TESTS := tests/node/test_logs.sh tests/node/test_udp.sh
 $(NODE_SCRIPT_TESTS): $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK) $(HYLO_SCENE) $(HYLO_LISTEN)
 TESTS += $(NODE_SCRIPT_TESTS)
