@@ -136,3 +136,12 @@ ALL_TARGETS += $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK)
 NODE_SCRIPT_TESTS := tests/node/test_logs.sh tests/node/test_udp.sh
 $(NODE_SCRIPT_TESTS): $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK) $(HYLO_SCENE) $(HYLO_LISTEN)
 TESTS += $(NODE_SCRIPT_TESTS)
+
+# Message-to-plan latency benchmark (tools/bench/bench_node.cpp).
+BENCH_NODE := $(BUILD)/bench/bin/bench_node
+
+$(BENCH_NODE): tools/bench/bench_node.cpp $(BUILD)/obj/tools/scene/scene.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB) | $(HYLO_PLANNER_SYNTH)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. $(NODE_INC) $< $(filter-out $<,$^) $(YAML_LIBS) $(LCM_LIBS) -lm -o $@
+
+BENCH_TARGETS += $(BENCH_NODE)
