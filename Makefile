@@ -19,6 +19,7 @@ include mk/trainer.mk
 include mk/bench.mk
 include mk/bench_plan.mk
 include mk/node.mk
+include mk/export.mk
 
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

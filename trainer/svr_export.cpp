@@ -90,6 +90,32 @@ std::string comment_safe(std::string s)
 	return s;
 }
 
+void check_arrays(int n_features, const std::vector<double> &sv, const std::vector<double> &coef,
+		  const std::vector<double> &offset, const std::vector<double> &scale, double gamma,
+		  double rho, const std::string &what)
+{
+	if (coef.empty())
+		throw std::invalid_argument("svr export: the " + what + " has no support vectors");
+	if (sv.size() != coef.size() * static_cast<size_t>(n_features))
+		throw std::invalid_argument("svr export: " + what + " sv has " + std::to_string(sv.size()) +
+					    " values, expected n_sv * n_features = " +
+					    std::to_string(coef.size() * n_features));
+	if (offset.size() != static_cast<size_t>(n_features) ||
+	    scale.size() != static_cast<size_t>(n_features))
+		throw std::invalid_argument("svr export: " + what + " feature_offset/scale need n_features values");
+	require_finite(sv, "sv");
+	require_finite(coef, "coef");
+	require_finite(offset, "feature_offset");
+	require_finite(scale, "feature_scale");
+	for (double s : scale)
+		if (!(s > 0))
+			throw std::invalid_argument("svr export: a " + what + " feature scale is not > 0");
+	require_finite(gamma, "gamma");
+	require_finite(rho, "rho");
+	if (!(gamma > 0))
+		throw std::invalid_argument("svr export: " + what + " gamma must be > 0");
+}
+
 void check(const SvrExport &m)
 {
 	if (!is_identifier(m.robot, false))
@@ -100,24 +126,12 @@ void check(const SvrExport &m)
 		throw std::invalid_argument("svr export: mode " + m.mode + " has " +
 					    std::to_string(feature_count(m.mode)) +
 					    " features, the model " + std::to_string(m.n_features));
-	if (m.coef.empty())
-		throw std::invalid_argument("svr export: the model has no support vectors");
-	if (m.sv.size() != m.coef.size() * static_cast<size_t>(m.n_features))
-		throw std::invalid_argument("svr export: sv has " + std::to_string(m.sv.size()) +
-					    " values, expected n_sv * n_features = " +
-					    std::to_string(m.coef.size() * m.n_features));
-	if (m.feature_offset.size() != static_cast<size_t>(m.n_features) ||
-	    m.feature_scale.size() != static_cast<size_t>(m.n_features))
-		throw std::invalid_argument("svr export: feature_offset/scale need n_features values");
-	require_finite(m.sv, "sv");
-	require_finite(m.coef, "coef");
-	require_finite(m.feature_offset, "feature_offset");
-	require_finite(m.feature_scale, "feature_scale");
-	for (double s : m.feature_scale)
-		if (!(s > 0))
-			throw std::invalid_argument("svr export: a feature scale is not > 0");
-	require_finite(m.gamma, "gamma");
-	require_finite(m.rho, "rho");
+	check_arrays(m.n_features, m.sv, m.coef, m.feature_offset, m.feature_scale, m.gamma, m.rho,
+		     "cost model");
+	if (m.feasibility)
+		check_arrays(m.n_features, m.feasibility->sv, m.feasibility->coef,
+			     m.feasibility->feature_offset, m.feasibility->feature_scale,
+			     m.feasibility->gamma, m.feasibility->rho, "feasibility classifier");
 	require_finite(m.label_offset, "label_offset");
 	require_finite(m.label_scale, "label_scale");
 	require_finite(m.cost_floor_per_m, "cost_floor_per_m");
@@ -209,7 +223,35 @@ std::string svr_header_text(const SvrExport &m)
 	out += "\t.cost_floor_j = " + format_double(m.cost_floor_j) + ",\n";
 	out += "\t.max_distance_m = " + format_double(m.max_distance_m) + ",\n";
 	out += "\t.provenance = " + c_string(prov) + ",\n";
-	out += "};\n\n#endif\n";
+	out += "};\n\n";
+	if (m.feasibility) {
+		const ClassifierExport &f = *m.feasibility;
+		const std::string fid = id + "_feasibility", fmac = mac + "_FEASIBILITY";
+		out += "/* Feasibility classifier: decision >= 0 predicts that the trajectory\n"
+		       " * optimization has a solution; the planner drops other edges. */\n";
+		out += "#define " + fmac + "_N_SV " + std::to_string(f.coef.size()) + "\n\n";
+		array(out, fid + "_sv", fmac + "_N_SV * " + mac + "_N_FEATURES", f.sv,
+		      static_cast<size_t>(m.n_features));
+		array(out, fid + "_coef", fmac + "_N_SV", f.coef, 4);
+		array(out, fid + "_feature_offset", mac + "_N_FEATURES", f.feature_offset,
+		      static_cast<size_t>(m.n_features));
+		array(out, fid + "_feature_scale", mac + "_N_FEATURES", f.feature_scale,
+		      static_cast<size_t>(m.n_features));
+		out += "static const hylo_svr_model " + fid + " = {\n";
+		out += "\t.name = \"" + name + "_feasibility\",\n";
+		out += "\t.n_sv = " + fmac + "_N_SV,\n";
+		out += "\t.n_features = " + mac + "_N_FEATURES,\n";
+		out += "\t.gamma = " + format_double(f.gamma) + ",\n";
+		out += "\t.rho = " + format_double(f.rho) + ",\n";
+		out += "\t.sv = " + fid + "_sv,\n";
+		out += "\t.coef = " + fid + "_coef,\n";
+		out += "\t.feature_offset = " + fid + "_feature_offset,\n";
+		out += "\t.feature_scale = " + fid + "_feature_scale,\n";
+		out += "\t.label_offset = 0,\n\t.label_scale = 1,\n\t.label_log = 0,\n";
+		out += "\t.provenance = " + c_string(prov) + ",\n";
+		out += "};\n\n";
+	}
+	out += "#endif\n";
 	return out;
 }
 

@@ -4,6 +4,7 @@
 #ifndef HYLO_TRAINER_SVR_EXPORT_HPP
 #define HYLO_TRAINER_SVR_EXPORT_HPP
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,15 @@ struct HeaderConstant {
 	std::string key;      // upper-case C identifier suffix, e.g. "TAKEOFF_J"
 	double value;
 	std::string comment;  // one line, units included
+};
+
+// A feasibility classifier (libsvm C-SVC, RBF), oriented so that a decision
+// value >= 0 means "the trajectory optimization has a solution".
+struct ClassifierExport {
+	double gamma = 0, rho = 0;
+	std::vector<double> sv;         // n_sv * n_features, standardized, row-major
+	std::vector<double> coef;       // n_sv
+	std::vector<double> feature_offset, feature_scale;
 };
 
 // Everything the header holds. Field meanings: onboard/include/hylo/svr.h.
@@ -34,6 +44,7 @@ struct SvrExport {
 	// hashes, errors, version). Written into a comment and a string.
 	std::vector<std::pair<std::string, std::string>> provenance;
 	std::vector<HeaderConstant> constants;
+	std::optional<ClassifierExport> feasibility;
 };
 
 // The header text. Throws std::invalid_argument naming the problem (bad

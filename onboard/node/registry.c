@@ -36,6 +36,7 @@ static void bind(hylo_robot *rb, const hylo_registry_model *e)
 		rb->modes[k].mode = e->mode;
 	}
 	rb->modes[k].model = e->model;
+	rb->modes[k].feasibility = e->feasibility;
 	if (e->takeoff_j >= 0 && e->landing_j >= 0) {
 		rb->switch_cost[0] = e->takeoff_j;   /* modes[0] (ground) -> flight */
 		rb->switch_cost[1] = e->landing_j;

@@ -14,6 +14,7 @@
 
 typedef struct {
 	const hylo_svr_model *model;
+	const hylo_svr_model *feasibility;   /* NULL: none */
 	const char *robot;
 	hylo_mode mode;
 	double takeoff_j, landing_j;    /* flight models: switch costs; else -1 */

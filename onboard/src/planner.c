@@ -70,6 +70,8 @@ hylo_status hylo_planner_init(hylo_planner *pl, const hylo_planner_config *cfg)
 	pl->map_generation = 0;
 	hylo_svr_cache_reset(&pl->svr_cache[0]);
 	hylo_svr_cache_reset(&pl->svr_cache[1]);
+	hylo_svr_cache_reset(&pl->feas_cache[0]);
+	hylo_svr_cache_reset(&pl->feas_cache[1]);
 	hylo_reason_clear(&pl->reason);
 	pl->initialized = 1;
 	return HYLO_OK;
@@ -137,6 +139,8 @@ static hylo_status ingest_map(hylo_planner *pl, const hylo_map_view *map)
 				 (long long)pl->map.map_id, pl->robot->name);
 	hylo_svr_cache_reset(&pl->svr_cache[0]);
 	hylo_svr_cache_reset(&pl->svr_cache[1]);
+	hylo_svr_cache_reset(&pl->feas_cache[0]);
+	hylo_svr_cache_reset(&pl->feas_cache[1]);
 	pl->has_map = 1;
 	hylo_reason_clear(&pl->reason);
 	return HYLO_OK;
@@ -390,23 +394,24 @@ static hylo_status add_heads(hylo_planner *pl, const hylo_search *s, uint32_t j,
 	return HYLO_OK;
 }
 
-/* Costs of edges tail -> heads[0 .. n), raised to the model's floor. */
+/* Costs of edges tail -> heads[0 .. n), raised to the model's floor; an edge
+ * the mode's feasibility classifier rejects gets +inf (dropped by the caller). */
 static hylo_status evaluate(hylo_planner *pl, hylo_mode mode, const hylo_real *tail,
 			    uint32_t n, hylo_real *costs)
 {
 	const hylo_mode_model *mm = mode_model(pl, mode);
 	int k = hylo_robot_mode_index(pl->robot, mode);
+	unsigned nf = hylo_feature_count(mode);
 	hylo_real fl, fj;
 	uint32_t i;
 	hylo_status st;
 
 	if (n == 0)
 		return HYLO_OK;
-	if (mm->model) {
-		unsigned nf = hylo_feature_count(mode);
-
+	if (mm->model || mm->feasibility)
 		for (i = 0; i < n; i++)
 			hylo_features(mode, tail, pl->head_xs[i], &pl->features[i * nf]);
+	if (mm->model) {
 		st = hylo_svr_predict_batch(mm->model, &pl->svr_cache[k], pl->features, n, costs);
 		if (st != HYLO_OK)
 			return hylo_fail(&pl->reason, st, "SVR evaluation failed: %s",
@@ -432,7 +437,32 @@ static hylo_status evaluate(hylo_planner *pl, hylo_mode mode, const hylo_real *t
 			pl->n_clamped++;
 		}
 	}
+	if (mm->feasibility) {
+		st = hylo_svr_predict_batch(mm->feasibility, &pl->feas_cache[k], pl->features, n,
+					    pl->feas_d);
+		if (st != HYLO_OK)
+			return hylo_fail(&pl->reason, st, "feasibility evaluation failed: %s",
+					 hylo_status_str(st));
+		for (i = 0; i < n; i++)
+			if (!(pl->feas_d[i] >= 0)) {
+				costs[i] = INFINITY;
+				pl->n_infeasible++;
+			}
+	}
 	return HYLO_OK;
+}
+
+/* Removes the edges evaluate() marked infeasible, keeping the order. */
+static uint32_t drop_infeasible(uint32_t *heads, hylo_real *costs, uint32_t n)
+{
+	uint32_t i, kept = 0;
+
+	for (i = 0; i < n; i++)
+		if (isfinite(costs[i])) {
+			heads[kept] = heads[i];
+			costs[kept++] = costs[i];
+		}
+	return kept;
 }
 
 static hylo_status expand_node(void *ctx, const hylo_search *s, uint32_t u, uint32_t *heads,
@@ -468,6 +498,7 @@ static hylo_status expand_node(void *ctx, const hylo_search *s, uint32_t u, uint
 		st = evaluate(pl, (hylo_mode)p->mode, tail, n, costs);
 	if (st != HYLO_OK)
 		return st;
+	n = drop_infeasible(heads, costs, n);
 	if (i < rm->n_positions && p->twin != HYLO_NO_POSITION) {
 		const hylo_position *t = &rm->pos[p->twin];
 		hylo_real sw = pl->robot->switch_cost[p->mode == pl->robot->modes[0].mode ? 0 : 1];
@@ -646,6 +677,7 @@ static void plan_begin(const hylo_planner *pl, const hylo_goal *g, hylo_plan *pl
 	plan->n_expansions = 0;
 	plan->n_clamped = 0;
 	plan->n_negative = 0;
+	plan->n_infeasible = 0;
 	plan->roadmap_reused = 0;
 	plan->plan_ms = 0;
 }
@@ -715,12 +747,14 @@ static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, do
 	graph.ctx = pl;
 	pl->n_clamped = 0;
 	pl->n_negative = 0;
+	pl->n_infeasible = 0;
 	st = hylo_search_run(&pl->search, &graph, rm->n_nodes, rm->n_nodes + 1, &budget,
 			     &plan->outcome, &pl->reason);
 	plan->n_edges_evaluated = pl->search.stats.edges_evaluated;
 	plan->n_expansions = pl->search.stats.expansions;
 	plan->n_clamped = pl->n_clamped;
 	plan->n_negative = pl->n_negative;
+	plan->n_infeasible = pl->n_infeasible;
 	if (st != HYLO_OK || plan->outcome != HYLO_FOUND)
 		return st;
 	return extract(pl, rm->n_nodes + 1, plan);

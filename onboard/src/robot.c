@@ -28,6 +28,21 @@ static int known_pair(hylo_mode a, hylo_mode b)
 	       (a == HYLO_MODE_DI_POS && b == HYLO_MODE_DI_NEG);
 }
 
+static hylo_status check_model(const hylo_robot *robot, const hylo_mode_model *mm,
+			       const hylo_svr_model *model, const char *what, hylo_reason *r)
+{
+	hylo_status st = hylo_svr_check(model, r);
+
+	if (st != HYLO_OK)
+		return st;
+	if (model->n_features != hylo_feature_count(mm->mode))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "robot %s: the %s %s model has %u features, the mode needs %u",
+				 robot->name, hylo_mode_str(mm->mode), what,
+				 (unsigned)model->n_features, hylo_feature_count(mm->mode));
+	return HYLO_OK;
+}
+
 static hylo_status check_mode(const hylo_robot *robot, const hylo_mode_model *mm,
 			      hylo_reason *r)
 {
@@ -36,18 +51,13 @@ static hylo_status check_mode(const hylo_robot *robot, const hylo_mode_model *mm
 	if (!hylo_mode_valid((int)mm->mode))
 		return hylo_fail(r, HYLO_E_BAD_VALUE, "robot %s: invalid mode %d", robot->name,
 				 (int)mm->mode);
-	if (mm->model) {
-		st = hylo_svr_check(mm->model, r);
+	if (mm->feasibility) {
+		st = check_model(robot, mm, mm->feasibility, "feasibility", r);
 		if (st != HYLO_OK)
 			return st;
-		if (mm->model->n_features != hylo_feature_count(mm->mode))
-			return hylo_fail(r, HYLO_E_BAD_VALUE,
-					 "robot %s: the %s model has %u features, the mode needs %u",
-					 robot->name, hylo_mode_str(mm->mode),
-					 (unsigned)mm->model->n_features,
-					 hylo_feature_count(mm->mode));
-		return HYLO_OK;
 	}
+	if (mm->model)
+		return check_model(robot, mm, mm->model, "cost", r);
 	/* No model at all is allowed here: plans on such a robot's maps are
 	 * answered with HYLO_E_NO_MODEL. */
 	if (!isfinite(mm->cost_floor_per_m) || mm->cost_floor_per_m < 0 ||

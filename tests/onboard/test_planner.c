@@ -566,6 +566,66 @@ static void test_negative_costs_clamped(void **state)
 	tu_map_free(&m);
 }
 
+/* A feasibility classifier that accepts an edge iff its heading change is at
+ * most 1 rad: one SV at the origin, kernel exp(-dtheta^2) (the other features
+ * are scaled away), rho = exp(-1). */
+static const double feas_sv[5] = { 0, 0, 0, 0, 0 };
+static const double feas_coef[1] = { 1 };
+static const double feas_offset[5] = { 0, 0, 0, 0, 0 };
+static const double feas_scale[5] = { 1e9, 1e9, 1, 1e9, 1e9 };
+
+static void test_feasibility_classifier(void **state)
+{
+	hylo_svr_model feas = {
+		.name = "turn_limit", .n_sv = 1, .n_features = 5, .gamma = 1.0,
+		.rho = 0.36787944117144233, .sv = feas_sv, .coef = feas_coef,
+		.feature_offset = feas_offset, .feature_scale = feas_scale,
+		.label_offset = 0, .label_scale = 1, .label_log = 0,
+	};
+	tu_map m;
+	hylo_goal g = tu_goal_river();
+	double free_cost;
+	uint32_t k;
+
+	(void)state;
+	tu_river(&m);
+	set_scene(planner, &m);
+	plan_ok(planner, &g, plan);
+	free_cost = plan->total_cost;
+	assert_true(plan->n_infeasible == 0);
+	robots[0].modes[0].feasibility = &feas;
+	robots[0].modes[1].feasibility = &feas;
+	init_planner(planner);
+	set_scene(planner, &m);
+	plan_ok(planner, &g, plan);
+	assert_true(plan->n_infeasible > 0);
+	assert_true(plan->total_cost >= free_cost);
+	for (k = 0; k + 1 < plan->n_waypoints; k++)
+		if (plan->mode[k] == plan->mode[k + 1] && !(plan->guard[k] && plan->guard[k + 1]))
+			assert_true(fabs(hylo_wrap_angle(plan->state[k + 1][3] - plan->state[k][3])) <= 1.0);
+	/* A classifier that rejects everything leaves no path. */
+	feas.rho = 2;
+	init_planner(planner);
+	set_scene(planner, &m);
+	assert_int_equal(hylo_planner_plan(planner, &g, plan), HYLO_OK);
+	assert_int_equal(plan->outcome, HYLO_NO_PATH);
+	/* A classifier with the wrong feature count is refused at init. */
+	feas.n_features = 4;
+	{
+		hylo_planner_config cfg;
+
+		memset(&cfg, 0, sizeof cfg);
+		cfg.robots = robots;
+		cfg.n_robots = TU_N_ROBOTS;
+		assert_int_equal(hylo_planner_init(planner, &cfg), HYLO_E_BAD_VALUE);
+		assert_non_null(strstr(hylo_planner_reason(planner), "feasibility"));
+	}
+	robots[0].modes[0].feasibility = NULL;
+	robots[0].modes[1].feasibility = NULL;
+	init_planner(planner);
+	tu_map_free(&m);
+}
+
 /* ---- bad input -------------------------------------------------------- */
 
 static void expect(hylo_status want, hylo_status got, const hylo_plan *p)
@@ -769,6 +829,7 @@ int main(void)
 		cmocka_unit_test(test_roadmap_reuse),
 		cmocka_unit_test(test_determinism),
 		cmocka_unit_test(test_negative_costs_clamped),
+		cmocka_unit_test(test_feasibility_classifier),
 		cmocka_unit_test(test_bad_input),
 		cmocka_unit_test(test_msg_status),
 	};

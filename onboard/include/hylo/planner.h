@@ -74,6 +74,7 @@ typedef struct {
 	uint64_t n_expansions;
 	uint64_t n_clamped;             /* costs raised to the floor (negative ones included) */
 	uint64_t n_negative;            /* of those, predictions below 0 */
+	uint64_t n_infeasible;          /* edges dropped by a feasibility classifier */
 	int roadmap_reused;             /* 1: the roadmap of the previous goal was reused */
 	double plan_ms;                 /* 0 without a clock */
 } hylo_plan;
@@ -102,6 +103,8 @@ typedef struct {
 	hylo_roadmap_ws build_ws;
 	hylo_search search;
 	hylo_svr_cache svr_cache[2];    /* one per mode of the robot */
+	hylo_svr_cache feas_cache[2];   /* the same for the feasibility classifiers */
+	hylo_real feas_d[HYLO_MAX_SUCCESSORS];
 	/* the current request */
 	uint32_t start_pos, goal_pos;   /* position ids of start and goal */
 	hylo_real start_xs[HYLO_XS_DIM], goal_xs[HYLO_XS_DIM];
@@ -116,7 +119,7 @@ typedef struct {
 	hylo_real features[HYLO_MAX_SUCCESSORS * HYLO_MAX_FEATURES];
 	hylo_real head_dist[HYLO_MAX_SUCCESSORS];
 	uint32_t path[HYLO_MAX_WAYPOINTS];
-	uint64_t n_clamped, n_negative;
+	uint64_t n_clamped, n_negative, n_infeasible;
 	int heuristic_pass;             /* 1 while computing h_pos */
 	int use_heuristic;
 } hylo_planner;

@@ -34,6 +34,10 @@ typedef struct {
 	hylo_real cost_floor_per_m;    /* when model is NULL: every cost >= this * displacement ... */
 	hylo_real cost_floor_j;        /* ... + this [J]; both >= 0 */
 	hylo_real max_distance_m;      /* when model is NULL: longest edge the costs are valid for; 0 = any */
+	/* Optional feasibility classifier (same format, decision >= 0: the
+	 * trajectory optimization has a solution): edges it predicts infeasible
+	 * are dropped. NULL: every edge is feasible. */
+	const hylo_svr_model *feasibility;
 } hylo_mode_model;
 
 typedef struct {

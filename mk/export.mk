@@ -1,0 +1,29 @@
+# The model export path end to end (tests/export/): libsvm trains a small
+# model, trainer/svr_export.cpp writes its header, and a C99 test compiled
+# against that header compares the onboard evaluator with libsvm. A second
+# export must give the same bytes.
+EXPORT_DIR := $(BUILD)/gen/test-models
+EXPORT_GEN := $(BUILD)/test/export/make_test_model
+EXPORT_HEADER := $(EXPORT_DIR)/testbot_ground.h
+EXPORT_TEST := $(BUILD)/test/export/test_export
+EXPORT_TEST_SAN := $(BUILD)/san/test/export/test_export
+
+$(EXPORT_GEN): tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. tests/export/make_test_model.cpp trainer/svr_export.cpp $(SVM_LIBS) -o $@
+
+$(EXPORT_HEADER): $(EXPORT_GEN)
+	@mkdir -p $(@D)
+	$(EXPORT_GEN) $(EXPORT_DIR)
+
+$(EXPORT_TEST): tests/export/test_export.c $(EXPORT_HEADER) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(ONBOARD_INC) -I$(EXPORT_DIR) -DREFERENCE_TXT='"$(EXPORT_DIR)/reference.txt"' $< $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
+
+$(EXPORT_TEST_SAN): tests/export/test_export.c $(EXPORT_HEADER) $(ONBOARD_LIB_SAN)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(ONBOARD_INC) -I$(EXPORT_DIR) -DREFERENCE_TXT='"$(EXPORT_DIR)/reference.txt"' $< $(ONBOARD_LIB_SAN) $(CMOCKA_LIBS) -lm -o $@
+
+ALL_TARGETS += $(EXPORT_TEST) $(EXPORT_TEST_SAN)
+TESTS += $(EXPORT_TEST) tests/export/test_export_bytes.sh
+TESTS_SAN += $(EXPORT_TEST_SAN)
