@@ -145,3 +145,22 @@ $(BENCH_NODE): tools/bench/bench_node.cpp $(BUILD)/obj/tools/scene/scene.o $(NOD
 	$(CXX) $(CXX17_FLAGS) -I. $(NODE_INC) $< $(filter-out $<,$^) $(YAML_LIBS) $(LCM_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_NODE)
+
+# hylo-cost: one edge's predicted cost from the committed models (tools/cost/).
+HYLO_COST := $(BUILD)/bin/hylo-cost
+
+$(BUILD)/obj/tools/cost/%.o: tools/cost/%.c
+	@mkdir -p $(@D)
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(ONBOARD_INC) -c $< -o $@
+
+$(HYLO_COST): $(BUILD)/obj/tools/cost/hylo_cost.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $^ -lm -o $@
+
+ALL_TARGETS += $(HYLO_COST)
+HYLO_COST_SYNTH := $(BUILD)/test/node/hylo-cost-synthetic
+$(HYLO_COST_SYNTH): $(BUILD)/obj/tools/cost/hylo_cost.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $^ -lm -o $@
+ALL_TARGETS += $(HYLO_COST_SYNTH)
+tests/node/test_logs.sh: $(HYLO_COST_SYNTH)

@@ -83,6 +83,19 @@ if [ "$rc" -eq 2 ] && grep -q -- "--out-url" "$T/usage.err"; then
 if [ "$rc" -eq 1 ] && grep -q "nosuch" "$T/url.err"; then
   tap_ok "bad LCM URL: exit 1 naming it"; else tap_not_ok "bad LCM URL: exit 1 naming it" "exit $rc"; fi
 
+# hylo-cost: the model's prediction for one edge, as text and JSON.
+COST=$B/test/node/hylo-cost-synthetic
+out=$("$COST" --robot synthetic --mode ground --json 0,0,0,0 3,4,1,0 2>&1)
+if python3 -c 'import json,sys; d=json.loads(sys.argv[1]); assert d["distance_m"] == 5 and 10 < d["predicted_cost_j"] < 40 and d["feasibility"] is None, d' "$out"; then
+  tap_ok "hylo-cost --json predicts a plausible cost for a 5 m edge"; else
+  tap_not_ok "hylo-cost --json predicts a plausible cost for a 5 m edge" "$out"; fi
+"$COST" --robot synthetic --mode ground 0,0,0 3,4,1,0 2> "$T/cost.err"; rc=$?
+if [ "$rc" -eq 2 ] && grep -q "not 4 comma-separated" "$T/cost.err"; then
+  tap_ok "hylo-cost: malformed state, exit 2"; else tap_not_ok "hylo-cost: malformed state, exit 2" "exit $rc"; fi
+"$COST" --robot synthetic --mode marine 0,0,0,0 3,4,1,0 2> "$T/cost.err"; rc=$?
+if [ "$rc" -eq 1 ] && grep -q "no model" "$T/cost.err"; then
+  tap_ok "hylo-cost: no model for the mode, exit 1"; else tap_not_ok "hylo-cost: no model for the mode, exit 1" "exit $rc"; fi
+
 # Scene publisher: bad scene files are refused with file and line.
 printf 'robot: synthetic\ngrid: {nx: 4, ny: 4, resolution_m: -1}\n' > "$T/bad.yaml"
 "$SCENE" "$T/bad.yaml" --check 2> "$T/scene.err"; rc=$?

@@ -1,0 +1,142 @@
+/*
+ * hylo-cost: the predicted edge cost and feasibility of one pair of sampled
+ * states, from the model headers compiled in (onboard/models/), with the
+ * onboard evaluator itself: for users checking a model. See --help.
+ * Exit codes: 0 printed, 1 no model for that robot and mode, 2 usage error.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hylo/features.h"
+#include "node/registry.h"
+
+static void usage(FILE *f)
+{
+	fprintf(f,
+		"usage: hylo-cost --robot R --mode M [--json] X1 X2\n"
+		"Prints the predicted energy of the edge X1 -> X2 (sampled coordinates of mode M,\n"
+		"comma-separated, models.md section 7: ground/marine px,py,vx,theta;\n"
+		"flight px,py,pz,vx,vy,vz; di_neg/di_pos p,v) and whether the mode's\n"
+		"feasibility classifier, if any, predicts a solution.\n"
+		"\n"
+		"  --robot R    robot (ambot, drivocopter, di, ...; see hylo-planner --list-robots)\n"
+		"  --mode M     ground, marine, flight, di_neg or di_pos\n"
+		"  --json       print one JSON object\n"
+		"  --help       this text\n");
+}
+
+static int parse_state(const char *text, unsigned dim, double *x, const char *what)
+{
+	const char *p = text;
+	unsigned k;
+
+	for (k = 0; k < dim; k++) {
+		char *end;
+
+		x[k] = strtod(p, &end);
+		if (end == p || !isfinite(x[k]) || (k + 1 < dim ? *end != ',' : *end != '\0')) {
+			fprintf(stderr, "hylo-cost: %s '%s' is not %u comma-separated finite numbers\n",
+				what, text, dim);
+			return -1;
+		}
+		p = end + 1;
+	}
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	static hylo_robot robots[HYLO_MAX_ROBOTS];
+	const char *robot = NULL, *mode_name = NULL, *xs[2] = { NULL, NULL };
+	double x1[HYLO_XS_DIM] = { 0 }, x2[HYLO_XS_DIM] = { 0 }, f[HYLO_MAX_FEATURES];
+	int json = 0, n_x = 0, i, mode = 0, m;
+	uint32_t n, k;
+	hylo_reason reason;
+	const hylo_mode_model *mm = NULL;
+	double cost, floor_cost, dist, feas = NAN;
+
+	for (i = 1; i < argc; i++) {
+		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+			usage(stdout);
+			return 0;
+		} else if (strcmp(argv[i], "--json") == 0) {
+			json = 1;
+		} else if (strcmp(argv[i], "--robot") == 0 && i + 1 < argc) {
+			robot = argv[++i];
+		} else if (strcmp(argv[i], "--mode") == 0 && i + 1 < argc) {
+			mode_name = argv[++i];
+		} else if (argv[i][0] == '-' && argv[i][1] != '\0' && argv[i][1] != '.' &&
+			   !(argv[i][1] >= '0' && argv[i][1] <= '9')) {
+			fprintf(stderr, "hylo-cost: unknown or incomplete option '%s' (see --help)\n", argv[i]);
+			return 2;
+		} else if (n_x < 2) {
+			xs[n_x++] = argv[i];
+		} else {
+			fprintf(stderr, "hylo-cost: more than two states given\n");
+			return 2;
+		}
+	}
+	if (!robot || !mode_name || n_x != 2) {
+		fprintf(stderr, "hylo-cost: need --robot, --mode and two states (see --help)\n");
+		return 2;
+	}
+	for (m = 1; m < HYLO_MODE_COUNT; m++)
+		if (strcmp(mode_name, hylo_mode_str((hylo_mode)m)) == 0)
+			mode = m;
+	if (!mode) {
+		fprintf(stderr, "hylo-cost: unknown mode '%s' (ground, marine, flight, di_neg, di_pos)\n",
+			mode_name);
+		return 2;
+	}
+	if (parse_state(xs[0], hylo_mode_dim((hylo_mode)mode), x1, "X1") ||
+	    parse_state(xs[1], hylo_mode_dim((hylo_mode)mode), x2, "X2"))
+		return 2;
+	n = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &reason);
+	for (k = 0; k < n; k++)
+		if (strcmp(robots[k].name, robot) == 0) {
+			int idx = hylo_robot_mode_index(&robots[k], (hylo_mode)mode);
+
+			if (idx >= 0)
+				mm = &robots[k].modes[idx];
+		}
+	if (!mm || !mm->model) {
+		fprintf(stderr, "hylo-cost: no model for robot '%s' in mode %s in this build "
+			"(train one: trainer --mode %s --robot %s)\n", robot, mode_name, mode_name, robot);
+		return 1;
+	}
+	hylo_features((hylo_mode)mode, x1, x2, f);
+	cost = hylo_svr_predict(mm->model, f);
+	dist = mode == HYLO_MODE_FLIGHT
+		       ? sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]) +
+			      (x2[2] - x1[2]) * (x2[2] - x1[2]))
+		       : sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]));
+	floor_cost = mm->model->cost_floor_j + mm->model->cost_floor_per_m * dist;
+	if (mm->feasibility)
+		feas = hylo_svr_predict(mm->feasibility, f);
+	if (json) {
+		printf("{\"robot\":\"%s\",\"mode\":\"%s\",\"predicted_cost_j\":%.17g,"
+		       "\"planner_cost_j\":%.17g,\"distance_m\":%.17g,\"feasibility\":", robot,
+		       mode_name, cost, cost < floor_cost ? floor_cost : cost, dist);
+		if (mm->feasibility)
+			printf("{\"decision\":%.17g,\"feasible\":%s}", feas, feas >= 0 ? "true" : "false");
+		else
+			printf("null");
+		printf(",\"beyond_training_range\":%s}\n",
+		       mm->model->max_distance_m > 0 && dist > mm->model->max_distance_m ? "true" : "false");
+		return 0;
+	}
+	printf("%s %s: predicted cost %.6g J", robot, mode_name, cost);
+	if (cost < floor_cost)
+		printf(" (the planner raises it to the floor %.6g J)", floor_cost);
+	printf("\n");
+	if (mm->feasibility)
+		printf("feasibility: %s (decision %.4g)\n", feas >= 0 ? "feasible" : "infeasible", feas);
+	else
+		printf("feasibility: no classifier in this model\n");
+	if (mm->model->max_distance_m > 0 && dist > mm->model->max_distance_m)
+		printf("note: displacement %.3g m is beyond the training range %.3g m\n", dist,
+		       mm->model->max_distance_m);
+	return 0;
+}
