@@ -27,3 +27,11 @@ $(EXPORT_TEST_SAN): tests/export/test_export.c $(EXPORT_HEADER) $(ONBOARD_LIB_SA
 ALL_TARGETS += $(EXPORT_TEST) $(EXPORT_TEST_SAN)
 TESTS += $(EXPORT_TEST) tests/export/test_export_bytes.sh
 TESTS_SAN += $(EXPORT_TEST_SAN)
+
+# The model fit (trainer/svr_fit.cpp) on synthetic data (tests/export/test_fit.cpp).
+FIT_TEST := $(BUILD)/test/export/test_fit
+$(FIT_TEST): tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_fit.hpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_export.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -o $@
+ALL_TARGETS += $(FIT_TEST)
+TESTS += $(FIT_TEST)

@@ -1,0 +1,168 @@
+// The model fit (trainer/svr_fit.cpp) on a smooth synthetic energy function
+// of the 5 planar features: accuracy on held-out data, determinism across
+// runs and thread counts, the exported model evaluated by the onboard code,
+// and clear errors on unusable data. Prints TAP.
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "hylo/svr.h"
+}
+#include "trainer/svr_export.hpp"
+#include "trainer/svr_fit.hpp"
+
+namespace {
+
+int n_checks = 0, n_failed = 0;
+
+void check(bool ok, const std::string &name, const std::string &why = "")
+{
+	n_checks++;
+	std::printf("%s %d - %s\n", ok ? "ok" : "not ok", n_checks, name.c_str());
+	if (!ok) {
+		n_failed++;
+		if (!why.empty())
+			std::printf("# %s\n", why.c_str());
+	}
+}
+
+void check_throws(const std::function<void()> &f, const std::string &needle, const std::string &name)
+{
+	try {
+		f();
+		check(false, name, "no exception");
+	} catch (const std::invalid_argument &e) {
+		check(std::string(e.what()).find(needle) != std::string::npos, name, e.what());
+	}
+}
+
+struct Data {
+	std::vector<double> x, cost;
+	std::vector<bool> feasible;
+};
+
+Data make(size_t n, uint64_t seed)
+{
+	Data d;
+	uint64_t s = seed;
+	auto u = [&](double lo, double hi) {
+		s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+		return lo + (hi - lo) * static_cast<double>(s >> 11) * 0x1.0p-53;
+	};
+	for (size_t i = 0; i < n; i++) {
+		double f[5] = {u(-4, 4), u(-4, 4), u(-3.1, 3.1), u(0, 1), u(0, 1)};
+		double dist = std::hypot(f[0], f[1]);
+		d.x.insert(d.x.end(), f, f + 5);
+		d.cost.push_back(5 * (1 + 0.25 * dist * dist) * (1 + 0.1 * f[2] * f[2]) *
+				 (1 + 0.2 * (f[4] - f[3]) * (f[4] - f[3])));
+		d.feasible.push_back(!(std::fabs(f[2]) > 2.5 && dist < 1.5));
+	}
+	return d;
+}
+
+hylo::trainer::FitOptions small_grid()
+{
+	hylo::trainer::FitOptions o;
+	o.C = {3, 10, 100};
+	o.gamma = {0.1, 0.3};
+	o.epsilon = {0.005};
+	o.folds = 3;
+	o.seed = 5;
+	return o;
+}
+
+}  // namespace
+
+int main()
+{
+	using namespace hylo::trainer;
+	Data d = make(800, 11);
+	FitOptions o = small_grid();
+	SvrExport a, b, c;
+	FitReport ra = fit_cost(5, d.x, d.cost, o, a);
+	check(ra.n_test == 160 && ra.n_train == 640, "held-out split of 20% is never fitted");
+	check(ra.median_rel_error < 0.03, "held-out median relative error < 3%",
+	      std::to_string(ra.median_rel_error));
+	check(ra.p95_rel_error < 0.10, "held-out 95th percentile relative error < 10%",
+	      std::to_string(ra.p95_rel_error));
+	std::printf("# fit: C %g gamma %g epsilon %g, %zu SVs, MAE %.3g J, median %.4f, p95 %.4f, %.2f s\n",
+		    ra.C, ra.gamma, ra.epsilon, ra.n_sv, ra.mae, ra.median_rel_error,
+		    ra.p95_rel_error, ra.fit_seconds);
+
+	o.jobs = 2;
+	fit_cost(5, d.x, d.cost, o, b);
+	a.robot = b.robot = "fitbot";
+	a.mode = b.mode = "ground";
+	check(svr_header_text(a) == svr_header_text(b), "same data and seed, 1 or 2 threads: same header bytes");
+
+	// The exported model, evaluated by the onboard code, gives libsvm's fit.
+	hylo_svr_model m{};
+	m.name = "fitbot_ground";
+	m.n_sv = static_cast<uint32_t>(a.coef.size());
+	m.n_features = 5;
+	m.gamma = a.gamma;
+	m.rho = a.rho;
+	m.sv = a.sv.data();
+	m.coef = a.coef.data();
+	m.feature_offset = a.feature_offset.data();
+	m.feature_scale = a.feature_scale.data();
+	m.label_offset = a.label_offset;
+	m.label_scale = a.label_scale;
+	m.label_log = a.label_log;
+	Data fresh = make(300, 99);
+	std::vector<double> rel;
+	for (size_t i = 0; i < fresh.cost.size(); i++)
+		rel.push_back(std::fabs(hylo_svr_predict(&m, &fresh.x[5 * i]) - fresh.cost[i]) / fresh.cost[i]);
+	std::sort(rel.begin(), rel.end());
+	check(hylo_svr_check(&m, nullptr) == HYLO_OK && rel[rel.size() / 2] < 0.03,
+	      "the onboard evaluator of the fitted model: median relative error < 3% on fresh data",
+	      std::to_string(rel[rel.size() / 2]));
+
+	ClassifierExport f;
+	ClassifierReport rf = fit_feasibility(5, d.x, d.feasible, o, f);
+	check(rf.accuracy > 0.9, "feasibility classifier held-out accuracy > 90%", std::to_string(rf.accuracy));
+	hylo_svr_model fm = m;
+	fm.n_sv = static_cast<uint32_t>(f.coef.size());
+	fm.gamma = f.gamma;
+	fm.rho = f.rho;
+	fm.sv = f.sv.data();
+	fm.coef = f.coef.data();
+	fm.feature_offset = f.feature_offset.data();
+	fm.feature_scale = f.feature_scale.data();
+	fm.label_offset = 0;
+	fm.label_scale = 1;
+	fm.label_log = 0;
+	size_t agree = 0;
+	for (size_t i = 0; i < fresh.cost.size(); i++)
+		agree += (hylo_svr_predict(&fm, &fresh.x[5 * i]) >= 0) == fresh.feasible[i];
+	check(static_cast<double>(agree) / static_cast<double>(fresh.cost.size()) > 0.9,
+	      "exported classifier: decision >= 0 means feasible (> 90% on fresh data)",
+	      std::to_string(agree));
+	std::printf("# classifier: %zu SVs, accuracy %.3f, %zu of %zu feasible\n", rf.n_sv,
+		    rf.accuracy, rf.n_feasible, d.feasible.size());
+
+	Data tiny = make(8, 1);
+	check_throws([&] { fit_cost(5, tiny.x, tiny.cost, o, c); }, "too few",
+		     "too few samples for the folds: clear error");
+	Data bad = make(100, 2);
+	bad.cost[17] = -1;
+	check_throws([&] { fit_cost(5, bad.x, bad.cost, o, c); }, "sample 17",
+		     "a non-positive cost: error naming the sample");
+	bad = make(100, 2);
+	bad.x[5 * 3 + 2] = NAN;
+	check_throws([&] { fit_cost(5, bad.x, bad.cost, o, c); }, "sample 3",
+		     "a NaN feature: error naming the sample");
+	std::vector<double> empty;
+	check_throws([&] { fit_cost(5, empty, empty, o, c); }, "too few", "an empty dataset: clear error");
+	std::vector<bool> all(100, true);
+	bad = make(100, 2);
+	ClassifierExport cf;
+	check_throws([&] { fit_feasibility(5, bad.x, all, o, cf); }, "both feasible and infeasible",
+		     "one class only: clear error");
+	std::printf("1..%d\n", n_checks);
+	return n_failed ? 1 : 0;
+}

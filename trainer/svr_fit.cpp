@@ -1,0 +1,370 @@
+#include "trainer/svr_fit.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include <libsvm/svm.h>
+
+namespace hylo::trainer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Deterministic permutation of 0..n-1 (Fisher-Yates on SplitMix64).
+std::vector<size_t> permutation(size_t n, uint64_t seed)
+{
+	std::vector<size_t> p(n);
+	std::iota(p.begin(), p.end(), size_t{0});
+	uint64_t s = seed ^ 0x5851f42d4c957f2dULL;
+	for (size_t i = n; i > 1; i--) {
+		uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
+		z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+		z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+		z ^= z >> 31;
+		std::swap(p[i - 1], p[static_cast<size_t>(z % i)]);
+	}
+	return p;
+}
+
+// Standardized rows of a libsvm problem (dense: every feature has a node).
+struct Problem {
+	int nf = 0;
+	std::vector<svm_node> nodes;
+	std::vector<svm_node *> rows;
+	std::vector<double> y;
+	svm_problem prob{};
+
+	Problem(int n_features, const std::vector<double> &x, const std::vector<size_t> &idx,
+		const std::vector<double> &target, const std::vector<double> &offset,
+		const std::vector<double> &scale)
+		: nf(n_features), nodes(idx.size() * static_cast<size_t>(n_features + 1)),
+		  rows(idx.size()), y(idx.size())
+	{
+		for (size_t r = 0; r < idx.size(); r++) {
+			svm_node *n = &nodes[r * static_cast<size_t>(nf + 1)];
+			for (int k = 0; k < nf; k++)
+				n[k] = {k + 1, (x[idx[r] * static_cast<size_t>(nf) + static_cast<size_t>(k)] -
+						offset[static_cast<size_t>(k)]) / scale[static_cast<size_t>(k)]};
+			n[nf] = {-1, 0};
+			rows[r] = n;
+			y[r] = target[idx[r]];
+		}
+		prob.l = static_cast<int>(idx.size());
+		prob.y = y.data();
+		prob.x = rows.data();
+	}
+	Problem(const Problem &) = delete;
+	Problem &operator=(const Problem &) = delete;
+};
+
+svm_parameter params(int type, double C, double gamma, double epsilon)
+{
+	svm_parameter p{};
+	p.svm_type = type;
+	p.kernel_type = RBF;
+	p.gamma = gamma;
+	p.C = C;
+	p.p = epsilon;
+	p.eps = 1e-3;
+	p.cache_size = 200;
+	p.shrinking = 1;
+	return p;
+}
+
+void silence() { svm_set_print_string_function([](const char *) {}); }
+
+void check_data(int nf, const std::vector<double> &x, size_t n, size_t min_n, int folds)
+{
+	if (nf <= 0)
+		throw std::invalid_argument("fit: the number of features must be positive");
+	if (x.size() != n * static_cast<size_t>(nf))
+		throw std::invalid_argument("fit: " + std::to_string(x.size()) +
+					    " feature values for " + std::to_string(n) + " samples of " +
+					    std::to_string(nf) + " features");
+	if (folds < 2)
+		throw std::invalid_argument("fit: cross-validation needs at least 2 folds");
+	if (n < min_n)
+		throw std::invalid_argument("fit: " + std::to_string(n) + " samples are too few for " +
+					    std::to_string(folds) + "-fold cross-validation and a held-out "
+					    "split (need at least " + std::to_string(min_n) + ")");
+	for (size_t i = 0; i < x.size(); i++)
+		if (!std::isfinite(x[i]))
+			throw std::invalid_argument("fit: feature " + std::to_string(i % nf) +
+						    " of sample " + std::to_string(i / nf) +
+						    " is not finite");
+}
+
+// Feature standardization from the training rows only.
+void standardization(int nf, const std::vector<double> &x, const std::vector<size_t> &train,
+		     std::vector<double> &offset, std::vector<double> &scale)
+{
+	offset.assign(static_cast<size_t>(nf), 0.0);
+	scale.assign(static_cast<size_t>(nf), 1.0);
+	for (int k = 0; k < nf; k++) {
+		double mean = 0, var = 0;
+		for (size_t i : train)
+			mean += x[i * static_cast<size_t>(nf) + static_cast<size_t>(k)];
+		mean /= static_cast<double>(train.size());
+		for (size_t i : train) {
+			double d = x[i * static_cast<size_t>(nf) + static_cast<size_t>(k)] - mean;
+			var += d * d;
+		}
+		var /= static_cast<double>(train.size());
+		offset[static_cast<size_t>(k)] = mean;
+		scale[static_cast<size_t>(k)] = var > 1e-24 ? std::sqrt(var) : 1.0;
+	}
+}
+
+// Dense support vectors and coefficients (times sign) of a trained model.
+void take(const svm_model *m, int nf, double sign, std::vector<double> &sv,
+	  std::vector<double> &coef)
+{
+	sv.clear();
+	coef.clear();
+	for (int i = 0; i < m->l; i++) {
+		std::vector<double> row(static_cast<size_t>(nf), 0.0);
+		for (const svm_node *n = m->SV[i]; n->index != -1; n++)
+			row[static_cast<size_t>(n->index - 1)] = n->value;
+		sv.insert(sv.end(), row.begin(), row.end());
+		coef.push_back(sign * m->sv_coef[0][i]);
+	}
+}
+
+// Runs f(i) for i in [0, n) on up to jobs threads; results must go to
+// per-index slots, so the outcome does not depend on scheduling.
+template <class F>
+void parallel_for(size_t n, int jobs, F f)
+{
+	size_t workers = std::max<size_t>(1, std::min<size_t>(n, static_cast<size_t>(jobs)));
+	std::vector<std::thread> pool;
+	for (size_t w = 0; w < workers; w++)
+		pool.emplace_back([&, w] {
+			for (size_t i = w; i < n; i += workers)
+				f(i);
+		});
+	for (auto &t : pool)
+		t.join();
+}
+
+double quantile(std::vector<double> v, double q)
+{
+	std::sort(v.begin(), v.end());
+	double pos = q * static_cast<double>(v.size() - 1);
+	size_t lo = static_cast<size_t>(std::floor(pos));
+	size_t hi = std::min(lo + 1, v.size() - 1);
+	return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+}  // namespace
+
+FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<double> &cost,
+		   const FitOptions &opt, SvrExport &out)
+{
+	auto t0 = Clock::now();
+	size_t n = cost.size();
+	check_data(nf, x, n, static_cast<size_t>(std::max(10, 2 * opt.folds)), opt.folds);
+	for (size_t i = 0; i < n; i++)
+		if (!std::isfinite(cost[i]) || !(cost[i] > 0))
+			throw std::invalid_argument("fit: cost of sample " + std::to_string(i) + " is " +
+						    std::to_string(cost[i]) + ", not a positive number");
+	if (opt.C.empty() || opt.gamma.empty() || opt.epsilon.empty())
+		throw std::invalid_argument("fit: empty hyperparameter grid");
+	silence();
+
+	std::vector<size_t> perm = permutation(n, opt.seed);
+	size_t n_test = std::max<size_t>(1, static_cast<size_t>(opt.test_fraction * static_cast<double>(n)));
+	std::vector<size_t> test(perm.begin(), perm.begin() + static_cast<long>(n_test));
+	std::vector<size_t> train(perm.begin() + static_cast<long>(n_test), perm.end());
+
+	// Labels: standardized log cost (relative errors matter; costs span decades).
+	std::vector<double> logc(n);
+	for (size_t i = 0; i < n; i++)
+		logc[i] = std::log(cost[i]);
+	double mean = 0, var = 0;
+	for (size_t i : train)
+		mean += logc[i];
+	mean /= static_cast<double>(train.size());
+	for (size_t i : train)
+		var += (logc[i] - mean) * (logc[i] - mean);
+	double lscale = std::sqrt(var / static_cast<double>(train.size()));
+	if (!(lscale > 1e-12))
+		lscale = 1;
+	std::vector<double> target(n);
+	for (size_t i = 0; i < n; i++)
+		target[i] = (logc[i] - mean) / lscale;
+	std::vector<double> offset, scale;
+	standardization(nf, x, train, offset, scale);
+
+	// Cross-validation on a deterministic subset of the training split.
+	std::vector<size_t> cv(train.begin(),
+			       train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
+	struct Point { double C, gamma, eps, err; };
+	std::vector<Point> grid;
+	for (double C : opt.C)
+		for (double g : opt.gamma)
+			for (double e : opt.epsilon)
+				grid.push_back({C, g, e, 0});
+	size_t k = static_cast<size_t>(opt.folds);
+	std::vector<double> fold_err(grid.size() * k, 0.0);
+	parallel_for(grid.size() * k, opt.jobs, [&](size_t job) {
+		const Point &pt = grid[job / k];
+		size_t f = job % k;
+		std::vector<size_t> fit_idx, val_idx;
+		for (size_t i = 0; i < cv.size(); i++)
+			(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
+		Problem p(nf, x, fit_idx, target, offset, scale);
+		svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
+		svm_model *m = svm_train(&p.prob, &par);
+		Problem v(nf, x, val_idx, target, offset, scale);
+		double err = 0;
+		for (size_t r = 0; r < val_idx.size(); r++) {
+			double pred = std::exp(svm_predict(m, v.rows[r]) * lscale + mean);
+			err += std::fabs(pred - cost[val_idx[r]]) / cost[val_idx[r]];
+		}
+		fold_err[job] = err / static_cast<double>(val_idx.size());
+		svm_free_and_destroy_model(&m);
+	});
+	size_t best = 0;
+	for (size_t g = 0; g < grid.size(); g++) {
+		for (size_t f = 0; f < k; f++)
+			grid[g].err += fold_err[g * k + f] / static_cast<double>(k);
+		if (grid[g].err < grid[best].err)
+			best = g;
+	}
+
+	// The final fit on the whole training split.
+	Problem p(nf, x, train, target, offset, scale);
+	svm_parameter par = params(EPSILON_SVR, grid[best].C, grid[best].gamma, grid[best].eps);
+	svm_model *m = svm_train(&p.prob, &par);
+	FitReport rep;
+	rep.n_train = train.size();
+	rep.n_test = test.size();
+	rep.n_sv = static_cast<size_t>(m->l);
+	rep.C = grid[best].C;
+	rep.gamma = grid[best].gamma;
+	rep.epsilon = grid[best].eps;
+	rep.cv_mean_rel_error = grid[best].err;
+	Problem t(nf, x, test, target, offset, scale);
+	std::vector<double> rel;
+	for (size_t r = 0; r < test.size(); r++) {
+		double pred = std::exp(svm_predict(m, t.rows[r]) * lscale + mean);
+		double c = cost[test[r]];
+		rep.mae += std::fabs(pred - c) / static_cast<double>(test.size());
+		rel.push_back(std::fabs(pred - c) / c);
+	}
+	rep.median_rel_error = quantile(rel, 0.5);
+	rep.p95_rel_error = quantile(rel, 0.95);
+	rep.max_rel_error = *std::max_element(rel.begin(), rel.end());
+
+	out.n_features = nf;
+	out.gamma = m->param.gamma;
+	out.rho = m->rho[0];
+	take(m, nf, 1.0, out.sv, out.coef);
+	out.feature_offset = offset;
+	out.feature_scale = scale;
+	out.label_offset = mean;
+	out.label_scale = lscale;
+	out.label_log = true;
+	svm_free_and_destroy_model(&m);
+	rep.fit_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+	return rep;
+}
+
+ClassifierReport fit_feasibility(int nf, const std::vector<double> &x,
+				 const std::vector<bool> &feasible, const FitOptions &opt,
+				 ClassifierExport &out)
+{
+	auto t0 = Clock::now();
+	size_t n = feasible.size();
+	check_data(nf, x, n, static_cast<size_t>(std::max(10, 2 * opt.folds)), opt.folds);
+	size_t n_feasible = static_cast<size_t>(std::count(feasible.begin(), feasible.end(), true));
+	if (n_feasible == 0 || n_feasible == n)
+		throw std::invalid_argument("fit: the feasibility classifier needs both feasible and "
+					    "infeasible samples (" + std::to_string(n_feasible) +
+					    " of " + std::to_string(n) + " are feasible)");
+	silence();
+	std::vector<size_t> perm = permutation(n, opt.seed + 1);
+	size_t n_test = std::max<size_t>(1, static_cast<size_t>(opt.test_fraction * static_cast<double>(n)));
+	std::vector<size_t> test(perm.begin(), perm.begin() + static_cast<long>(n_test));
+	std::vector<size_t> train(perm.begin() + static_cast<long>(n_test), perm.end());
+	std::vector<double> label(n);
+	for (size_t i = 0; i < n; i++)
+		label[i] = feasible[i] ? 1 : -1;
+	std::vector<double> offset, scale;
+	standardization(nf, x, train, offset, scale);
+
+	std::vector<size_t> cv(train.begin(),
+			       train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
+	struct Point { double C, gamma, acc; };
+	std::vector<Point> grid;
+	for (double C : opt.C)
+		for (double g : opt.gamma)
+			grid.push_back({C, g, 0});
+	size_t k = static_cast<size_t>(opt.folds);
+	std::vector<double> fold_acc(grid.size() * k, 0.0);
+	parallel_for(grid.size() * k, opt.jobs, [&](size_t job) {
+		const Point &pt = grid[job / k];
+		size_t f = job % k;
+		std::vector<size_t> fit_idx, val_idx;
+		for (size_t i = 0; i < cv.size(); i++)
+			(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
+		Problem p(nf, x, fit_idx, label, offset, scale);
+		bool one_class = std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; });
+		if (one_class) {   // a fold of one class predicts that class
+			size_t hits = 0;
+			for (size_t i : val_idx)
+				hits += label[i] == p.y[0];
+			fold_acc[job] = static_cast<double>(hits) / static_cast<double>(val_idx.size());
+			return;
+		}
+		svm_parameter par = params(C_SVC, pt.C, pt.gamma, 0);
+		svm_model *m = svm_train(&p.prob, &par);
+		Problem v(nf, x, val_idx, label, offset, scale);
+		size_t hits = 0;
+		for (size_t r = 0; r < val_idx.size(); r++)
+			hits += svm_predict(m, v.rows[r]) == label[val_idx[r]];
+		fold_acc[job] = static_cast<double>(hits) / static_cast<double>(val_idx.size());
+		svm_free_and_destroy_model(&m);
+	});
+	size_t best = 0;
+	for (size_t g = 0; g < grid.size(); g++) {
+		for (size_t f = 0; f < k; f++)
+			grid[g].acc += fold_acc[g * k + f] / static_cast<double>(k);
+		if (grid[g].acc > grid[best].acc)
+			best = g;
+	}
+	Problem p(nf, x, train, label, offset, scale);
+	if (std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; }))
+		throw std::invalid_argument("fit: the training split of the feasibility data has one class only");
+	svm_parameter par = params(C_SVC, grid[best].C, grid[best].gamma, 0);
+	svm_model *m = svm_train(&p.prob, &par);
+	// libsvm's decision value is positive for label[0]: orient it to "feasible".
+	double sign = m->label[0] == 1 ? 1.0 : -1.0;
+	ClassifierReport rep;
+	rep.n_train = train.size();
+	rep.n_test = test.size();
+	rep.n_sv = static_cast<size_t>(m->l);
+	rep.n_feasible = n_feasible;
+	rep.C = grid[best].C;
+	rep.gamma = grid[best].gamma;
+	Problem t(nf, x, test, label, offset, scale);
+	size_t hits = 0;
+	for (size_t r = 0; r < test.size(); r++)
+		hits += svm_predict(m, t.rows[r]) == label[test[r]];
+	rep.accuracy = static_cast<double>(hits) / static_cast<double>(test.size());
+	out.gamma = m->param.gamma;
+	out.rho = sign * m->rho[0];
+	take(m, nf, sign, out.sv, out.coef);
+	out.feature_offset = offset;
+	out.feature_scale = scale;
+	svm_free_and_destroy_model(&m);
+	rep.fit_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+	return rep;
+}
+
+}  // namespace hylo::trainer

@@ -1,0 +1,65 @@
+// Fitting the edge-cost models (paper section III.B): libsvm epsilon-SVR with
+// an RBF kernel (its solver is SMO) on standardized features and the
+// standardized log of the cost, hyperparameters (C, gamma, epsilon) chosen by
+// k-fold cross-validation on a grid, errors measured on a held-out split that
+// no fit ever sees; and the feasibility classifier (C-SVC, RBF) on converged
+// vs. infeasible samples. Deterministic: splits and folds come from the seed,
+// never from rand().
+#ifndef HYLO_TRAINER_SVR_FIT_HPP
+#define HYLO_TRAINER_SVR_FIT_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "trainer/svr_export.hpp"
+
+namespace hylo::trainer {
+
+struct FitOptions {
+	int folds = 5;                     // k of the k-fold cross-validation (>= 2)
+	double test_fraction = 0.2;        // held out, never fitted
+	uint64_t seed = 1;
+	std::vector<double> C = {3, 30, 300};
+	std::vector<double> gamma = {0.1, 0.3, 1.0};   // standardized feature units
+	std::vector<double> epsilon = {0.005, 0.02};   // standardized log-cost units
+	size_t cv_max_samples = 2000;      // cross-validate on at most this many training samples
+	int jobs = 1;                      // threads for the cross-validation fits
+};
+
+struct FitReport {
+	size_t n_train = 0, n_test = 0, n_sv = 0;
+	double C = 0, gamma = 0, epsilon = 0;
+	double cv_mean_rel_error = 0;      // of the chosen grid point
+	double mae = 0;                    // held-out mean absolute error [J]
+	double median_rel_error = 0, p95_rel_error = 0, max_rel_error = 0;
+	double fit_seconds = 0;            // cross-validation and final fit
+};
+
+struct ClassifierReport {
+	size_t n_train = 0, n_test = 0, n_sv = 0, n_feasible = 0;
+	double C = 0, gamma = 0;
+	double accuracy = 0;               // held out
+	double fit_seconds = 0;
+};
+
+// Fits the cost model on n samples: x (n x n_features raw features,
+// row-major), cost (n values, each > 0). Fills the model fields of out
+// (n_features, gamma, rho, sv, coef, feature_offset/scale, label_*); the
+// caller sets names, floors and provenance. Throws std::invalid_argument on
+// unusable data (too few samples for the folds, non-finite or non-positive
+// values), naming the problem.
+FitReport fit_cost(int n_features, const std::vector<double> &x, const std::vector<double> &cost,
+		   const FitOptions &opt, SvrExport &out);
+
+// Fits the feasibility classifier; feasible[i] says whether sample i's
+// trajectory optimization converged (and replayed). Oriented so that a
+// decision value >= 0 means feasible. Throws std::invalid_argument when a
+// class is missing or the data are unusable.
+ClassifierReport fit_feasibility(int n_features, const std::vector<double> &x,
+				 const std::vector<bool> &feasible, const FitOptions &opt,
+				 ClassifierExport &out);
+
+}  // namespace hylo::trainer
+
+#endif
