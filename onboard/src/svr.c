@@ -127,7 +127,8 @@ void hylo_svr_cache_reset(hylo_svr_cache *c)
 static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint32_t k,
 				double v)
 {
-	uint32_t j, slot = 0, i, nf = m->n_features;
+	uint32_t j, slot = 0, i;
+	const double *col;
 	double *row;
 
 	for (j = 0; j < c->n_used[k]; j++)
@@ -147,8 +148,9 @@ static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint
 	c->value[k][slot] = v;
 	c->last_use[k][slot] = ++c->clock;
 	row = c->factor[k][slot];
+	col = c->sv_col[k];
 	for (i = 0; i < m->n_sv; i++) {
-		double d = v - m->sv[(size_t)i * nf + k];
+		double d = v - col[i];
 
 		row[i] = exp(-m->gamma * d * d);
 	}
@@ -224,8 +226,13 @@ hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
 	if (m->n_sv > HYLO_MAX_SV || m->n_features > HYLO_MAX_FEATURES || m->n_features == 0)
 		return HYLO_E_CAP_SV;
 	if (c->model != m) {
+		uint32_t i;
+
 		hylo_svr_cache_reset(c);
 		c->model = m;
+		for (k = 0; k < m->n_features; k++)
+			for (i = 0; i < m->n_sv; i++)
+				c->sv_col[k][i] = m->sv[(size_t)i * m->n_features + k];
 	}
 	for (e = 0; e < n; e++) {
 		double z[HYLO_MAX_FEATURES];

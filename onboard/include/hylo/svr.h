@@ -81,6 +81,7 @@ typedef struct {
 	uint32_t last_use[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
 	double value[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
 	double factor[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES][HYLO_MAX_SV];
+	double sv_col[HYLO_MAX_FEATURES][HYLO_MAX_SV];  /* the model's SVs, feature-major */
 	uint32_t n_prefix;             /* valid running-product levels */
 	double prefix_value[HYLO_MAX_FEATURES];      /* feature value of each level */
 	double prefix[HYLO_MAX_FEATURES][HYLO_MAX_SV];
