@@ -1,1 +1,34 @@
-# Trainer (C++17): filled in by the trainer work (issue 3).
+# Trainer (C++17): robot parameter files, dynamics, Hermite-Simpson
+# collocation with Ipopt, CVODE replay, datasets, SVR fit and export.
+#   build/bin/trainer
+TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
+	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/sha256.cpp \
+	trainer/pipeline.cpp
+TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
+TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
+TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread
+TRAINER_LIB := $(BUILD)/lib/libhylo_trainer.a
+TRAINER := $(BUILD)/bin/trainer
+
+$(BUILD)/obj/trainer/%.o: trainer/%.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) -c $< -o $@
+
+$(TRAINER_LIB): $(TRAINER_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@ && $(AR) rcs $@ $^
+
+$(TRAINER): $(BUILD)/obj/trainer/main.o $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $^ $(TRAINER_LIBS) -o $@
+
+ALL_TARGETS += $(TRAINER)
+
+# Tests: the numerics (C++, TAP) and the CLI and datasets (shell, TAP).
+TRAINER_TEST := $(BUILD)/test/trainer/test_collocation
+$(TRAINER_TEST): tests/trainer/test_collocation.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+tests/trainer/test_trainer_cli.sh: $(TRAINER)
+ALL_TARGETS += $(TRAINER_TEST)
+TESTS += $(TRAINER_TEST) tests/trainer/test_trainer_cli.sh

@@ -1,0 +1,129 @@
+// The trainer's numerics: Ipopt's derivative checker on every mode's
+// transcription, the double integrator's closed forms (models.md section 2),
+// the CVODE replay (a converged solution replays; a corrupted control is
+// caught), and boundary states out of bounds. Prints TAP.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+#include "trainer/collocation.hpp"
+#include "trainer/params.hpp"
+#include "trainer/replay.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+int n_checks = 0, n_failed = 0;
+
+void check(bool ok, const std::string &name, const std::string &why = "")
+{
+	n_checks++;
+	std::printf("%s %d - %s\n", ok ? "ok" : "not ok", n_checks, name.c_str());
+	if (!ok) {
+		n_failed++;
+		if (!why.empty())
+			std::printf("# %s\n", why.c_str());
+	}
+	std::fflush(stdout);
+}
+
+std::string slurp(const std::string &p)
+{
+	std::ifstream f(p);
+	std::ostringstream s;
+	s << f.rdbuf();
+	return s.str();
+}
+
+void derivative_test(const std::string &robot, const std::string &mode, const double *a,
+		     const double *b, double perturbation)
+{
+	RobotParams r = load_robot("trainer/params/" + robot + ".yaml");
+	SolveOptions o;
+	o.segments = 3;
+	char path[] = "/tmp/hylo-dtest-XXXXXX";
+	int fd = mkstemp(path);
+	close(fd);
+	o.derivative_test_file = path;
+	o.derivative_test_perturbation = perturbation;
+	solve_bvp(mode, r, a, b, o);
+	std::string log = slurp(path);
+	unlink(path);
+	bool clean = log.find("No errors detected by derivative checker") != std::string::npos;
+	std::string first;
+	size_t star = log.find("\n*");
+	if (star != std::string::npos)
+		first = log.substr(star + 1, log.find('\n', star + 1) - star - 1);
+	check(clean, "Ipopt derivative checker (first and second order): " + robot + " " + mode, first);
+}
+
+}  // namespace
+
+int main()
+{
+	// Generic states (not at rest) so that no term sits at a kink of its smoothing.
+	double da[2] = {-0.5, 0.1}, db[2] = {-0.2, -0.1}, pa[2] = {0.5, 0.1}, pb[2] = {0.2, -0.1};
+	double ga[4] = {0.1, 0.2, 0.3, 0.4}, gb[4] = {0.7, 0.8, 0.9, 0.5};
+	double fa[6] = {0.1, 0.2, 1.0, 0.4, 0.5, 0.6}, fb[6] = {0.7, 0.8, 2.0, 0.5, 0.4, 0.3};
+	derivative_test("di", "di_neg", da, db, 1e-8);
+	derivative_test("di", "di_pos", pa, pb, 1e-8);
+	derivative_test("ambot", "ground", ga, gb, 1e-8);
+	derivative_test("ambot", "marine", ga, gb, 1e-8);
+	derivative_test("drivocopter", "flight", fa, fb, 1e-7);
+
+	RobotParams di = load_robot("trainer/params/di.yaml");
+	double rho = di.mode("di_neg").at("rho"), d = 0.2;
+	double a[2] = {-0.5, 0}, b[2] = {-0.3, 0};
+	SolveOptions fixed;
+	fixed.T_fixed = 2.0;
+	Solution s = solve_bvp("di_neg", di, a, b, fixed);
+	double want = 12 * d * d / 8.0 + rho * 2.0;
+	check(s.converged && std::fabs(s.cost - want) <= 1e-4 * want,
+	      "double integrator, fixed T: cost 12 d^2 / T^3 (+ rho T) to 1e-4",
+	      std::to_string(s.cost) + " vs " + std::to_string(want));
+	Solution f = solve_bvp("di_neg", di, a, b, SolveOptions());
+	double Tstar = std::pow(36 * d * d / rho, 0.25);
+	check(f.converged && std::fabs(f.T - Tstar) <= 1e-4 * Tstar,
+	      "double integrator, free T with time weight: T* = (36 d^2 / rho)^(1/4) to 1e-4",
+	      std::to_string(f.T) + " vs " + std::to_string(Tstar));
+	check(f.replay_ok && f.replay_error < 1e-6 && std::fabs(f.replay_cost - f.cost) < 1e-6,
+	      "double integrator: the CVODE replay reproduces end state and cost",
+	      std::to_string(f.replay_error));
+
+	// A corrupted control: the replay must notice.
+	Solution bad = f;
+	for (size_t k = 0; k < bad.traj.u.size(); k++)
+		bad.traj.u[k] += 0.2;
+	replay("di_neg", di, bad);
+	check(!bad.replay_ok && bad.replay_error > 0.05, "a corrupted control is detected by the replay",
+	      std::to_string(bad.replay_error));
+
+	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
+	double g1[4] = {0, 0, 1, 0}, g2[4] = {3, 0, 1, 0};
+	Solution gs = solve_bvp("ground", ambot, g1, g2, SolveOptions());
+	check(gs.converged && gs.replay_ok && gs.replay_error < kReplayStateTol,
+	      "Ambot ground: a converged solution replays with small end-state error",
+	      gs.status_text + ", error " + std::to_string(gs.replay_error));
+	std::printf("# ambot ground 3 m at 1 m/s: %.4f J in %.3f s, %d iterations, %.2f s\n", gs.cost,
+		    gs.T, gs.iterations, gs.solve_seconds);
+	Solution gbad = gs;
+	for (size_t k = 0; k < gbad.traj.u.size(); k += 2)
+		gbad.traj.u[k] = -gbad.traj.u[k];
+	replay("ground", ambot, gbad);
+	check(!gbad.replay_ok, "Ambot ground: a corrupted control is detected", std::to_string(gbad.replay_error));
+
+	try {
+		double out[2] = {0.5, 0};   // p > 0 is outside di_neg
+		solve_bvp("di_neg", di, out, b, SolveOptions());
+		check(false, "a boundary state outside the mode's bounds is refused");
+	} catch (const std::invalid_argument &e) {
+		check(std::string(e.what()).find("outside") != std::string::npos,
+		      "a boundary state outside the mode's bounds is refused", e.what());
+	}
+	std::printf("1..%d\n", n_checks);
+	return n_failed ? 1 : 0;
+}

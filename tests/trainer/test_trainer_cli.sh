@@ -1,0 +1,122 @@
+#!/usr/bin/env bash
+# The trainer's command line and datasets (on the cheap double-integrator
+# mode): usage errors, parameter-file errors, --solve --json, determinism
+# across worker counts, resume after a kill, shards that concatenate to the
+# unsharded file, and a small gen -> fit -> export run whose header compiles.
+set -u
+cd "$(dirname "$0")/../.."
+. tests/tap.sh
+B=${BUILD:-build}
+TR=$B/bin/trainer
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+
+expect_fail() {  # NAME CODE NEEDLE CMD...
+  local name=$1 code=$2 needle=$3; shift 3
+  "$@" > "$T/out" 2> "$T/err"; local rc=$?
+  if [ "$rc" -eq "$code" ] && grep -q -- "$needle" "$T/err"; then tap_ok "$name"; else
+    tap_not_ok "$name" "exit $rc (want $code)" "$(head -3 "$T/err")"; fi
+}
+
+"$TR" --help > "$T/help"; rc=$?
+if [ "$rc" -eq 0 ] && grep -q -- "--samples N" "$T/help" && grep -q "default: 11520" "$T/help" && grep -q -- "--shard K/N" "$T/help"; then
+  tap_ok "--help lists the options with their defaults"; else tap_not_ok "--help lists the options with their defaults"; fi
+expect_fail "unknown mode: exit 2" 2 "unknown mode 'swim'" "$TR" --mode swim --robot ambot --solve 0 0
+expect_fail "unknown robot: exit 2 naming the file" 2 "trainer/params/nobot.yaml" "$TR" --mode ground --robot nobot --solve 0 0
+expect_fail "malformed --solve vector: exit 2" 2 "'x' in '0,x,0,0'" "$TR" --mode ground --robot ambot --solve 0,x,0,0 1,0,0,0
+expect_fail "wrong --solve length: exit 2" 2 "needs 4" "$TR" --mode ground --robot ambot --solve 0,0,0 1,0,0,0
+expect_fail "out-of-bounds boundary state: exit 2" 2 "outside" "$TR" --mode di_neg --robot di --solve 0.5,0 -0.3,0
+expect_fail "robot without that mode: exit 2" 2 "no mode 'flight'" "$TR" --mode flight --robot ambot --solve 0,0,0,0,0,0 1,0,0,0,0,0
+expect_fail "unusable output directory: clear error" 1 "cannot create the output directory" \
+  "$TR" --mode di_neg --robot di --samples 4 --stage gen --out /proc/no/such/dir --quiet
+
+mkdir -p "$T/params"
+cp trainer/params/di.yaml "$T/params/good.yaml"
+sed 's/rho: 0.1}/rho: 0.1, bogus: 2}/' trainer/params/di.yaml | sed '0,/bogus/s//bogus/' > "$T/params/unknown.yaml"
+sed 's/{rho: 0.1}/{}/' trainer/params/di.yaml > "$T/params/missing.yaml"
+sed 's/rho: 0.1}/rho: -3}/' trainer/params/di.yaml > "$T/params/badvalue.yaml"
+expect_fail "parameter file: unknown key names file, key and line" 2 "unknown.yaml:6: unknown key 'bogus'" \
+  env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot unknown --solve -0.5,0 -0.3,0
+expect_fail "parameter file: missing key names file, key and line" 2 "missing.yaml:6: missing key 'rho'" \
+  env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot missing --solve -0.5,0 -0.3,0
+expect_fail "parameter file: bad value names file, key and line" 2 "badvalue.yaml:6: di_neg.rho must be > 0" \
+  env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot badvalue --solve -0.5,0 -0.3,0
+
+"$TR" --mode di_neg --robot di --solve -0.5,0 -0.3,0 --json --trajectory > "$T/solve.json"
+if python3 - "$T/solve.json" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["converged"] and abs(d["T_s"] - 1.9480074928505935) < 1e-4, d
+assert d["replay_error"] < 1e-6 and d["iterations"] > 0
+t = d["trajectory"]
+assert len(t["t_s"]) == len(t["x"]) == len(t["u"]) == 41 and len(t["x"][0]) == 2
+assert t["x"][0] == [-0.5, 0] and abs(t["x"][-1][0] + 0.3) < 1e-12
+PY
+then tap_ok "--solve --json --trajectory: cost, T, replay and samples"; else tap_not_ok "--solve --json --trajectory: cost, T, replay and samples" "$(head -c 300 "$T/solve.json")"; fi
+
+gen() { "$TR" --mode di_neg --robot di --stage gen --quiet --samples 36 --seed 3 "$@"; }
+gen --jobs 1 --out "$T/j1" > /dev/null && gen --jobs 2 --out "$T/j2" > /dev/null
+tap_check "--jobs 1 and --jobs 2 write byte-identical datasets" cmp "$T/j1/di_neg.csv" "$T/j2/di_neg.csv"
+n=$(($(wc -l < "$T/j1/di_neg.csv") - 1))
+if [ "$n" -eq 36 ]; then tap_ok "one row per sample"; else tap_not_ok "one row per sample" "$n rows"; fi
+
+for k in 1 2 3; do gen --jobs 2 --shard $k/3 --out "$T/sh" > /dev/null; done
+cat "$T/sh/di_neg.shard-1-of-3.csv" "$T/sh/di_neg.shard-2-of-3.csv" "$T/sh/di_neg.shard-3-of-3.csv" > "$T/sh/all.csv"
+tap_check "shards 1/3, 2/3, 3/3 concatenate to the unsharded file" cmp "$T/sh/all.csv" "$T/j1/di_neg.csv"
+
+# Interrupted: killed after its first chunks, then run again.
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 200 --seed 3 --jobs 2 --out "$T/kill" > /dev/null &
+pid=$!
+for i in $(seq 1 100); do
+  [ -f "$T/kill/di_neg.csv" ] && [ "$(wc -l < "$T/kill/di_neg.csv")" -gt 40 ] && break
+  sleep 0.05
+done
+kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
+printf '17,0.1,0.2,garbage' >> "$T/kill/di_neg.csv"    # a torn last row
+before=$(($(wc -l < "$T/kill/di_neg.csv") - 1))
+gen --samples 200 --jobs 2 --out "$T/kill" > "$T/resume.out"
+gen --samples 200 --jobs 1 --out "$T/full" > /dev/null
+if cmp -s "$T/kill/di_neg.csv" "$T/full/di_neg.csv" && [ "$before" -lt 200 ]; then
+  tap_ok "killed after $before rows and re-run: the same file as an uninterrupted run"; else
+  tap_not_ok "killed and re-run: the same file as an uninterrupted run" "$before rows before; $(cat "$T/resume.out")"; fi
+expect_fail "a dataset made with other arguments is not silently extended" 1 "other arguments" \
+  "$TR" --mode di_neg --robot di --stage gen --quiet --samples 200 --seed 4 --out "$T/kill"
+
+# A small pipeline: gen -> fit -> export, and the header compiles into the planner.
+mkdir -p "$T/models"
+if "$TR" --mode di_neg --robot di --samples 300 --seed 5 --jobs 2 --quiet --out "$T/pipe" --models-dir "$T/models" > "$T/pipe.out" 2>&1 &&
+   gcc -std=c99 -Wall -Wextra -Werror -pedantic -Ionboard/include -I"$T/models" -x c - -x none -o "$T/use" $B/lib/libhylo.a -lm <<'C'
+#include "di_di_neg.h"
+#include "hylo/features.h"
+#include <stdio.h>
+int main(void)
+{
+	double a[6] = {-0.5, 0}, b[6] = {-0.3, 0}, f[4];
+	hylo_features(HYLO_MODE_DI_NEG, a, b, f);
+	printf("%.6f\n", hylo_svr_predict(&hylo_model_di_di_neg, f));
+	return hylo_svr_check(&hylo_model_di_di_neg, NULL) != HYLO_OK;
+}
+C
+then
+  pred=$("$T/use")
+  if python3 -c "import sys; p=float(sys.argv[1]); assert abs(p - 0.2597) < 0.1 * 0.2597, p" "$pred"; then
+    tap_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 10% ($pred)"; else
+    tap_not_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 10%" "predicted $pred"; fi
+else
+  tap_not_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 10%" "$(tail -5 "$T/pipe.out")"
+fi
+grep "^fit" "$T/pipe.out" | sed 's/^/# /'
+
+# Bad datasets: a clear error and no header.
+mkdir -p "$T/bad" "$T/badmodels"
+cp "$T/pipe/di_neg.csv.meta" "$T/bad/"
+: > "$T/bad/di_neg.csv"
+expect_fail "empty dataset: clear error, no header" 2 "empty" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
+head -5 "$T/pipe/di_neg.csv" > "$T/bad/di_neg.csv"; echo "1,2,3" >> "$T/bad/di_neg.csv"
+expect_fail "corrupt dataset: clear error naming the line" 2 "di_neg.csv:6" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
+head -8 "$T/pipe/di_neg.csv" > "$T/bad/di_neg.csv"
+expect_fail "too few samples for the folds: clear error" 2 "too few" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
+cp "$T/pipe/di_neg.csv" "$T/bad/"; sed -i 's/params_sha256: .*/params_sha256: 0000/' "$T/bad/di_neg.csv.meta"
+expect_fail "a dataset from another robot file: clear error" 2 "another robot file" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
+if ls "$T/bad"/*.h > /dev/null 2>&1; then tap_not_ok "no header written from bad data"; else tap_ok "no header written from bad data"; fi
+tap_finish

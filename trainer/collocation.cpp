@@ -1,0 +1,601 @@
+#include "trainer/collocation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+#include <unsupported/Eigen/AutoDiff>
+
+#include <IpIpoptApplication.hpp>
+#include <IpSolveStatistics.hpp>
+#include <IpTNLP.hpp>
+
+#include "trainer/models.hpp"
+#include "trainer/replay.hpp"
+
+namespace hylo::trainer {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+
+// One mode's transcription. M provides NX, NU, NP, eval<S>() and bounds().
+template <class M>
+class HsNlp : public Ipopt::TNLP {
+public:
+	static constexpr int NX = M::NX, NU = M::NU, NP = M::NP, NZ = NX + NU;
+	static constexpr int NPO = NP > 0 ? NP : 1;   // array size for path outputs
+	using AD1 = Eigen::AutoDiffScalar<Eigen::Matrix<double, NZ, 1>>;
+	using AD2 = Eigen::AutoDiffScalar<Eigen::Matrix<AD1, NZ, 1>>;
+
+	HsNlp(const M &model, int segments, const std::array<double, NX> &x0,
+	      const std::array<double, NX> &x1, double T_guess, double T_fixed)
+		: m_(model), N_(segments), x0_(x0), x1_(x1), T_guess_(T_guess), T_fixed_(T_fixed),
+		  b_(model.bounds())
+	{
+		npts_ = 2 * N_ + 1;
+		nvar_ = npts_ * NZ + 1;
+		ncon_ = 2 * N_ * NX + npts_ * NP;
+		f_.resize(static_cast<size_t>(npts_) * NX);
+		L_.resize(static_cast<size_t>(npts_));
+		path_.resize(static_cast<size_t>(npts_) * NPO);
+		jf_.resize(static_cast<size_t>(npts_) * NX * NZ);
+		jl_.resize(static_cast<size_t>(npts_) * NZ);
+		jp_.resize(static_cast<size_t>(npts_) * NPO * NZ);
+	}
+
+	// Point p: knots 0..N are points 0..N, midpoint k is point N+1+k.
+	int knot(int i) const { return i; }
+	int mid(int k) const { return N_ + 1 + k; }
+	int zi(int p) const { return p * NZ; }
+	int Ti() const { return npts_ * NZ; }
+
+	bool get_nlp_info(Index &n, Index &m, Index &nnz_jac, Index &nnz_h,
+			  IndexStyleEnum &style) override
+	{
+		n = nvar_;
+		m = ncon_;
+		// C1: NX x (2 NZ + NX + 1), C2: NX x (3 NZ + 1), path: NP x NZ per point.
+		nnz_jac = N_ * NX * (2 * NZ + NX + 1) + N_ * NX * (3 * NZ + 1) + npts_ * NP * NZ;
+		nnz_h = npts_ * (NZ * (NZ + 1) / 2 + NZ) + 1;
+		style = TNLP::C_STYLE;
+		return true;
+	}
+
+	bool get_bounds_info(Index, Number *xl, Number *xu, Index, Number *gl, Number *gu) override
+	{
+		for (int p = 0; p < npts_; p++) {
+			for (int k = 0; k < NX; k++) {
+				xl[zi(p) + k] = b_.x_lo[static_cast<size_t>(k)];
+				xu[zi(p) + k] = b_.x_hi[static_cast<size_t>(k)];
+			}
+			for (int k = 0; k < NU; k++) {
+				xl[zi(p) + NX + k] = b_.u_lo[static_cast<size_t>(k)];
+				xu[zi(p) + NX + k] = b_.u_hi[static_cast<size_t>(k)];
+			}
+		}
+		for (int k = 0; k < NX; k++) {
+			xl[zi(knot(0)) + k] = xu[zi(knot(0)) + k] = x0_[static_cast<size_t>(k)];
+			xl[zi(knot(N_)) + k] = xu[zi(knot(N_)) + k] = x1_[static_cast<size_t>(k)];
+		}
+		xl[Ti()] = T_fixed_ > 0 ? T_fixed_ : b_.T_min;
+		xu[Ti()] = T_fixed_ > 0 ? T_fixed_ : b_.T_max;
+		for (int r = 0; r < 2 * N_ * NX; r++)
+			gl[r] = gu[r] = 0;
+		for (int p = 0; p < npts_; p++)
+			for (int j = 0; j < NP; j++) {
+				gl[2 * N_ * NX + p * NP + j] = b_.path_lo[static_cast<size_t>(j)];
+				gu[2 * N_ * NX + p * NP + j] = b_.path_hi[static_cast<size_t>(j)];
+			}
+		return true;
+	}
+
+	// Start from z (a solution of the same size) instead of the straight-line guess.
+	void warm_start(const std::vector<double> &z) { warm_ = z; }
+	const std::vector<double> &solution() const { return z_; }
+
+	bool get_starting_point(Index n, bool, Number *z, bool, Number *, Number *, Index, bool,
+				Number *) override
+	{
+		if (warm_.size() == static_cast<size_t>(n)) {
+			std::copy(warm_.begin(), warm_.end(), z);
+			return true;
+		}
+		auto ug = m_.input_guess();
+		for (int p = 0; p < npts_; p++) {
+			double s = p <= N_ ? static_cast<double>(p) / N_
+					   : (static_cast<double>(p - N_ - 1) + 0.5) / N_;
+			for (int k = 0; k < NX; k++) {
+				double a = x0_[static_cast<size_t>(k)], b = x1_[static_cast<size_t>(k)];
+				z[zi(p) + k] = clamp(a + s * (b - a), b_.x_lo[static_cast<size_t>(k)],
+						     b_.x_hi[static_cast<size_t>(k)]);
+			}
+			for (int k = 0; k < NU; k++)
+				z[zi(p) + NX + k] = ug[static_cast<size_t>(k)];
+		}
+		z[Ti()] = T_fixed_ > 0 ? T_fixed_ : T_guess_;
+		return true;
+	}
+
+	bool eval_f(Index, const Number *z, bool new_x, Number &obj) override
+	{
+		update(z, new_x);
+		double sum = 0;
+		for (int p = 0; p < npts_; p++)
+			sum += weight(p) * L_[static_cast<size_t>(p)];
+		obj = z[Ti()] / (6.0 * N_) * sum;
+		return true;
+	}
+
+	bool eval_grad_f(Index n, const Number *z, bool new_x, Number *g) override
+	{
+		update(z, new_x);
+		std::fill(g, g + n, 0.0);
+		double h6 = z[Ti()] / (6.0 * N_), sum = 0;
+		for (int p = 0; p < npts_; p++) {
+			for (int j = 0; j < NZ; j++)
+				g[zi(p) + j] = h6 * weight(p) * jl_[static_cast<size_t>(p * NZ + j)];
+			sum += weight(p) * L_[static_cast<size_t>(p)];
+		}
+		g[Ti()] = sum / (6.0 * N_);
+		return true;
+	}
+
+	bool eval_g(Index, const Number *z, bool new_x, Index, Number *g) override
+	{
+		update(z, new_x);
+		double T = z[Ti()], h8 = T / (8.0 * N_), h6 = T / (6.0 * N_);
+		for (int k = 0; k < N_; k++) {
+			int a = knot(k), b = knot(k + 1), c = mid(k);
+			for (int r = 0; r < NX; r++) {
+				g[c1(k) + r] = z[zi(c) + r] - 0.5 * (z[zi(a) + r] + z[zi(b) + r]) -
+					       h8 * (F(a, r) - F(b, r));
+				g[c2(k) + r] = z[zi(b) + r] - z[zi(a) + r] -
+					       h6 * (F(a, r) + 4 * F(c, r) + F(b, r));
+			}
+		}
+		for (int p = 0; p < npts_; p++)
+			for (int j = 0; j < NP; j++)
+				g[2 * N_ * NX + p * NP + j] = path_[static_cast<size_t>(p * NPO + j)];
+		return true;
+	}
+
+	bool eval_jac_g(Index, const Number *z, bool new_x, Index, Index, Index *iRow,
+			Index *jCol, Number *v) override
+	{
+		int e = 0;
+		if (!v) {
+			for (int k = 0; k < N_; k++) {
+				int a = knot(k), b = knot(k + 1), c = mid(k);
+				for (int r = 0; r < NX; r++) {
+					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c1(k) + r, zi(a) + j);
+					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c1(k) + r, zi(b) + j);
+					for (int j = 0; j < NX; j++) put(iRow, jCol, e, c1(k) + r, zi(c) + j);
+					put(iRow, jCol, e, c1(k) + r, Ti());
+				}
+				for (int r = 0; r < NX; r++) {
+					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c2(k) + r, zi(a) + j);
+					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c2(k) + r, zi(b) + j);
+					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c2(k) + r, zi(c) + j);
+					put(iRow, jCol, e, c2(k) + r, Ti());
+				}
+			}
+			for (int p = 0; p < npts_; p++)
+				for (int r = 0; r < NP; r++)
+					for (int j = 0; j < NZ; j++)
+						put(iRow, jCol, e, 2 * N_ * NX + p * NP + r, zi(p) + j);
+			return true;
+		}
+		update(z, new_x);
+		double T = z[Ti()], h8 = T / (8.0 * N_), h6 = T / (6.0 * N_);
+		for (int k = 0; k < N_; k++) {
+			int a = knot(k), b = knot(k + 1), c = mid(k);
+			for (int r = 0; r < NX; r++) {
+				for (int j = 0; j < NZ; j++)
+					v[e++] = -(j == r ? 0.5 : 0.0) - h8 * JF(a, r, j);
+				for (int j = 0; j < NZ; j++)
+					v[e++] = -(j == r ? 0.5 : 0.0) + h8 * JF(b, r, j);
+				for (int j = 0; j < NX; j++)
+					v[e++] = j == r ? 1.0 : 0.0;
+				v[e++] = -(F(a, r) - F(b, r)) / (8.0 * N_);
+			}
+			for (int r = 0; r < NX; r++) {
+				for (int j = 0; j < NZ; j++)
+					v[e++] = -(j == r ? 1.0 : 0.0) - h6 * JF(a, r, j);
+				for (int j = 0; j < NZ; j++)
+					v[e++] = (j == r ? 1.0 : 0.0) - h6 * JF(b, r, j);
+				for (int j = 0; j < NZ; j++)
+					v[e++] = -4 * h6 * JF(c, r, j);
+				v[e++] = -(F(a, r) + 4 * F(c, r) + F(b, r)) / (6.0 * N_);
+			}
+		}
+		for (int p = 0; p < npts_; p++)
+			for (int r = 0; r < NP; r++)
+				for (int j = 0; j < NZ; j++)
+					v[e++] = jp_[static_cast<size_t>((p * NPO + r) * NZ + j)];
+		return true;
+	}
+
+	bool eval_h(Index, const Number *z, bool, Number sigma, Index, const Number *lambda, bool,
+		    Index, Index *iRow, Index *jCol, Number *v) override
+	{
+		int e = 0;
+		if (!v) {
+			for (int p = 0; p < npts_; p++) {
+				for (int i = 0; i < NZ; i++)
+					for (int j = 0; j <= i; j++)
+						put(iRow, jCol, e, zi(p) + i, zi(p) + j);
+				for (int j = 0; j < NZ; j++)
+					put(iRow, jCol, e, Ti(), zi(p) + j);
+			}
+			put(iRow, jCol, e, Ti(), Ti());
+			return true;
+		}
+		double T = z[Ti()];
+		for (int p = 0; p < npts_; p++) {
+			// The point's share of the Lagrangian: T * (Lambda . f + beta L) + mu . path.
+			double w[NX + 1 + NPO] = {};
+			for (int r = 0; r < NX; r++)
+				w[r] = dyn_weight(p, r, lambda);
+			w[NX] = sigma * weight(p) / (6.0 * N_);
+			double grad[NZ], hess[NZ * NZ];
+			hessian(z + zi(p), w, false, grad, hess);
+			double hp[NZ * NZ] = {};
+			if (NP > 0) {
+				double wp[NX + 1 + NPO] = {};
+				for (int r = 0; r < NP; r++)
+					wp[NX + 1 + r] = lambda[2 * N_ * NX + p * NP + r];
+				double gp[NZ];
+				hessian(z + zi(p), wp, true, gp, hp);
+			}
+			for (int i = 0; i < NZ; i++)
+				for (int j = 0; j <= i; j++)
+					v[e++] = T * hess[i * NZ + j] + hp[i * NZ + j];
+			for (int j = 0; j < NZ; j++)
+				v[e++] = grad[j];
+		}
+		v[e++] = 0;
+		return true;
+	}
+
+	void finalize_solution(Ipopt::SolverReturn, Index n, const Number *z, const Number *,
+			       const Number *, Index, const Number *, const Number *, Number obj,
+			       const Ipopt::IpoptData *, Ipopt::IpoptCalculatedQuantities *) override
+	{
+		z_.assign(z, z + n);
+		obj_ = obj;
+	}
+
+	// The solution as a time-ordered trajectory.
+	void fill(Solution &s) const
+	{
+		s.T = z_[static_cast<size_t>(Ti())];
+		s.cost = obj_;
+		s.traj.nx = NX;
+		s.traj.nu = NU;
+		s.traj.t.clear();
+		s.traj.x.clear();
+		s.traj.u.clear();
+		for (int i = 0; i <= 2 * N_; i++) {
+			int p = i % 2 == 0 ? knot(i / 2) : mid(i / 2);
+			s.traj.t.push_back(s.T * i / (2.0 * N_));
+			for (int k = 0; k < NX; k++)
+				s.traj.x.push_back(z_[static_cast<size_t>(zi(p) + k)]);
+			for (int k = 0; k < NU; k++)
+				s.traj.u.push_back(z_[static_cast<size_t>(zi(p) + NX + k)]);
+		}
+	}
+
+private:
+	static double clamp(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
+	static void put(Index *iRow, Index *jCol, int &e, int r, int c)
+	{
+		iRow[e] = r;
+		jCol[e] = c;
+		e++;
+	}
+	int c1(int k) const { return k * 2 * NX; }
+	int c2(int k) const { return k * 2 * NX + NX; }
+	double F(int p, int r) const { return f_[static_cast<size_t>(p * NX + r)]; }
+	double JF(int p, int r, int j) const { return jf_[static_cast<size_t>((p * NX + r) * NZ + j)]; }
+	// Simpson weight of point p in the cost.
+	double weight(int p) const
+	{
+		if (p > N_)
+			return 4;
+		return (p == 0 || p == N_) ? 1 : 2;
+	}
+
+	// Coefficient (per T) of f_p's row r in the constraints, times the multipliers.
+	double dyn_weight(int p, int r, const Number *lambda) const
+	{
+		double s = 0, a8 = 1.0 / (8.0 * N_), a6 = 1.0 / (6.0 * N_);
+		if (p > N_) {
+			int k = p - N_ - 1;
+			return -4 * a6 * lambda[c2(k) + r];
+		}
+		if (p < N_)   // as the segment's left knot
+			s += -a8 * lambda[c1(p) + r] - a6 * lambda[c2(p) + r];
+		if (p > 0)    // as the previous segment's right knot
+			s += a8 * lambda[c1(p - 1) + r] - a6 * lambda[c2(p - 1) + r];
+		return s;
+	}
+
+	// Values and first derivatives at every point, once per new iterate.
+	void update(const Number *z, bool new_x)
+	{
+		if (!new_x && have_)
+			return;
+		have_ = true;
+		for (int p = 0; p < npts_; p++) {
+			AD1 in[NZ], out[NX], L, path[NPO];
+			for (int j = 0; j < NZ; j++)
+				in[j] = AD1(z[zi(p) + j], NZ, j);
+			m_.template eval<AD1>(in, in + NX, out, L, path);
+			for (int r = 0; r < NX; r++) {
+				f_[static_cast<size_t>(p * NX + r)] = out[r].value();
+				for (int j = 0; j < NZ; j++)
+					jf_[static_cast<size_t>((p * NX + r) * NZ + j)] = out[r].derivatives()(j);
+			}
+			L_[static_cast<size_t>(p)] = L.value();
+			for (int j = 0; j < NZ; j++)
+				jl_[static_cast<size_t>(p * NZ + j)] = L.derivatives()(j);
+			for (int r = 0; r < NP; r++) {
+				path_[static_cast<size_t>(p * NPO + r)] = path[r].value();
+				for (int j = 0; j < NZ; j++)
+					jp_[static_cast<size_t>((p * NPO + r) * NZ + j)] = path[r].derivatives()(j);
+			}
+		}
+	}
+
+	// Gradient and Hessian of w . (f, L, path) at point variables zp (second-order AutoDiff).
+	void hessian(const Number *zp, const double *w, bool path_only, double *grad, double *hess) const
+	{
+		AD2 in[NZ], out[NX], L, path[NPO];
+		for (int j = 0; j < NZ; j++) {
+			in[j].value() = AD1(zp[j], NZ, j);
+			in[j].derivatives() = Eigen::Matrix<AD1, NZ, 1>::Constant(AD1(0.0, Eigen::Matrix<double, NZ, 1>::Zero()));
+			in[j].derivatives()(j) = AD1(1.0, Eigen::Matrix<double, NZ, 1>::Zero());
+		}
+		m_.template eval<AD2>(in, in + NX, out, L, path);
+		AD2 s = AD2(0.0);
+		if (!path_only) {
+			for (int r = 0; r < NX; r++)
+				s = s + w[r] * out[r];
+			s = s + w[NX] * L;
+		}
+		for (int r = 0; r < NP; r++)
+			s = s + w[NX + 1 + r] * path[r];
+		for (int i = 0; i < NZ; i++) {
+			const AD1 &d = s.derivatives().size() ? s.derivatives()(i) : AD1(0.0);
+			grad[i] = d.value();
+			for (int j = 0; j < NZ; j++)
+				hess[i * NZ + j] = d.derivatives().size() ? d.derivatives()(j) : 0.0;
+		}
+	}
+
+	const M &m_;
+	int N_, npts_, nvar_, ncon_;
+	std::array<double, NX> x0_, x1_;
+	double T_guess_, T_fixed_;
+	Bounds b_;
+	bool have_ = false;
+	std::vector<double> f_, L_, path_, jf_, jl_, jp_;
+	std::vector<double> z_, warm_;
+	double obj_ = 0;
+};
+
+Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt)
+{
+	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
+	bool ok = app->Options()->SetIntegerValue("print_level", 0);
+	ok = ok && app->Options()->SetStringValue("sb", "yes");
+	ok = ok && app->Options()->SetNumericValue("tol", opt.tol);
+	ok = ok && app->Options()->SetIntegerValue("max_iter", opt.max_iter);
+	ok = ok && app->Options()->SetStringValue("linear_solver", "mumps");
+	// Monotone barrier from a small start converged on every robot mode tried,
+	// where the adaptive strategy hit the iteration limit (stiff friction terms).
+	ok = ok && app->Options()->SetStringValue("mu_strategy", "monotone");
+	ok = ok && app->Options()->SetNumericValue("mu_init", 1e-2);
+	if (!opt.derivative_test_file.empty()) {
+		ok = ok && app->Options()->SetStringValue("derivative_test", "second-order");
+		ok = ok && app->Options()->SetNumericValue("derivative_test_perturbation", opt.derivative_test_perturbation);
+		ok = ok && app->Options()->SetNumericValue("derivative_test_tol", 1e-4);
+		ok = ok && app->Options()->SetStringValue("output_file", opt.derivative_test_file);
+		ok = ok && app->Options()->SetIntegerValue("file_print_level", 5);
+		ok = ok && app->Options()->SetIntegerValue("print_level", 0);
+		ok = ok && app->Options()->SetIntegerValue("max_iter", 0);
+	}
+	if (const char *extra = std::getenv("HYLO_IPOPT_OPTS")) {   // name=value,... for experiments
+		std::string all = extra;
+		size_t pos = 0;
+		while (pos < all.size()) {
+			size_t end = all.find(',', pos);
+			std::string kv = all.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+			size_t eq = kv.find('=');
+			std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
+			char *e = nullptr;
+			double num = std::strtod(v.c_str(), &e);
+			if (e && *e == '\0' && !v.empty())
+				ok = ok && (v.find('.') == std::string::npos && v.find('e') == std::string::npos
+						    ? app->Options()->SetIntegerValue(k, static_cast<int>(num))
+						    : app->Options()->SetNumericValue(k, num));
+			else
+				ok = ok && app->Options()->SetStringValue(k, v);
+			if (end == std::string::npos)
+				break;
+			pos = end + 1;
+		}
+	}
+	if (!ok)
+		throw std::logic_error("an Ipopt option was refused");
+	// An empty options file name: never read ./ipopt.opt (deps.md).
+	if (app->Initialize("") != Ipopt::Solve_Succeeded)
+		throw std::runtime_error("Ipopt failed to initialize");
+	return app;
+}
+
+bool succeeded(Ipopt::ApplicationReturnStatus st)
+{
+	return st == Ipopt::Solve_Succeeded || st == Ipopt::Solved_To_Acceptable_Level;
+}
+
+const char *status_text(Ipopt::ApplicationReturnStatus st)
+{
+	switch (st) {
+	case Ipopt::Solve_Succeeded: return "solved";
+	case Ipopt::Solved_To_Acceptable_Level: return "solved to acceptable level";
+	case Ipopt::Infeasible_Problem_Detected: return "infeasible";
+	case Ipopt::Maximum_Iterations_Exceeded: return "maximum iterations";
+	case Ipopt::Restoration_Failed: return "restoration failed";
+	case Ipopt::Error_In_Step_Computation: return "error in step computation";
+	case Ipopt::Maximum_CpuTime_Exceeded: return "maximum cpu time";
+	case Ipopt::Diverging_Iterates: return "diverging iterates";
+	case Ipopt::Invalid_Number_Detected: return "invalid number";
+	default: return "failed";
+	}
+}
+
+template <class M>
+Solution solve_model(const std::string &mode, const RobotParams &robot, const M &model,
+		     const double *x1s, const double *x2s, const SolveOptions &opt)
+{
+	auto t0 = std::chrono::steady_clock::now();
+	auto a = model.full_state(x1s), b = model.full_state(x2s);
+	Bounds bd = model.bounds();
+	for (int k = 0; k < M::NX; k++)
+		for (double v : {a[static_cast<size_t>(k)], b[static_cast<size_t>(k)]})
+			if (!std::isfinite(v) || v < bd.x_lo[static_cast<size_t>(k)] - 1e-12 ||
+			    v > bd.x_hi[static_cast<size_t>(k)] + 1e-12)
+				throw std::invalid_argument("boundary state component " + std::to_string(k) +
+							    " = " + std::to_string(v) + " is outside [" +
+							    std::to_string(bd.x_lo[static_cast<size_t>(k)]) + ", " +
+							    std::to_string(bd.x_hi[static_cast<size_t>(k)]) +
+							    "] of mode " + mode);
+	std::vector<double> guesses = opt.T_guesses;
+	if (guesses.empty()) {
+		double d = model.position_distance(a.data(), b.data());
+		double base = std::max(bd.T_min * 2, d / model.typical_speed());
+		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
+	}
+	Solution best;
+	best.cost = std::numeric_limits<double>::infinity();
+	int segments = opt.segments;
+	for (int refine = 0; refine <= opt.refinements; refine++, segments *= 2) {
+		Solution round;
+		round.cost = std::numeric_limits<double>::infinity();
+		for (double T : guesses) {
+			T = std::min(std::max(T, bd.T_min), bd.T_max);
+			// Continuation: smoother problems first, each starting the next;
+			// the last one has models.md's exact constants.
+			std::vector<double> start;
+			Ipopt::ApplicationReturnStatus st = Ipopt::Solve_Succeeded;
+			Ipopt::SmartPtr<HsNlp<M>> nlp;
+			Ipopt::SmartPtr<Ipopt::IpoptApplication> app;
+			M relaxed = model;
+			const double levels[] = {100.0, 10.0, 1.0};
+			for (double relax : levels) {
+				if ((!M::kSmoothed || !opt.derivative_test_file.empty()) && relax != 1.0)
+					continue;
+				relaxed.relax = relax;
+				nlp = new HsNlp<M>(relaxed, segments, a, b, T, opt.T_fixed);
+				if (!start.empty())
+					nlp->warm_start(start);
+				app = make_app(opt);
+				st = app->OptimizeTNLP(nlp);
+				if (std::getenv("HYLO_TRAINER_DEBUG"))
+					std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n", T,
+						     segments, relax, status_text(st),
+						     Ipopt::IsValid(app->Statistics())
+							     ? app->Statistics()->IterationCount() : -1);
+				if (succeeded(st))
+					start = nlp->solution();
+			}
+			round.starts++;
+			if (!opt.derivative_test_file.empty())
+				return round;
+			if (!succeeded(st))
+				continue;
+			Solution s;
+			nlp->fill(s);
+			s.status = static_cast<int>(st);
+			s.status_text = status_text(st);
+			s.iterations = Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : 0;
+			s.segments = segments;
+			round.converged_starts++;
+			if (opt.replay) {
+				replay(mode, robot, s);
+				if (!s.replay_ok)
+					continue;
+			}
+			s.converged = true;
+			if (s.cost < round.cost) {
+				int starts = round.starts, conv = round.converged_starts;
+				round = s;
+				round.starts = starts;
+				round.converged_starts = conv;
+			}
+		}
+		best.starts += round.starts;
+		best.converged_starts += round.converged_starts;
+		// A finer mesh helps only when a solve converged but its replay failed.
+		if (!round.converged && round.converged_starts == 0) {
+			best.status_text = "no start converged";
+			break;
+		}
+		if (round.converged) {
+			int starts = best.starts, conv = best.converged_starts;
+			best = round;
+			best.starts = starts;
+			best.converged_starts = conv;
+			break;
+		}
+	}
+	if (!best.converged) {
+		best.cost = 0;
+		best.status_text = best.converged_starts ? "replay rejected every solution" : "no start converged";
+	}
+	best.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	return best;
+}
+
+}  // namespace
+
+bool known_mode(const std::string &m)
+{
+	return m == "ground" || m == "marine" || m == "flight" || m == "di_neg" || m == "di_pos";
+}
+
+int sampled_dim(const std::string &m)
+{
+	if (m == "ground" || m == "marine")
+		return 4;
+	if (m == "flight")
+		return 6;
+	if (m == "di_neg" || m == "di_pos")
+		return 2;
+	return 0;
+}
+
+Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
+		   const double *x2s, const SolveOptions &opt)
+{
+	if (!known_mode(mode))
+		throw std::invalid_argument("unknown mode '" + mode + "' (ground, marine, flight, di_neg, di_pos)");
+	const ModeParams &p = robot.mode(mode);
+	if (mode == "ground")
+		return solve_model(mode, robot, GroundModel(p, robot.g), x1s, x2s, opt);
+	if (mode == "marine")
+		return solve_model(mode, robot, MarineModel(p, robot.g), x1s, x2s, opt);
+	if (mode == "flight")
+		return solve_model(mode, robot, FlightModel(p, robot.g), x1s, x2s, opt);
+	return solve_model(mode, robot, DiModel(p, mode == "di_pos"), x1s, x2s, opt);
+}
+
+}  // namespace hylo::trainer

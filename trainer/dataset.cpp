@@ -1,0 +1,354 @@
+#include "trainer/dataset.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <fcntl.h>
+
+#include "trainer/sha256.hpp"
+#include "trainer/svr_export.hpp"
+
+namespace hylo::trainer {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+uint64_t mix(uint64_t z)
+{
+	z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+	z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+	return z ^ (z >> 31);
+}
+
+struct Stream {
+	uint64_t s;
+	double uniform(double lo, double hi)
+	{
+		s += 0x9e3779b97f4a7c15ULL;
+		return lo + (hi - lo) * static_cast<double>(mix(s) >> 11) * 0x1.0p-53;
+	}
+};
+
+std::string num(double v) { return format_double(v); }
+
+void write_all(int fd, const std::string &s, const std::string &what)
+{
+	size_t off = 0;
+	while (off < s.size()) {
+		ssize_t n = ::write(fd, s.data() + off, s.size() - off);
+		if (n < 0 && errno == EINTR)
+			continue;
+		if (n <= 0)
+			throw std::runtime_error("cannot write " + what + ": " + std::strerror(errno));
+		off += static_cast<size_t>(n);
+	}
+}
+
+std::string read_file(const std::string &path)
+{
+	std::ifstream f(path, std::ios::binary);
+	std::ostringstream ss;
+	ss << f.rdbuf();
+	return ss.str();
+}
+
+// Solves samples [lo, hi) with jobs worker processes; returns rows in index order.
+std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
+				     uint64_t lo, uint64_t hi, uint64_t &converged)
+{
+	uint64_t n = hi - lo;
+	std::vector<std::string> rows(n);
+	int jobs = static_cast<int>(std::min<uint64_t>(static_cast<uint64_t>(std::max(1, opt.jobs)), n));
+	std::vector<pid_t> pids;
+	std::vector<int> fds;
+	for (int w = 0; w < jobs; w++) {
+		int p[2];
+		if (pipe(p) != 0)
+			throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
+		pid_t pid = fork();
+		if (pid < 0)
+			throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+		if (pid == 0) {   // worker: its share of the chunk, one line per row
+			close(p[0]);
+			std::string out;
+			for (uint64_t i = lo + static_cast<uint64_t>(w); i < hi; i += static_cast<uint64_t>(jobs)) {
+				double a[6] = {0}, b[6] = {0};
+				draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+				Solution s;
+				try {
+					s = solve_bvp(opt.mode, robot, a, b, opt.solve);
+				} catch (const std::exception &e) {
+					s.status_text = std::string("error: ") + e.what();
+				}
+				out += std::to_string(i) + "\t" + csv_row(opt.mode, i, a, b, s) + "\n";
+			}
+			try {
+				write_all(p[1], out, "worker pipe");
+			} catch (...) {
+				_exit(1);
+			}
+			_exit(0);
+		}
+		close(p[1]);
+		pids.push_back(pid);
+		fds.push_back(p[0]);
+	}
+	bool failed = false;
+	for (size_t w = 0; w < fds.size(); w++) {
+		std::string text;
+		char buf[65536];
+		ssize_t k;
+		while ((k = read(fds[w], buf, sizeof buf)) != 0) {
+			if (k < 0 && errno == EINTR)
+				continue;
+			if (k < 0)
+				break;
+			text.append(buf, static_cast<size_t>(k));
+		}
+		close(fds[w]);
+		int status = 0;
+		waitpid(pids[w], &status, 0);
+		if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+			failed = true;
+		std::istringstream lines(text);
+		std::string line;
+		while (std::getline(lines, line)) {
+			size_t tab = line.find('\t');
+			uint64_t i = std::stoull(line.substr(0, tab));
+			rows[i - lo] = line.substr(tab + 1);
+		}
+	}
+	for (const auto &r : rows)
+		if (r.empty())
+			failed = true;
+	if (failed)
+		throw std::runtime_error("a worker process failed");
+	// Count converged rows from their "converged" column.
+	std::vector<std::string> names = csv_columns(opt.mode);
+	size_t col = static_cast<size_t>(std::find(names.begin(), names.end(), "converged") - names.begin());
+	for (const auto &r : rows) {
+		std::stringstream ss(r);
+		std::string c;
+		for (size_t k = 0; std::getline(ss, c, ','); k++)
+			if (k == col && c == "1")
+				converged++;
+	}
+	return rows;
+}
+
+std::string meta_text(const RobotParams &robot, const GenOptions &opt)
+{
+	std::ostringstream m;
+	m << "robot: " << robot.robot << "\nmode: " << opt.mode << "\nseed: " << opt.seed
+	  << "\nsamples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards
+	  << "\nsegments: " << opt.solve.segments << "\nparams_sha256: " << sha256_file(robot.path)
+	  << "\n";
+	return m.str();
+}
+
+}  // namespace
+
+std::vector<double> features(const std::string &mode, const double *a, const double *b)
+{
+	if (mode == "ground" || mode == "marine") {
+		double dx = b[0] - a[0], dy = b[1] - a[1], c = std::cos(a[3]), s = std::sin(a[3]);
+		double dth = std::remainder(b[3] - a[3], 2 * kPi);
+		if (dth <= -kPi)
+			dth += 2 * kPi;
+		return {c * dx + s * dy, -s * dx + c * dy, dth, a[2], b[2]};
+	}
+	if (mode == "flight")
+		return {b[0] - a[0], b[1] - a[1], b[2] - a[2], a[3], a[4], a[5], b[3], b[4], b[5]};
+	return {a[0], a[1], b[0], b[1]};
+}
+
+void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b)
+{
+	Stream r{mix(seed * 0x2545f4914f6cdd1dULL + i + 1)};
+	const Sampling &s = p.sampling;
+	const std::string &m = p.mode;
+	if (m == "ground" || m == "marine") {
+		double rad = s.max_distance_m * std::sqrt(r.uniform(0, 1)), ang = r.uniform(-kPi, kPi);
+		a[0] = 0, a[1] = 0, a[3] = 0;
+		a[2] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		b[0] = rad * std::cos(ang), b[1] = rad * std::sin(ang);
+		b[2] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		b[3] = r.uniform(-kPi, kPi);
+	} else if (m == "flight") {
+		auto ball = [&](double radius, double *v) {
+			double x, y, z;
+			do {
+				x = r.uniform(-1, 1), y = r.uniform(-1, 1), z = r.uniform(-1, 1);
+			} while (x * x + y * y + z * z > 1);
+			v[0] = radius * x, v[1] = radius * y, v[2] = radius * z;
+		};
+		a[0] = a[1] = a[2] = 0;
+		ball(s.speed_max_mps, a + 3);
+		ball(s.max_distance_m, b);
+		ball(s.speed_max_mps, b + 3);
+	} else {
+		bool pos = m == "di_pos";
+		a[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);
+		a[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		b[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);
+		b[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+	}
+}
+
+std::vector<std::string> csv_columns(const std::string &mode)
+{
+	std::vector<std::string> c = {"index"};
+	size_t nf = features(mode, std::vector<double>(6).data(), std::vector<double>(6).data()).size();
+	for (size_t k = 0; k < nf; k++)
+		c.push_back("f" + std::to_string(k));
+	int d = sampled_dim(mode);
+	for (int k = 0; k < d; k++)
+		c.push_back("x1_" + std::to_string(k));
+	for (int k = 0; k < d; k++)
+		c.push_back("x2_" + std::to_string(k));
+	for (const char *s : {"cost_j", "T_s", "converged", "status", "iterations", "segments",
+			      "replay_error", "replay_cost_j"})
+		c.push_back(s);
+	return c;
+}
+
+std::string csv_row(const std::string &mode, uint64_t i, const double *a, const double *b,
+		    const Solution &s)
+{
+	std::string row = std::to_string(i);
+	for (double f : features(mode, a, b))
+		row += "," + num(f);
+	int d = sampled_dim(mode);
+	for (int k = 0; k < d; k++)
+		row += "," + num(a[k]);
+	for (int k = 0; k < d; k++)
+		row += "," + num(b[k]);
+	std::string status = s.status_text.empty() ? "none" : s.status_text;
+	for (char &ch : status)
+		if (ch == ',' || ch == '\n')
+			ch = ';';
+	row += "," + num(s.converged ? s.cost : 0) + "," + num(s.converged ? s.T : 0) + "," +
+	       (s.converged ? "1" : "0") + "," + status + "," + std::to_string(s.iterations) + "," +
+	       std::to_string(s.segments) + "," +
+	       num(std::isfinite(s.replay_error) ? s.replay_error : -1) + "," +
+	       num(std::isfinite(s.replay_cost) ? s.replay_cost : -1);
+	return row;
+}
+
+std::string dataset_path(const GenOptions &opt)
+{
+	std::string base = opt.out_dir + "/" + opt.mode;
+	if (opt.shards > 1)
+		return base + ".shard-" + std::to_string(opt.shard) + "-of-" + std::to_string(opt.shards) + ".csv";
+	return base + ".csv";
+}
+
+GenSummary generate(const RobotParams &robot, const GenOptions &opt)
+{
+	auto t0 = std::chrono::steady_clock::now();
+	if (opt.shard < 1 || opt.shard > opt.shards)
+		throw std::invalid_argument("--shard K/N needs 1 <= K <= N");
+	struct stat st;
+	if (stat(opt.out_dir.c_str(), &st) != 0 && mkdir(opt.out_dir.c_str(), 0777) != 0)
+		throw std::runtime_error("cannot create the output directory " + opt.out_dir + ": " +
+					 std::strerror(errno));
+	uint64_t lo = opt.samples * static_cast<uint64_t>(opt.shard - 1) / static_cast<uint64_t>(opt.shards);
+	uint64_t hi = opt.samples * static_cast<uint64_t>(opt.shard) / static_cast<uint64_t>(opt.shards);
+	GenSummary sum;
+	sum.path = dataset_path(opt);
+	std::string meta_path = sum.path + ".meta", meta = meta_text(robot, opt);
+
+	// Resume: the metadata must match; keep complete rows, drop a torn tail.
+	std::string header;
+	if (opt.shard == 1) {
+		for (const auto &c : csv_columns(opt.mode))
+			header += (header.empty() ? "" : ",") + c;
+		header += "\n";
+	}
+	uint64_t next = lo;
+	std::string existing = read_file(sum.path);
+	if (!existing.empty() || access(meta_path.c_str(), F_OK) == 0) {
+		if (read_file(meta_path) != meta)
+			throw std::runtime_error(sum.path + " was made with other arguments or another robot "
+						 "file (see " + meta_path + "); remove it or use another --out");
+		size_t keep = existing.rfind('\n');
+		keep = keep == std::string::npos ? 0 : keep + 1;
+		if (keep < header.size())
+			keep = 0;
+		std::string body = existing.substr(keep < header.size() ? 0 : header.size(),
+						   keep - std::min(keep, header.size()));
+		uint64_t rows = static_cast<uint64_t>(std::count(body.begin(), body.end(), '\n'));
+		if (keep == 0)
+			rows = 0;
+		next = lo + rows;
+		if (truncate(sum.path.c_str(), static_cast<off_t>(keep)) != 0 && errno != ENOENT)
+			throw std::runtime_error("cannot truncate " + sum.path);
+	} else {
+		std::string tmp = meta_path + ".tmp";
+		int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+		if (fd < 0)
+			throw std::runtime_error("cannot write " + tmp + ": " + std::strerror(errno));
+		write_all(fd, meta, tmp);
+		fsync(fd);
+		close(fd);
+		if (rename(tmp.c_str(), meta_path.c_str()) != 0)
+			throw std::runtime_error("cannot rename " + tmp);
+	}
+	sum.resumed_from = next - lo;
+	int fd = open(sum.path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+	if (fd < 0)
+		throw std::runtime_error("cannot write " + sum.path + ": " + std::strerror(errno));
+	if (next == lo && opt.shard == 1) {
+		struct stat fs;
+		if (fstat(fd, &fs) == 0 && fs.st_size == 0)
+			write_all(fd, header, sum.path);
+	}
+	bool tty = isatty(STDERR_FILENO);
+	auto last_report = std::chrono::steady_clock::now();
+	for (uint64_t c = next; c < hi; c += static_cast<uint64_t>(opt.chunk)) {
+		uint64_t e = std::min(hi, c + static_cast<uint64_t>(opt.chunk));
+		uint64_t conv = 0;
+		std::vector<std::string> rows = solve_chunk(robot, opt, c, e, conv);
+		std::string text;
+		for (const auto &r : rows)
+			text += r + "\n";
+		write_all(fd, text, sum.path);
+		if (fsync(fd) != 0)
+			throw std::runtime_error("cannot sync " + sum.path);
+		sum.done += e - c;
+		sum.converged += conv;
+		sum.rejected += (e - c) - conv;
+		auto now = std::chrono::steady_clock::now();
+		double el = std::chrono::duration<double>(now - t0).count();
+		double rate = sum.done / std::max(el, 1e-9);
+		double eta = (hi - e) / std::max(rate, 1e-9);
+		if (opt.progress && (tty || std::chrono::duration<double>(now - last_report).count() > 10 || e == hi)) {
+			last_report = now;
+			int width = 30, fill = static_cast<int>(width * static_cast<double>(e - lo) / std::max<uint64_t>(1, hi - lo));
+			std::fprintf(stderr, "%s[%s%s] %llu/%llu samples, %.2f/s, ETA %.0f s, %llu converged, %llu rejected%s",
+				     tty ? "\r" : "", std::string(static_cast<size_t>(fill), '#').c_str(),
+				     std::string(static_cast<size_t>(width - fill), '.').c_str(),
+				     static_cast<unsigned long long>(e - lo), static_cast<unsigned long long>(hi - lo), rate, eta,
+				     static_cast<unsigned long long>(sum.converged),
+				     static_cast<unsigned long long>(sum.rejected), tty ? "" : "\n");
+		}
+	}
+	if (opt.progress && tty)
+		std::fprintf(stderr, "\n");
+	close(fd);
+	sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	return sum;
+}
+
+}  // namespace hylo::trainer

@@ -1,0 +1,59 @@
+// Training datasets: BVP pairs drawn from the robot file's sampling ranges,
+// solved (collocation + CVODE replay) by worker processes, written as CSV.
+//
+// Sample i of a stream depends only on (seed, i), so the rows are the same
+// for any number of workers, and `--shard K/N` (the K-th contiguous slice of
+// the indices) files concatenate in order to the unsharded file byte for
+// byte. Rows are appended in index order a whole chunk at a time (fsync'd);
+// a re-run resumes after the last complete row, dropping a torn tail.
+#ifndef HYLO_TRAINER_DATASET_HPP
+#define HYLO_TRAINER_DATASET_HPP
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "trainer/collocation.hpp"
+#include "trainer/params.hpp"
+
+namespace hylo::trainer {
+
+struct GenOptions {
+	std::string mode, out_dir;
+	uint64_t samples = 0, seed = 1;
+	int jobs = 1;
+	int shard = 1, shards = 1;         // K of N
+	int chunk = 32;                    // rows per atomic append
+	SolveOptions solve;
+	bool progress = true;
+};
+
+struct GenSummary {
+	uint64_t done = 0, resumed_from = 0, converged = 0, rejected = 0;
+	double seconds = 0;
+	std::string path;
+};
+
+// Features of models.md section 7 for a pair of sampled states.
+std::vector<double> features(const std::string &mode, const double *x1s, const double *x2s);
+
+// Sample i's pair: x1s, x2s (sampled_dim(mode) each).
+void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s);
+
+// The CSV column names, in order.
+std::vector<std::string> csv_columns(const std::string &mode);
+
+// One CSV row (without the newline) for sample i.
+std::string csv_row(const std::string &mode, uint64_t i, const double *x1s, const double *x2s,
+		    const Solution &s);
+
+// Generates (or resumes) the dataset file of opt; throws std::runtime_error
+// with a clear message on I/O errors or a mismatching existing file.
+GenSummary generate(const RobotParams &robot, const GenOptions &opt);
+
+// The dataset file a run with these options writes.
+std::string dataset_path(const GenOptions &opt);
+
+}  // namespace hylo::trainer
+
+#endif

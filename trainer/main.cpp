@@ -1,0 +1,235 @@
+// trainer: the offline half of hylo. main() parses flags and calls run();
+// see --help. Exit codes: 0 done, 1 failure while running (I/O, a worker),
+// 2 bad usage or input (unknown mode or robot, malformed vector, a state out
+// of bounds, an unusable output directory or dataset).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "trainer/collocation.hpp"
+#include "trainer/dataset.hpp"
+#include "trainer/params.hpp"
+#include "trainer/pipeline.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+
+class Usage : public std::invalid_argument {
+public:
+	using std::invalid_argument::invalid_argument;
+};
+
+void usage(FILE *f)
+{
+	std::fprintf(f,
+		"usage: trainer --mode M --robot R [options]\n"
+		"       trainer --mode M --robot R --solve X1 X2 [--json] [--trajectory]\n"
+		"Generates training data by trajectory optimization (Hermite-Simpson\n"
+		"collocation with Ipopt, checked by a CVODE replay), fits the SVR cost model\n"
+		"and exports it as onboard/models/<robot>_<mode>.h.\n"
+		"\n"
+		"  --mode M          di_neg, di_pos, ground, marine or flight (required)\n"
+		"  --robot R         robot parameter file trainer/params/R.yaml (required)\n"
+		"  --stage S         gen, fit, export or all (default: all)\n"
+		"  --samples N       training pairs (default: 11520; flight 17016; di 2000)\n"
+		"  --jobs J          worker processes (default: number of cores)\n"
+		"  --seed S          seed of the sample stream (default: 1)\n"
+		"  --out DIR         dataset directory (default: build/datasets/<robot>)\n"
+		"  --shard K/N       generate only the K-th of N slices of the stream (default: 1/1)\n"
+		"  --segments N      collocation segments (default: 20)\n"
+		"  --models-dir DIR  where export writes headers (default: onboard/models)\n"
+		"  --solve X1 X2     solve one BVP between sampled states (comma-separated,\n"
+		"                    models.md section 7 order) and print the result\n"
+		"  --json            --solve: print JSON\n"
+		"  --trajectory      --solve --json: include time, state and input samples\n"
+		"  --quiet           no progress output\n"
+		"  --help            this text\n"
+		"\n"
+		"Exit codes: 0 done, 1 failure while running, 2 bad usage or input.\n");
+}
+
+std::vector<double> parse_vector(const std::string &text, int dim, const std::string &what)
+{
+	std::vector<double> v;
+	size_t pos = 0;
+	while (pos <= text.size()) {
+		size_t end = text.find(',', pos);
+		std::string item = text.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+		char *e = nullptr;
+		double x = std::strtod(item.c_str(), &e);
+		if (item.empty() || !e || *e != '\0' || !std::isfinite(x))
+			throw Usage(what + ": '" + item + "' in '" + text + "' is not a finite number");
+		v.push_back(x);
+		if (end == std::string::npos)
+			break;
+		pos = end + 1;
+	}
+	if (static_cast<int>(v.size()) != dim)
+		throw Usage(what + ": mode needs " + std::to_string(dim) + " comma-separated numbers, got " +
+			    std::to_string(v.size()));
+	return v;
+}
+
+void print_solution(const Solution &s, const std::string &mode, const std::string &robot,
+		    const std::vector<double> &a, const std::vector<double> &b, bool json, bool traj)
+{
+	auto arr = [](const double *v, size_t n) {
+		std::string o = "[";
+		for (size_t k = 0; k < n; k++) {
+			char buf[32];
+			std::snprintf(buf, sizeof buf, "%.17g", v[k]);
+			o += (k ? "," : "") + std::string(std::isfinite(v[k]) ? buf : "null");
+		}
+		return o + "]";
+	};
+	if (!json) {
+		std::printf("%s %s: %s, cost %.6g J, T %.4g s, %d iterations, %d segments, replay error "
+			    "%.3g, replay cost %.6g J, %.3f s\n",
+			    robot.c_str(), mode.c_str(), s.converged ? "converged" : s.status_text.c_str(),
+			    s.cost, s.T, s.iterations, s.segments, s.replay_error, s.replay_cost,
+			    s.solve_seconds);
+		return;
+	}
+	std::printf("{\"robot\":\"%s\",\"mode\":\"%s\",\"x1\":%s,\"x2\":%s,\"converged\":%s,"
+		    "\"status\":\"%s\",\"cost_j\":%.17g,\"T_s\":%.17g,\"iterations\":%d,\"segments\":%d,"
+		    "\"starts\":%d,\"converged_starts\":%d,\"replay_error\":%s,\"replay_cost_j\":%s,"
+		    "\"solve_s\":%.6f",
+		    robot.c_str(), mode.c_str(), arr(a.data(), a.size()).c_str(),
+		    arr(b.data(), b.size()).c_str(), s.converged ? "true" : "false", s.status_text.c_str(),
+		    s.cost, s.T, s.iterations, s.segments, s.starts, s.converged_starts,
+		    arr(&s.replay_error, 1).substr(1, arr(&s.replay_error, 1).size() - 2).c_str(),
+		    arr(&s.replay_cost, 1).substr(1, arr(&s.replay_cost, 1).size() - 2).c_str(),
+		    s.solve_seconds);
+	if (traj && s.converged) {
+		const Trajectory &t = s.traj;
+		std::printf(",\"trajectory\":{\"t_s\":%s,\"x\":[", arr(t.t.data(), t.t.size()).c_str());
+		for (size_t i = 0; i < t.t.size(); i++)
+			std::printf("%s%s", i ? "," : "", arr(&t.x[i * static_cast<size_t>(t.nx)], static_cast<size_t>(t.nx)).c_str());
+		std::printf("],\"u\":[");
+		for (size_t i = 0; i < t.t.size(); i++)
+			std::printf("%s%s", i ? "," : "", arr(&t.u[i * static_cast<size_t>(t.nu)], static_cast<size_t>(t.nu)).c_str());
+		std::printf("]}");
+	}
+	std::printf("}\n");
+}
+
+int run(int argc, char **argv)
+{
+	PipelineOptions po;
+	std::string mode, robot_name, solve1, solve2, stage = "all";
+	bool solve = false, json = false, traj = false;
+	po.gen.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+	long long samples = -1;
+	for (int i = 1; i < argc; i++) {
+		std::string a = argv[i];
+		auto val = [&]() -> std::string {
+			if (i + 1 >= argc)
+				throw Usage(a + " needs a value");
+			return argv[++i];
+		};
+		auto integer = [&](long long lo) -> long long {
+			std::string v = val();
+			char *e = nullptr;
+			long long n = std::strtoll(v.c_str(), &e, 10);
+			if (v.empty() || *e || n < lo)
+				throw Usage(a + " needs an integer >= " + std::to_string(lo) + ", not '" + v + "'");
+			return n;
+		};
+		if (a == "--help" || a == "-h") {
+			usage(stdout);
+			return 0;
+		} else if (a == "--mode") {
+			mode = val();
+		} else if (a == "--robot") {
+			robot_name = val();
+		} else if (a == "--stage") {
+			stage = val();
+		} else if (a == "--samples") {
+			samples = integer(1);
+		} else if (a == "--jobs") {
+			po.gen.jobs = static_cast<int>(integer(1));
+		} else if (a == "--seed") {
+			po.gen.seed = static_cast<uint64_t>(integer(0));
+		} else if (a == "--out") {
+			po.gen.out_dir = val();
+		} else if (a == "--models-dir") {
+			po.models_dir = val();
+		} else if (a == "--segments") {
+			po.gen.solve.segments = static_cast<int>(integer(2));
+		} else if (a == "--shard") {
+			std::string v = val();
+			int k = 0, n = 0;
+			char extra;
+			if (std::sscanf(v.c_str(), "%d/%d%c", &k, &n, &extra) != 2 || n < 1 || k < 1 || k > n)
+				throw Usage("--shard needs K/N with 1 <= K <= N, not '" + v + "'");
+			po.gen.shard = k;
+			po.gen.shards = n;
+		} else if (a == "--solve") {
+			solve = true;
+			solve1 = val();
+			solve2 = val();
+		} else if (a == "--json") {
+			json = true;
+		} else if (a == "--trajectory") {
+			traj = true;
+		} else if (a == "--quiet") {
+			po.gen.progress = false;
+		} else {
+			throw Usage("unknown option '" + a + "' (see --help)");
+		}
+	}
+	if (mode.empty() || robot_name.empty())
+		throw Usage("--mode and --robot are required (see --help)");
+	if (!known_mode(mode))
+		throw Usage("unknown mode '" + mode + "' (di_neg, di_pos, ground, marine, flight)");
+	RobotParams robot;
+	try {
+		robot = load_robot(robot_file(robot_name));
+	} catch (const ParamError &e) {
+		throw Usage(std::string("robot '") + robot_name + "': " + e.what());
+	}
+	if (!robot.modes.count(mode))
+		throw Usage("robot " + robot_name + " has no mode '" + mode + "'");
+	if (solve) {
+		int d = sampled_dim(mode);
+		std::vector<double> a = parse_vector(solve1, d, "--solve X1"), b = parse_vector(solve2, d, "--solve X2");
+		Solution s;
+		try {
+			s = solve_bvp(mode, robot, a.data(), b.data(), po.gen.solve);
+		} catch (const std::invalid_argument &e) {
+			throw Usage(e.what());
+		}
+		print_solution(s, mode, robot_name, a, b, json, traj);
+		return 0;
+	}
+	po.gen.mode = mode;
+	if (po.gen.out_dir.empty())
+		po.gen.out_dir = "build/datasets/" + robot_name;
+	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(mode);
+	if (stage != "gen" && stage != "fit" && stage != "export" && stage != "all")
+		throw Usage("unknown stage '" + stage + "' (gen, fit, export, all)");
+	return run_pipeline(robot, po, stage);
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+	try {
+		return run(argc, argv);
+	} catch (const Usage &e) {
+		std::fprintf(stderr, "trainer: %s\n", e.what());
+		return 2;
+	} catch (const std::invalid_argument &e) {
+		std::fprintf(stderr, "trainer: %s\n", e.what());
+		return 2;
+	} catch (const std::exception &e) {
+		std::fprintf(stderr, "trainer: %s\n", e.what());
+		return 1;
+	}
+}

@@ -1,0 +1,340 @@
+// The dynamics and running cost of every mode (models.md sections 1-5),
+// written once and templated on the scalar so that plain doubles and Eigen's
+// forward-mode AutoDiff (first and second order) share the same code.
+//
+// Each model has, for state x (NX), input u (NU):
+//   eval(x, u, f, L, path): f = x' (NX), L = running cost [W], path (NP)
+//   bounds on x, u, path and the final time T; the boundary state built from
+//   sampled coordinates with the virtual constraints of models.md section 7.
+#ifndef HYLO_TRAINER_MODELS_HPP
+#define HYLO_TRAINER_MODELS_HPP
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "trainer/params.hpp"
+
+namespace hylo::trainer {
+
+namespace ad {
+using std::cos;
+using std::sin;
+using std::sqrt;
+using std::tan;
+using std::tanh;
+}  // namespace ad
+
+// Smoothing: models.md fixes the constants (relax = 1). The solver also
+// solves with them multiplied by relax > 1 first (a continuation: a smoother
+// problem whose solution starts the exact one); only relax = 1 results count.
+
+// Positive part of a power, smoothed (models.md section 1): (P + sqrt(P^2 + d^2)) / 2.
+template <class S>
+S positive_power(const S &P, double relax)
+{
+	using ad::sqrt;
+	const double delta = 0.1 * relax;
+	return (P + sqrt(P * P + delta * delta)) * 0.5;
+}
+
+// x*|x| smoothed as x*sqrt(x^2 + eps^2), eps = 1e-3.
+template <class S>
+S signed_square(const S &x, double relax)
+{
+	using ad::sqrt;
+	const double eps = 1e-3 * relax;
+	return x * sqrt(x * x + eps * eps);
+}
+
+struct Bounds {
+	std::vector<double> x_lo, x_hi, u_lo, u_hi, path_lo, path_hi;
+	double T_min = 0, T_max = 0;
+};
+
+// ---- double integrator (models.md section 2) ------------------------------
+struct DiModel {
+	double relax = 1.0;   // smoothing multiplier (see positive_power)
+	static constexpr int NX = 2, NU = 1, NP = 0, NS = 2;
+	static constexpr bool kSmoothed = false;   // nothing to relax: no continuation
+	double rho = 0.1;
+	bool positive = false;   // di_pos: p >= 0, v' = u - v
+
+	DiModel(const ModeParams &p, bool pos) : rho(p.at("rho")), positive(pos) {}
+
+	template <class S>
+	void eval(const S *x, const S *u, S *f, S &L, S *) const
+	{
+		f[0] = x[1];
+		f[1] = positive ? S(u[0] - x[1]) : S(u[0]);
+		L = u[0] * u[0] + rho;
+	}
+	Bounds bounds() const
+	{
+		Bounds b;
+		b.x_lo = {positive ? 0.0 : -1.0, -1.0};
+		b.x_hi = {positive ? 1.0 : 0.0, 1.0};
+		b.u_lo = {-1.0};
+		b.u_hi = {1.0};
+		b.T_min = 0.05;
+		b.T_max = 20;
+		return b;
+	}
+	std::array<double, NX> full_state(const double *xs) const { return {xs[0], xs[1]}; }
+	std::array<double, NX> scale() const { return {1.0, 1.0}; }
+	std::array<double, NU> input_guess() const { return {0.0}; }
+	double position_distance(const double *a, const double *b) const
+	{
+		return std::hypot(b[0] - a[0], b[1] - a[1]);
+	}
+	double typical_speed() const { return 0.5; }
+};
+
+// ---- skid-steer ground mode (models.md section 3) ------------------------
+struct GroundModel {
+	double relax = 1.0;   // smoothing multiplier (see positive_power)
+	static constexpr int NX = 6, NU = 2, NP = 0, NS = 4;
+	static constexpr bool kSmoothed = true;
+	double m, Iz, B, Lc, r, G, kt, R, Vcc, crr, mut, Cy, Pd, vmax, g;
+
+	GroundModel(const ModeParams &p, double grav)
+		: m(p.at("m")), Iz(p.at("Iz")), B(p.at("B")), Lc(p.at("Lc")), r(p.at("r")),
+		  G(p.at("G")), kt(p.at("kt")), R(p.at("R")), Vcc(p.at("Vcc")), crr(p.at("crr")),
+		  mut(p.at("mut")), Cy(p.at("Cy")), Pd(p.at("Pd")), vmax(p.at("vmax")), g(grav)
+	{
+	}
+
+	// x = (px, py, vx, vy, theta, omega), u = (uL, uR)
+	template <class S>
+	void eval(const S *x, const S *u, S *f, S &L, S *) const
+	{
+		using ad::cos;
+		using ad::sin;
+		using ad::tanh;
+		const S &vx = x[2], &vy = x[3], &th = x[4], &om = x[5];
+		S phiL = G * (vx - om * (B / 2)) / r, phiR = G * (vx + om * (B / 2)) / r;
+		S VL = Vcc * u[0], VR = Vcc * u[1];
+		S iL = (VL - kt * phiL) / R, iR = (VR - kt * phiR) / R;
+		S FL = G * kt * iL / r, FR = G * kt * iR / r;
+		S Fx = FL + FR - crr * m * g * tanh(vx / (0.05 * relax));
+		S Fy = -Cy * vy;
+		S Mz = (FR - FL) * (B / 2) - mut * m * g * Lc / 4 * tanh(om / (0.1 * relax));
+		f[0] = vx * cos(th) - vy * sin(th);
+		f[1] = vx * sin(th) + vy * cos(th);
+		f[2] = Fx / m + om * vy;
+		f[3] = Fy / m - om * vx;
+		f[4] = om;
+		f[5] = Mz / Iz;
+		L = positive_power(S(VL * iL), relax) + positive_power(S(VR * iR), relax) + Pd;
+	}
+	Bounds bounds() const
+	{
+		const double inf = 1e20;
+		Bounds b;
+		b.x_lo = {-inf, -inf, -vmax, -1, -inf, -3};
+		b.x_hi = {inf, inf, vmax, 1, inf, 3};
+		b.u_lo = {-1, -1};
+		b.u_hi = {1, 1};
+		b.T_min = 0.1;
+		b.T_max = 60;
+		return b;
+	}
+	// Sampled (px, py, vx, theta) -> full state with vy = 0, omega = 0.
+	std::array<double, NX> full_state(const double *xs) const
+	{
+		return {xs[0], xs[1], xs[2], 0.0, xs[3], 0.0};
+	}
+	std::array<double, NX> scale() const { return {1, 1, 1, 1, 1, 1}; }
+	std::array<double, NU> input_guess() const { return {0.0, 0.0}; }
+	double position_distance(const double *a, const double *b) const
+	{
+		return std::hypot(b[0] - a[0], b[1] - a[1]);
+	}
+	double typical_speed() const { return 0.5 * vmax; }
+};
+
+// ---- marine mode (models.md section 4) ----------------------------------
+struct MarineModel {
+	double relax = 1.0;   // smoothing multiplier (see positive_power)
+	static constexpr int NX = 8, NU = 2, NP = 0, NS = 4;
+	static constexpr bool kSmoothed = true;
+	double m, Iz, B, Jm, kt, R, Vcc, kT, kq, dx, dy, Cy_w, dw, Pd, vmax_w;
+
+	MarineModel(const ModeParams &p, double)
+		: m(p.at("m")), Iz(p.at("Iz")), B(p.at("B")), Jm(p.at("Jm")), kt(p.at("kt")),
+		  R(p.at("R")), Vcc(p.at("Vcc")), kT(p.at("kT")), kq(p.at("kq")), dx(p.at("dx")),
+		  dy(p.at("dy")), Cy_w(p.at("Cy_w")), dw(p.at("dw")), Pd(p.at("Pd")),
+		  vmax_w(p.at("vmax_w"))
+	{
+	}
+
+	double phi_n(double vx) const { return vx * std::sqrt(dx / (2 * kT)); }
+
+	// x = (px, py, vx, vy, theta, omega, phiL, phiR), u = (uL, uR)
+	template <class S>
+	void eval(const S *x, const S *u, S *f, S &L, S *) const
+	{
+		using ad::cos;
+		using ad::sin;
+		const S &vx = x[2], &vy = x[3], &th = x[4], &om = x[5], &pL = x[6], &pR = x[7];
+		S VL = Vcc * u[0], VR = Vcc * u[1];
+		S iL = (VL - kt * pL) / R, iR = (VR - kt * pR) / R;
+		S TL = kT * signed_square(pL, relax), TR = kT * signed_square(pR, relax);
+		S Fx = TL + TR - dx * signed_square(vx, relax);
+		S Fy = -dy * signed_square(vy, relax) - Cy_w * vy;
+		S Mz = (TR - TL) * (B / 2) - dw * signed_square(om, relax);
+		f[0] = vx * cos(th) - vy * sin(th);
+		f[1] = vx * sin(th) + vy * cos(th);
+		f[2] = Fx / m + om * vy;
+		f[3] = Fy / m - om * vx;
+		f[4] = om;
+		f[5] = Mz / Iz;
+		f[6] = (kt * iL - kq * signed_square(pL, relax)) / Jm;
+		f[7] = (kt * iR - kq * signed_square(pR, relax)) / Jm;
+		L = positive_power(S(VL * iL), relax) + positive_power(S(VR * iR), relax) + Pd;
+	}
+	Bounds bounds() const
+	{
+		const double inf = 1e20;
+		Bounds b;
+		b.x_lo = {-inf, -inf, -vmax_w, -1, -inf, -2, -inf, -inf};
+		b.x_hi = {inf, inf, vmax_w, 1, inf, 2, inf, inf};
+		b.u_lo = {-1, -1};
+		b.u_hi = {1, 1};
+		b.T_min = 0.1;
+		b.T_max = 90;
+		return b;
+	}
+	std::array<double, NX> full_state(const double *xs) const
+	{
+		double pn = phi_n(xs[2]);
+		return {xs[0], xs[1], xs[2], 0.0, xs[3], 0.0, pn, pn};
+	}
+	std::array<double, NX> scale() const
+	{
+		double ps = std::max(1.0, phi_n(vmax_w));
+		return {1, 1, 1, 1, 1, 1, ps, ps};
+	}
+	std::array<double, NU> input_guess() const { return {0.0, 0.0}; }
+	double position_distance(const double *a, const double *b) const
+	{
+		return std::hypot(b[0] - a[0], b[1] - a[1]);
+	}
+	double typical_speed() const { return 0.5 * vmax_w; }
+};
+
+// ---- quadrotor flight mode (models.md section 5) -------------------------
+struct FlightModel {
+	double relax = 1.0;   // smoothing multiplier (see positive_power)
+	static constexpr int NX = 16, NU = 4, NP = 1, NS = 6;
+	static constexpr bool kSmoothed = true;
+	double m, l, Jx, Jy, Jz, kf, km, Jr, Vcc, kt, R, cd, Pd, vmax_f, phi_max, g;
+
+	FlightModel(const ModeParams &p, double grav)
+		: m(p.at("m")), l(p.at("l")), Jx(p.at("Jx")), Jy(p.at("Jy")), Jz(p.at("Jz")),
+		  kf(p.at("kf")), km(p.at("km")), Jr(p.at("Jr")), Vcc(p.at("Vcc")), kt(p.at("kt")),
+		  R(p.at("R")), cd(p.at("cd")), Pd(p.at("Pd")), vmax_f(p.at("vmax_f")),
+		  phi_max(p.at("phi_max")), g(grav)
+	{
+	}
+
+	double phi_n() const { return std::sqrt(m * g / (4 * kf)); }
+	// Input holding a rotor at phi_n: kt*i = km*phi^2, i = (Vcc*u - kt*phi)/R.
+	double u_hover() const
+	{
+		double ph = phi_n();
+		return (km * ph * ph * R / kt + kt * ph) / Vcc;
+	}
+
+	// x = (p 3, v 3 body, Theta 3 (roll, pitch, yaw), omega 3, phi 4), u in [0,1]^4
+	template <class S>
+	void eval(const S *x, const S *u, S *f, S &L, S *path) const
+	{
+		using ad::cos;
+		using ad::sin;
+		using ad::tan;
+		const S *v = x + 3, *th = x + 6, *w = x + 9, *ph = x + 12;
+		S cr = cos(th[0]), sr = sin(th[0]), cp = cos(th[1]), sp = sin(th[1]);
+		S cy = cos(th[2]), sy = sin(th[2]);
+		// Rwb = Rz(yaw) Ry(pitch) Rx(roll)
+		S R00 = cy * cp, R01 = cy * sp * sr - sy * cr, R02 = cy * sp * cr + sy * sr;
+		S R10 = sy * cp, R11 = sy * sp * sr + cy * cr, R12 = sy * sp * cr - cy * sr;
+		S R20 = -sp, R21 = cp * sr, R22 = cp * cr;
+		f[0] = R00 * v[0] + R01 * v[1] + R02 * v[2];
+		f[1] = R10 * v[0] + R11 * v[1] + R12 * v[2];
+		f[2] = R20 * v[0] + R21 * v[1] + R22 * v[2];
+		S fr[4], q[4], P = S(0.0);
+		S thrust = S(0.0);
+		for (int i = 0; i < 4; i++) {
+			fr[i] = kf * ph[i] * ph[i];
+			q[i] = km * ph[i] * ph[i];
+			S V = Vcc * u[i];
+			S cur = (V - kt * ph[i]) / R;
+			f[12 + i] = (kt * cur - q[i]) / Jr;
+			P = P + positive_power(S(V * cur), relax);
+			thrust = thrust + fr[i];
+		}
+		const double a = l / std::sqrt(2.0);
+		// rotors: 1 (+a,-a,+1) 2 (-a,+a,+1) 3 (+a,+a,-1) 4 (-a,-a,-1)
+		S tx = (-a) * fr[0] + a * fr[1] + a * fr[2] + (-a) * fr[3];
+		S ty = -(a * fr[0] + (-a) * fr[1] + a * fr[2] + (-a) * fr[3]);
+		S tz = -(q[0] + q[1] - q[2] - q[3]);
+		// v' = -omega x v + Rwb^T (0,0,-g) + (0,0,thrust)/m - (cd/m) v
+		S gx = R20 * (-g), gy = R21 * (-g), gz = R22 * (-g);
+		f[3] = -(w[1] * v[2] - w[2] * v[1]) + gx - (cd / m) * v[0];
+		f[4] = -(w[2] * v[0] - w[0] * v[2]) + gy - (cd / m) * v[1];
+		f[5] = -(w[0] * v[1] - w[1] * v[0]) + gz + thrust / m - (cd / m) * v[2];
+		S k = w[1] * sr + w[2] * cr;
+		f[6] = w[0] + k * tan(th[1]);
+		f[7] = w[1] * cr - w[2] * sr;
+		f[8] = k / cp;
+		// omega' = J^-1 (tau - omega x J omega)
+		f[9] = (tx - (w[1] * Jz * w[2] - w[2] * Jy * w[1])) / Jx;
+		f[10] = (ty - (w[2] * Jx * w[0] - w[0] * Jz * w[2])) / Jy;
+		f[11] = (tz - (w[0] * Jy * w[1] - w[1] * Jx * w[0])) / Jz;
+		L = P + Pd;
+		path[0] = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+	}
+	Bounds bounds() const
+	{
+		const double inf = 1e20;
+		Bounds b;
+		b.x_lo = {-inf, -inf, -inf, -inf, -inf, -inf, -1, -1, -inf, -6, -6, -6, 0, 0, 0, 0};
+		b.x_hi = {inf, inf, inf, inf, inf, inf, 1, 1, inf, 6, 6, 6,
+			  phi_max, phi_max, phi_max, phi_max};
+		b.u_lo = {0, 0, 0, 0};
+		b.u_hi = {1, 1, 1, 1};
+		b.path_lo = {-inf};
+		b.path_hi = {vmax_f * vmax_f};
+		b.T_min = 0.1;
+		b.T_max = 60;
+		return b;
+	}
+	// Sampled (p, v) -> hover attitude, zero rates, rotors at phi_n.
+	std::array<double, NX> full_state(const double *xs) const
+	{
+		double pn = phi_n();
+		return {xs[0], xs[1], xs[2], xs[3], xs[4], xs[5], 0, 0, 0, 0, 0, 0, pn, pn, pn, pn};
+	}
+	std::array<double, NX> scale() const
+	{
+		double pn = phi_n();
+		return {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, pn, pn, pn, pn};
+	}
+	std::array<double, NU> input_guess() const
+	{
+		double uh = u_hover();
+		return {uh, uh, uh, uh};
+	}
+	double position_distance(const double *a, const double *b) const
+	{
+		return std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+				 (b[2] - a[2]) * (b[2] - a[2]));
+	}
+	double typical_speed() const { return 3.0; }
+};
+
+}  // namespace hylo::trainer
+
+#endif

@@ -1,0 +1,145 @@
+#include "trainer/params.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+namespace hylo::trainer {
+namespace {
+
+// Required parameters of each mode (models.md sections 2-5, 8).
+const std::map<std::string, std::vector<std::string>> kRequired = {
+	{"ground", {"m", "Iz", "B", "Lc", "r", "G", "kt", "R", "Vcc", "crr", "mut", "Cy", "Pd", "vmax"}},
+	{"marine", {"m", "Iz", "B", "Jm", "kt", "R", "Vcc", "kT", "kq", "dx", "dy", "Cy_w", "dw", "Pd",
+		    "vmax_w"}},
+	{"flight", {"m", "l", "Jx", "Jy", "Jz", "kf", "km", "Jr", "Vcc", "kt", "R", "cd", "Pd", "vmax_f",
+		    "phi_max"}},
+	{"di_neg", {"rho"}},
+	{"di_pos", {"rho"}},
+};
+
+struct Reader {
+	std::string path;
+
+	[[noreturn]] void fail(const YAML::Node &n, const std::string &what) const
+	{
+		int line = n.Mark().line >= 0 ? n.Mark().line + 1 : 0;
+		throw ParamError(path + ":" + std::to_string(line) + ": " + what);
+	}
+
+	void only(const YAML::Node &n, const std::string &where, const std::set<std::string> &keys) const
+	{
+		if (!n.IsMap())
+			fail(n, where + " must be a mapping");
+		for (const auto &kv : n) {
+			std::string k = kv.first.as<std::string>();
+			if (!keys.count(k))
+				fail(kv.first, "unknown key '" + k + "' in " + where);
+		}
+	}
+
+	YAML::Node need(const YAML::Node &n, const std::string &key, const std::string &where) const
+	{
+		if (!n[key])
+			fail(n, "missing key '" + key + "' in " + where);
+		return n[key];
+	}
+
+	double number(const YAML::Node &n, const std::string &what) const
+	{
+		double v = 0;
+		try {
+			v = n.as<double>();
+		} catch (const YAML::Exception &) {
+			fail(n, what + " must be a number");
+		}
+		if (!std::isfinite(v))
+			fail(n, what + " must be finite");
+		return v;
+	}
+};
+
+}  // namespace
+
+double ModeParams::at(const std::string &key) const
+{
+	auto it = values.find(key);
+	if (it == values.end())
+		throw ParamError("mode " + mode + " has no parameter '" + key + "'");
+	return it->second;
+}
+
+const ModeParams &RobotParams::mode(const std::string &name) const
+{
+	auto it = modes.find(name);
+	if (it == modes.end())
+		throw ParamError(path + ": robot " + robot + " has no mode '" + name + "'");
+	return it->second;
+}
+
+std::string robot_file(const std::string &name)
+{
+	const char *dir = std::getenv("HYLO_PARAMS_DIR");
+	return std::string(dir && *dir ? dir : "trainer/params") + "/" + name + ".yaml";
+}
+
+RobotParams load_robot(const std::string &path)
+{
+	Reader rd{path};
+	YAML::Node root;
+	try {
+		root = YAML::LoadFile(path);
+	} catch (const YAML::BadFile &) {
+		throw ParamError(path + ": cannot read the file");
+	} catch (const YAML::ParserException &e) {
+		throw ParamError(path + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
+	}
+	if (!root || !root.IsMap())
+		throw ParamError(path + ":1: a robot file must be a YAML mapping");
+	rd.only(root, "the robot file", {"robot", "g", "modes"});
+	RobotParams rp;
+	rp.path = path;
+	rp.robot = rd.need(root, "robot", "the robot file").as<std::string>();
+	rp.g = rd.number(rd.need(root, "g", "the robot file"), "g");
+	if (!(rp.g > 0))
+		rd.fail(root["g"], "g must be > 0");
+	YAML::Node modes = rd.need(root, "modes", "the robot file");
+	if (!modes.IsMap() || modes.size() == 0)
+		rd.fail(modes, "modes must be a non-empty mapping");
+	for (const auto &kv : modes) {
+		std::string name = kv.first.as<std::string>();
+		auto req = kRequired.find(name);
+		if (req == kRequired.end())
+			rd.fail(kv.first, "unknown mode '" + name + "' (ground, marine, flight, di_neg, di_pos)");
+		const YAML::Node &m = kv.second;
+		rd.only(m, "mode " + name, {"params", "sampling"});
+		ModeParams mp;
+		mp.mode = name;
+		YAML::Node p = rd.need(m, "params", "mode " + name);
+		std::set<std::string> allowed(req->second.begin(), req->second.end());
+		rd.only(p, "the parameters of mode " + name, allowed);
+		for (const auto &key : req->second) {
+			YAML::Node v = rd.need(p, key, "the parameters of mode " + name);
+			double x = rd.number(v, name + "." + key);
+			if (!(x > 0))
+				rd.fail(v, name + "." + key + " must be > 0, not " + std::to_string(x));
+			mp.values[key] = x;
+		}
+		YAML::Node s = rd.need(m, "sampling", "mode " + name);
+		rd.only(s, "the sampling of mode " + name, {"max_distance_m", "speed_min_mps", "speed_max_mps"});
+		mp.sampling.max_distance_m = rd.number(rd.need(s, "max_distance_m", "sampling"), "max_distance_m");
+		mp.sampling.speed_min_mps = rd.number(rd.need(s, "speed_min_mps", "sampling"), "speed_min_mps");
+		mp.sampling.speed_max_mps = rd.number(rd.need(s, "speed_max_mps", "sampling"), "speed_max_mps");
+		if (!(mp.sampling.max_distance_m > 0))
+			rd.fail(s["max_distance_m"], "max_distance_m must be > 0");
+		if (!(mp.sampling.speed_min_mps <= mp.sampling.speed_max_mps))
+			rd.fail(s["speed_max_mps"], "speed_max_mps must be >= speed_min_mps");
+		rp.modes[name] = mp;
+	}
+	return rp;
+}
+
+}  // namespace hylo::trainer

@@ -1,0 +1,48 @@
+// Robot parameter files (trainer/params/<robot>.yaml): the physical
+// parameters of models.md section 8 per mode, and the ranges training pairs
+// are drawn from. Strict: an unknown key, a missing key or a bad value is an
+// error naming the file, the key and the line.
+#ifndef HYLO_TRAINER_PARAMS_HPP
+#define HYLO_TRAINER_PARAMS_HPP
+
+#include <map>
+#include <stdexcept>
+#include <string>
+
+namespace hylo::trainer {
+
+class ParamError : public std::runtime_error {
+public:
+	using std::runtime_error::runtime_error;
+};
+
+struct Sampling {
+	double max_distance_m = 0;     // displacement of a training pair, at most
+	double speed_min_mps = 0, speed_max_mps = 0;
+};
+
+struct ModeParams {
+	std::string mode;              // "ground", "marine", "flight", "di_neg", "di_pos"
+	std::map<std::string, double> values;
+	Sampling sampling;
+	// The value of key; throws ParamError if absent (a programming error:
+	// load() checks every required key).
+	double at(const std::string &key) const;
+};
+
+struct RobotParams {
+	std::string robot, path;
+	double g = 9.81;
+	std::map<std::string, ModeParams> modes;
+	const ModeParams &mode(const std::string &name) const;   // throws ParamError
+};
+
+// Loads and validates a robot file. Throws ParamError "FILE:LINE: what".
+RobotParams load_robot(const std::string &path);
+
+// The parameter file of robot name: $HYLO_PARAMS_DIR or trainer/params.
+std::string robot_file(const std::string &name);
+
+}  // namespace hylo::trainer
+
+#endif

@@ -1,0 +1,233 @@
+#include "trainer/pipeline.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "trainer/collocation.hpp"
+#include "trainer/sha256.hpp"
+#include "trainer/svr_export.hpp"
+#include "trainer/svr_fit.hpp"
+
+namespace hylo::trainer {
+namespace {
+
+struct Rows {
+	std::vector<double> x_conv, cost, x_all;
+	std::vector<bool> feasible;
+	size_t n = 0;
+};
+
+std::string slurp(const std::string &path)
+{
+	std::ifstream f(path, std::ios::binary);
+	if (!f)
+		throw std::invalid_argument("cannot read the dataset " + path + " (run --stage gen first)");
+	std::ostringstream ss;
+	ss << f.rdbuf();
+	return ss.str();
+}
+
+Rows read_dataset(const std::string &path, const std::string &mode)
+{
+	std::string text = slurp(path);
+	std::istringstream in(text);
+	std::string line;
+	std::vector<std::string> cols = csv_columns(mode), header;
+	if (!std::getline(in, line))
+		throw std::invalid_argument(path + " is empty");
+	std::string expect;
+	for (const auto &c : cols)
+		expect += (expect.empty() ? "" : ",") + c;
+	if (line != expect)
+		throw std::invalid_argument(path + ":1: not a " + mode + " dataset (unexpected header)");
+	size_t nf = 0;
+	for (const auto &c : cols)
+		nf += c.size() > 1 && c[0] == 'f' && std::isdigit(static_cast<unsigned char>(c[1]));
+	size_t i_cost = 0, i_conv = 0;
+	for (size_t k = 0; k < cols.size(); k++) {
+		if (cols[k] == "cost_j") i_cost = k;
+		if (cols[k] == "converged") i_conv = k;
+	}
+	Rows r;
+	for (size_t lineno = 2; std::getline(in, line); lineno++) {
+		std::vector<std::string> f;
+		std::stringstream ss(line);
+		std::string c;
+		while (std::getline(ss, c, ','))
+			f.push_back(c);
+		if (f.size() != cols.size())
+			throw std::invalid_argument(path + ":" + std::to_string(lineno) + ": " +
+						    std::to_string(f.size()) + " fields, expected " +
+						    std::to_string(cols.size()));
+		std::vector<double> feat(nf);
+		for (size_t k = 0; k < nf; k++) {
+			char *e = nullptr;
+			feat[k] = std::strtod(f[1 + k].c_str(), &e);
+			if (*e || !std::isfinite(feat[k]))
+				throw std::invalid_argument(path + ":" + std::to_string(lineno) + ": bad number '" +
+							    f[1 + k] + "'");
+		}
+		bool conv = f[i_conv] == "1";
+		double cost = std::strtod(f[i_cost].c_str(), nullptr);
+		r.x_all.insert(r.x_all.end(), feat.begin(), feat.end());
+		r.feasible.push_back(conv);
+		if (conv) {
+			r.x_conv.insert(r.x_conv.end(), feat.begin(), feat.end());
+			r.cost.push_back(cost);
+		}
+		r.n++;
+	}
+	return r;
+}
+
+double floor_per_m(const std::string &mode, const ModeParams &p)
+{
+	// Every edge costs at least Pd * T and T >= distance / top speed.
+	if (mode == "ground") return p.at("Pd") / p.at("vmax");
+	if (mode == "marine") return p.at("Pd") / p.at("vmax_w");
+	if (mode == "flight") return p.at("Pd") / p.at("vmax_f");
+	return p.at("rho");   // |v| <= 1: T >= distance in p; cost >= rho * T
+}
+
+double floor_j(const std::string &mode, const ModeParams &p)
+{
+	if (mode == "ground" || mode == "marine" || mode == "flight")
+		return p.at("Pd") * 0.1;   // T >= 0.1 s
+	return p.at("rho") * 0.05;
+}
+
+void write_text(const std::string &path, const std::string &text)
+{
+	std::string tmp = path + ".tmp";
+	{
+		std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+		if (!f)
+			throw std::runtime_error("cannot write " + tmp);
+		f << text;
+		if (!f.flush())
+			throw std::runtime_error("error writing " + tmp);
+	}
+	if (std::rename(tmp.c_str(), path.c_str()) != 0)
+		throw std::runtime_error("cannot rename " + tmp + " to " + path);
+}
+
+int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
+{
+	GenOptions g = opt.gen;
+	g.shard = g.shards = 1;
+	std::string path = dataset_path(g);
+	std::string meta = slurp(path + ".meta");
+	if (meta.find("params_sha256: " + sha256_file(robot.path)) == std::string::npos ||
+	    meta.find("robot: " + robot.robot + "\n") == std::string::npos)
+		throw std::invalid_argument(path + " was generated from another robot file than " + robot.path);
+	Rows rows = read_dataset(path, g.mode);
+	const ModeParams &p = robot.mode(g.mode);
+	int nf = static_cast<int>(features(g.mode, std::vector<double>(6).data(), std::vector<double>(6).data()).size());
+	FitOptions fo;
+	fo.seed = g.seed;
+	fo.jobs = g.jobs;
+	SvrExport m;
+	FitReport rep = fit_cost(nf, rows.x_conv, rows.cost, fo, m);
+	m.robot = robot.robot;
+	m.mode = g.mode;
+	m.cost_floor_per_m = floor_per_m(g.mode, p);
+	m.cost_floor_j = floor_j(g.mode, p);
+	m.max_distance_m = p.sampling.max_distance_m;
+	std::ostringstream acc;
+	ClassifierReport crep;
+	bool have_classifier = false;
+	try {
+		ClassifierExport c;
+		crep = fit_feasibility(nf, rows.x_all, rows.feasible, fo, c);
+		m.feasibility = c;
+		have_classifier = true;
+	} catch (const std::invalid_argument &e) {
+		std::fprintf(stderr, "trainer: no feasibility classifier: %s\n", e.what());
+	}
+	char buf[512];
+	std::snprintf(buf, sizeof buf, "median %.4f, p95 %.4f, max %.4f relative; MAE %.4g J",
+		      rep.median_rel_error, rep.p95_rel_error, rep.max_rel_error, rep.mae);
+	m.provenance = {
+		{"robot file", robot.path},
+		{"robot file sha256", sha256_file(robot.path)},
+		{"dataset sha256", sha256_file(path)},
+		{"samples", std::to_string(rows.n) + " (" + std::to_string(rows.cost.size()) + " converged)"},
+		{"seed", std::to_string(g.seed)},
+		{"held-out errors", buf},
+		{"svr", "C " + format_double(rep.C) + ", gamma " + format_double(rep.gamma) + ", epsilon " +
+				format_double(rep.epsilon) + ", " + std::to_string(rep.n_sv) + " support vectors"},
+		{"feasibility accuracy", have_classifier ? format_double(crep.accuracy) : "none"},
+		{"hylo version", kHyloVersion},
+	};
+	if (g.mode == "flight") {
+		// Takeoff and landing (models.md section 6): hover at h to hover at h+1, and back.
+		double lo[6] = {0, 0, 0, 0, 0, 0}, hi[6] = {0, 0, 1, 0, 0, 0};
+		Solution up = solve_bvp("flight", robot, lo, hi, g.solve);
+		Solution down = solve_bvp("flight", robot, hi, lo, g.solve);
+		if (!up.converged || !down.converged)
+			throw std::runtime_error("the takeoff or landing optimization did not converge");
+		m.constants = {{"TAKEOFF_J", up.cost, "ground rest -> hover 1 m above [J]"},
+			       {"LANDING_J", down.cost, "hover 1 m above -> ground rest [J]"}};
+	}
+	std::string header = g.out_dir + "/" + robot.robot + "_" + g.mode + ".h";
+	write_svr_header(m, header);
+	std::ostringstream js;
+	js << "{\"robot\":\"" << robot.robot << "\",\"mode\":\"" << g.mode << "\",\"samples\":" << rows.n
+	   << ",\"converged\":" << rows.cost.size() << ",\"n_train\":" << rep.n_train
+	   << ",\"n_test\":" << rep.n_test << ",\"n_sv\":" << rep.n_sv << ",\"C\":" << format_double(rep.C)
+	   << ",\"gamma\":" << format_double(rep.gamma) << ",\"epsilon\":" << format_double(rep.epsilon)
+	   << ",\"mae_j\":" << format_double(rep.mae)
+	   << ",\"median_rel_error\":" << format_double(rep.median_rel_error)
+	   << ",\"p95_rel_error\":" << format_double(rep.p95_rel_error)
+	   << ",\"fit_s\":" << format_double(rep.fit_seconds)
+	   << ",\"feasibility_accuracy\":" << (have_classifier ? format_double(crep.accuracy) : "null")
+	   << "}\n";
+	write_text(g.out_dir + "/" + g.mode + ".fit.json", js.str());
+	std::printf("fit %s %s: %zu of %zu samples converged; %zu SVs; held-out %s; feasibility %s; %.1f s\n",
+		    robot.robot.c_str(), g.mode.c_str(), rows.cost.size(), rows.n, rep.n_sv, buf,
+		    have_classifier ? format_double(crep.accuracy).c_str() : "none", rep.fit_seconds);
+	return 0;
+}
+
+int export_stage(const RobotParams &robot, const PipelineOptions &opt)
+{
+	std::string name = robot.robot + "_" + opt.gen.mode + ".h";
+	std::string text = slurp(opt.gen.out_dir + "/" + name);
+	write_text(opt.models_dir + "/" + name, text);
+	std::printf("exported %s/%s\n", opt.models_dir.c_str(), name.c_str());
+	return 0;
+}
+
+}  // namespace
+
+uint64_t default_samples(const std::string &mode)
+{
+	if (mode == "flight")
+		return 17016;
+	if (mode == "ground" || mode == "marine")
+		return 11520;
+	return 2000;
+}
+
+int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage)
+{
+	if (stage == "gen" || stage == "all") {
+		GenSummary s = generate(robot, opt.gen);
+		std::printf("gen %s %s: %llu samples in %s (%llu resumed), %llu converged, %llu rejected, %.1f s\n",
+			    robot.robot.c_str(), opt.gen.mode.c_str(),
+			    static_cast<unsigned long long>(s.done + s.resumed_from), s.path.c_str(),
+			    static_cast<unsigned long long>(s.resumed_from),
+			    static_cast<unsigned long long>(s.converged),
+			    static_cast<unsigned long long>(s.rejected), s.seconds);
+	}
+	if (stage == "fit" || stage == "all")
+		fit_stage(robot, opt);
+	if (stage == "export" || stage == "all")
+		export_stage(robot, opt);
+	return 0;
+}
+
+}  // namespace hylo::trainer

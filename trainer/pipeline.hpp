@@ -1,0 +1,30 @@
+// The model pipeline of one robot mode: generate (or resume) the dataset,
+// fit the cost model and feasibility classifier, export the header.
+#ifndef HYLO_TRAINER_PIPELINE_HPP
+#define HYLO_TRAINER_PIPELINE_HPP
+
+#include <string>
+
+#include "trainer/dataset.hpp"
+#include "trainer/params.hpp"
+
+namespace hylo::trainer {
+
+constexpr const char *kHyloVersion = "0.1.0";
+
+struct PipelineOptions {
+	GenOptions gen;
+	std::string models_dir = "onboard/models";
+};
+
+// The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000 (di).
+uint64_t default_samples(const std::string &mode);
+
+// Runs stage "gen", "fit", "export" or "all"; returns the exit code.
+// "fit" writes <out>/<robot>_<mode>.h and <out>/<mode>.fit.json; "export"
+// copies that header into models_dir. Nothing is written on bad data.
+int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage);
+
+}  // namespace hylo::trainer
+
+#endif

@@ -1,0 +1,140 @@
+#include "trainer/replay.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "trainer/collocation.hpp"
+#include "trainer/models.hpp"
+
+namespace hylo::trainer {
+namespace {
+
+// Move-only owners of the SUNDIALS handles; constructors fail loudly.
+struct Context {
+	SUNContext ctx = nullptr;
+	Context()
+	{
+		if (SUNContext_Create(nullptr, &ctx) != 0)
+			throw std::runtime_error("SUNContext_Create failed");
+	}
+	~Context() { SUNContext_Free(&ctx); }
+	Context(const Context &) = delete;
+	Context &operator=(const Context &) = delete;
+};
+
+template <class M>
+struct Replay {
+	const M &m;
+	const Trajectory &tr;
+	int N;             // segments
+	double h;
+
+	// HS-consistent input at time t.
+	void input(double t, double *u) const
+	{
+		int k = std::min(N - 1, std::max(0, static_cast<int>(std::floor(t / h))));
+		double s = (t - k * h) / h;   // in [0, 1]
+		const double *ua = &tr.u[static_cast<size_t>(2 * k) * M::NU];
+		const double *um = &tr.u[static_cast<size_t>(2 * k + 1) * M::NU];
+		const double *ub = &tr.u[static_cast<size_t>(2 * k + 2) * M::NU];
+		double la = 2 * (s - 0.5) * (s - 1), lm = -4 * s * (s - 1), lb = 2 * s * (s - 0.5);
+		for (int j = 0; j < M::NU; j++)
+			u[j] = la * ua[j] + lm * um[j] + lb * ub[j];
+	}
+
+	static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
+	{
+		auto *self = static_cast<Replay *>(user);
+		double u[M::NU], f[M::NX], L, path[M::NP > 0 ? M::NP : 1];
+		self->input(t, u);
+		self->m.template eval<double>(N_VGetArrayPointer(y), u, f, L, path);
+		double *d = N_VGetArrayPointer(ydot);
+		for (int k = 0; k < M::NX; k++)
+			d[k] = f[k];
+		d[M::NX] = L;
+		return 0;
+	}
+};
+
+template <class M>
+void replay_model(const M &model, Solution &s)
+{
+	const Trajectory &tr = s.traj;
+	int N = (static_cast<int>(tr.t.size()) - 1) / 2;
+	if (N < 1 || tr.nx != M::NX || tr.nu != M::NU)
+		throw std::invalid_argument("replay: malformed trajectory");
+	Replay<M> r{model, tr, N, s.T / N};
+	Context c;
+	N_Vector y = N_VNew_Serial(M::NX + 1, c.ctx);
+	double *yv = N_VGetArrayPointer(y);
+	for (int k = 0; k < M::NX; k++)
+		yv[k] = tr.x[static_cast<size_t>(k)];
+	yv[M::NX] = 0;
+	void *mem = CVodeCreate(CV_BDF, c.ctx);
+	SUNMatrix A = SUNDenseMatrix(M::NX + 1, M::NX + 1, c.ctx);
+	SUNLinearSolver LS = SUNLinSol_Dense(y, A, c.ctx);
+	bool ok = mem && A && LS && CVodeInit(mem, Replay<M>::rhs, 0.0, y) == CV_SUCCESS &&
+		  CVodeSStolerances(mem, 1e-9, 1e-9) == CV_SUCCESS &&
+		  CVodeSetUserData(mem, &r) == CV_SUCCESS &&
+		  CVodeSetLinearSolver(mem, LS, A) == CV_SUCCESS &&
+		  CVodeSetMaxNumSteps(mem, 200000) == CV_SUCCESS;
+	// Integrate segment by segment: the input's derivative jumps at knots.
+	double t = 0;
+	auto sc = model.scale();
+	Bounds bd = model.bounds();
+	double worst_bound = 0;
+	for (int k = 1; ok && k <= N; k++) {
+		double tk = s.T * k / N;
+		ok = CVodeSetStopTime(mem, tk) == CV_SUCCESS && CVode(mem, tk, y, &t, CV_NORMAL) >= 0;
+		for (int j = 0; ok && j < M::NX; j++) {
+			double lo = bd.x_lo[static_cast<size_t>(j)], hi = bd.x_hi[static_cast<size_t>(j)];
+			double over = std::max(lo - yv[j], yv[j] - hi) / sc[static_cast<size_t>(j)];
+			worst_bound = std::max(worst_bound, over);
+		}
+	}
+	s.replayed = true;
+	if (ok) {
+		double err = 0;
+		const double *xe = &tr.x[static_cast<size_t>(2 * N) * M::NX];
+		for (int k = 0; k < M::NX; k++)
+			err = std::max(err, std::fabs(yv[k] - xe[k]) / sc[static_cast<size_t>(k)]);
+		s.replay_error = err;
+		s.replay_cost = yv[M::NX];
+		s.replay_ok = err <= kReplayStateTol && worst_bound <= kReplayStateTol &&
+			      std::fabs(s.replay_cost - s.cost) <= kReplayCostTol * std::fabs(s.cost);
+	} else {
+		s.replay_error = INFINITY;
+		s.replay_cost = NAN;
+		s.replay_ok = false;
+	}
+	SUNLinSolFree(LS);
+	SUNMatDestroy(A);
+	CVodeFree(&mem);
+	N_VDestroy(y);
+}
+
+}  // namespace
+
+void replay(const std::string &mode, const RobotParams &robot, Solution &s)
+{
+	const ModeParams &p = robot.mode(mode);
+	if (mode == "ground")
+		replay_model(GroundModel(p, robot.g), s);
+	else if (mode == "marine")
+		replay_model(MarineModel(p, robot.g), s);
+	else if (mode == "flight")
+		replay_model(FlightModel(p, robot.g), s);
+	else if (mode == "di_neg" || mode == "di_pos")
+		replay_model(DiModel(p, mode == "di_pos"), s);
+	else
+		throw std::invalid_argument("replay: unknown mode '" + mode + "'");
+}
+
+}  // namespace hylo::trainer
