@@ -41,7 +41,7 @@ public:
 	{
 		npts_ = 2 * N_ + 1;
 		nvar_ = npts_ * NZ + 1;
-		ncon_ = 2 * N_ * NX + npts_ * NP;
+		ncon_ = 2 * N_ * NX + npts_ * NP + N_ * NU;
 		f_.resize(static_cast<size_t>(npts_) * NX);
 		L_.resize(static_cast<size_t>(npts_));
 		path_.resize(static_cast<size_t>(npts_) * NPO);
@@ -62,7 +62,8 @@ public:
 		n = nvar_;
 		m = ncon_;
 		// C1: NX x (2 NZ + NX + 1), C2: NX x (3 NZ + 1), path: NP x NZ per point.
-		nnz_jac = N_ * NX * (2 * NZ + NX + 1) + N_ * NX * (3 * NZ + 1) + npts_ * NP * NZ;
+		nnz_jac = N_ * NX * (2 * NZ + NX + 1) + N_ * NX * (3 * NZ + 1) + npts_ * NP * NZ +
+			  3 * N_ * NU;
 		nnz_h = npts_ * (NZ * (NZ + 1) / 2 + NZ) + 1;
 		style = TNLP::C_STYLE;
 		return true;
@@ -93,6 +94,8 @@ public:
 				gl[2 * N_ * NX + p * NP + j] = b_.path_lo[static_cast<size_t>(j)];
 				gu[2 * N_ * NX + p * NP + j] = b_.path_hi[static_cast<size_t>(j)];
 			}
+		for (int r = c3(0); r < ncon_; r++)
+			gl[r] = gu[r] = 0;
 		return true;
 	}
 
@@ -163,6 +166,10 @@ public:
 		for (int p = 0; p < npts_; p++)
 			for (int j = 0; j < NP; j++)
 				g[2 * N_ * NX + p * NP + j] = path_[static_cast<size_t>(p * NPO + j)];
+		for (int k = 0; k < N_; k++)
+			for (int j = 0; j < NU; j++)
+				g[c3(k) + j] = z[zi(mid(k)) + NX + j] -
+					       0.5 * (z[zi(knot(k)) + NX + j] + z[zi(knot(k + 1)) + NX + j]);
 		return true;
 	}
 
@@ -190,6 +197,12 @@ public:
 				for (int r = 0; r < NP; r++)
 					for (int j = 0; j < NZ; j++)
 						put(iRow, jCol, e, 2 * N_ * NX + p * NP + r, zi(p) + j);
+			for (int k = 0; k < N_; k++)
+				for (int j = 0; j < NU; j++) {
+					put(iRow, jCol, e, c3(k) + j, zi(mid(k)) + NX + j);
+					put(iRow, jCol, e, c3(k) + j, zi(knot(k)) + NX + j);
+					put(iRow, jCol, e, c3(k) + j, zi(knot(k + 1)) + NX + j);
+				}
 			return true;
 		}
 		update(z, new_x);
@@ -219,6 +232,12 @@ public:
 			for (int r = 0; r < NP; r++)
 				for (int j = 0; j < NZ; j++)
 					v[e++] = jp_[static_cast<size_t>((p * NPO + r) * NZ + j)];
+		for (int k = 0; k < N_; k++)
+			for (int j = 0; j < NU; j++) {
+				v[e++] = 1.0;
+				v[e++] = -0.5;
+				v[e++] = -0.5;
+			}
 		return true;
 	}
 
@@ -302,6 +321,9 @@ private:
 	}
 	int c1(int k) const { return k * 2 * NX; }
 	int c2(int k) const { return k * 2 * NX + NX; }
+	// Piecewise-linear control: the midpoint input is the mean of its knots'
+	// (the optimizer cannot exploit Simpson's rule with chattering inputs).
+	int c3(int k) const { return 2 * N_ * NX + npts_ * NP + k * NU; }
 	double F(int p, int r) const { return f_[static_cast<size_t>(p * NX + r)]; }
 	double JF(int p, int r, int j) const { return jf_[static_cast<size_t>((p * NX + r) * NZ + j)]; }
 	// Simpson weight of point p in the cost.
@@ -531,6 +553,10 @@ Solution solve_model(const std::string &mode, const RobotParams &robot, const M 
 			round.converged_starts++;
 			if (opt.replay) {
 				replay(mode, robot, s);
+				if (std::getenv("HYLO_TRAINER_DEBUG"))
+					std::fprintf(stderr, "  replay: error %.3g, cost %.6g vs %.6g (%.2f%%)\n",
+						     s.replay_error, s.replay_cost, s.cost,
+						     100 * (s.replay_cost - s.cost) / s.cost);
 				if (!s.replay_ok)
 					continue;
 			}

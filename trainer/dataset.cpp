@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -259,10 +260,11 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	auto t0 = std::chrono::steady_clock::now();
 	if (opt.shard < 1 || opt.shard > opt.shards)
 		throw std::invalid_argument("--shard K/N needs 1 <= K <= N");
-	struct stat st;
-	if (stat(opt.out_dir.c_str(), &st) != 0 && mkdir(opt.out_dir.c_str(), 0777) != 0)
+	std::error_code ec;
+	std::filesystem::create_directories(opt.out_dir, ec);
+	if (ec || access(opt.out_dir.c_str(), W_OK) != 0)
 		throw std::runtime_error("cannot create the output directory " + opt.out_dir + ": " +
-					 std::strerror(errno));
+					 (ec ? ec.message() : std::string(std::strerror(errno))));
 	uint64_t lo = opt.samples * static_cast<uint64_t>(opt.shard - 1) / static_cast<uint64_t>(opt.shards);
 	uint64_t hi = opt.samples * static_cast<uint64_t>(opt.shard) / static_cast<uint64_t>(opt.shards);
 	GenSummary sum;
