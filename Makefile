@@ -1,6 +1,7 @@
 # hylo: one entry point.
 #   make            build everything that exists (libraries, tools, tests)
 #   make test       install missing Debian packages, build, run every test
+#   make demo       plan the default scenes with the committed models
 #   make bench      run the benchmarks, write build/bench/results.json
 #   make deps       install missing Debian packages only
 #   make clean      remove build/
@@ -24,7 +25,7 @@ include mk/export.mk
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test bench deps venv check-deps clean
+.PHONY: all test demo bench deps venv check-deps clean
 
 all: check-deps $(ALL_TARGETS)
 
@@ -46,6 +47,11 @@ test: deps
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory venv || echo "make test: no Python venv (is PyPI reachable?); Python client checks will be skipped"
 	@tools/run-tests $(TESTS) $(TESTS_SAN)
+
+# Plans the default scenes through the planner node with the committed models.
+demo: deps
+	@$(MAKE) --no-print-directory all
+	@tools/demo.sh
 
 bench: deps
 	@$(MAKE) --no-print-directory all $(BENCH_TARGETS)

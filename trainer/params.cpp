@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <unistd.h>
 #include <set>
 #include <vector>
 
@@ -83,7 +84,24 @@ const ModeParams &RobotParams::mode(const std::string &name) const
 std::string robot_file(const std::string &name)
 {
 	const char *dir = std::getenv("HYLO_PARAMS_DIR");
-	return std::string(dir && *dir ? dir : "trainer/params") + "/" + name + ".yaml";
+	if (dir && *dir)
+		return std::string(dir) + "/" + name + ".yaml";
+	std::string here = "trainer/params/" + name + ".yaml";
+	if (access(here.c_str(), F_OK) == 0)
+		return here;
+	// Run from elsewhere: the files beside the binary's checkout (build/bin/trainer).
+	char exe[4096];
+	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+	if (n > 0) {
+		exe[n] = '\0';
+		std::string root = exe;
+		for (int up = 0; up < 3 && root.find('/') != std::string::npos; up++)
+			root = root.substr(0, root.rfind('/'));
+		std::string there = root + "/trainer/params/" + name + ".yaml";
+		if (access(there.c_str(), F_OK) == 0)
+			return there;
+	}
+	return here;
 }
 
 RobotParams load_robot(const std::string &path)

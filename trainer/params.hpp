@@ -40,7 +40,8 @@ struct RobotParams {
 // Loads and validates a robot file. Throws ParamError "FILE:LINE: what".
 RobotParams load_robot(const std::string &path);
 
-// The parameter file of robot name: $HYLO_PARAMS_DIR or trainer/params.
+// The parameter file of robot name: in $HYLO_PARAMS_DIR, else trainer/params/
+// of the working directory, else of the checkout the binary was built in.
 std::string robot_file(const std::string &name);
 
 }  // namespace hylo::trainer
