@@ -126,6 +126,32 @@ public:
 		return true;
 	}
 
+	// Variables and constraints in units of each state's typical magnitude
+	// (rotor and paddle speeds are hundreds of rad/s, positions metres).
+	bool get_scaling_parameters(Number &obj_scaling, bool &use_x_scaling, Index n, Number *x_scaling,
+				    bool &use_g_scaling, Index m, Number *g_scaling) override
+	{
+		auto sc = m_.scale();
+		obj_scaling = 1.0 / std::max(1.0, T_guess_ * 10.0);
+		use_x_scaling = true;
+		use_g_scaling = true;
+		for (int p = 0; p < npts_; p++) {
+			for (int k = 0; k < NX; k++)
+				x_scaling[zi(p) + k] = 1.0 / sc[static_cast<size_t>(k)];
+			for (int k = 0; k < NU; k++)
+				x_scaling[zi(p) + NX + k] = 1.0;
+		}
+		x_scaling[n - 1] = 1.0 / std::max(1.0, T_guess_);
+		for (int r = 0; r < m; r++)
+			g_scaling[r] = 1.0;
+		for (int k = 0; k < N_; k++)
+			for (int r = 0; r < NX; r++) {
+				g_scaling[c1(k) + r] = 1.0 / sc[static_cast<size_t>(r)];
+				g_scaling[c2(k) + r] = 1.0 / sc[static_cast<size_t>(r)];
+			}
+		return true;
+	}
+
 	bool eval_f(Index, const Number *z, bool new_x, Number &obj) override
 	{
 		update(z, new_x);
@@ -291,6 +317,25 @@ public:
 		obj_ = obj;
 	}
 
+	// Variables of the 2N-segment mesh from those of the N-segment one: the old
+	// knots and midpoints, in time order, become the new knots; new midpoints
+	// are the means of their knots.
+	static std::vector<double> refine(const std::vector<double> &z, int N)
+	{
+		int M2 = 2 * N, npts2 = 2 * M2 + 1;
+		std::vector<double> out(static_cast<size_t>(npts2) * NZ + 1);
+		auto old_point = [&](int i) { return i % 2 == 0 ? i / 2 : N + 1 + i / 2; };
+		for (int i = 0; i <= M2; i++)
+			for (int j = 0; j < NZ; j++)
+				out[static_cast<size_t>(i * NZ + j)] = z[static_cast<size_t>(old_point(i) * NZ + j)];
+		for (int k = 0; k < M2; k++)
+			for (int j = 0; j < NZ; j++)
+				out[static_cast<size_t>((M2 + 1 + k) * NZ + j)] =
+					0.5 * (out[static_cast<size_t>(k * NZ + j)] + out[static_cast<size_t>((k + 1) * NZ + j)]);
+		out.back() = z.back();
+		return out;
+	}
+
 	// The solution as a time-ordered trajectory.
 	void fill(Solution &s) const
 	{
@@ -413,7 +458,7 @@ private:
 	double obj_ = 0;
 };
 
-Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt)
+Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm = false)
 {
 	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
 	bool ok = app->Options()->SetIntegerValue("print_level", 0);
@@ -421,10 +466,16 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt)
 	ok = ok && app->Options()->SetNumericValue("tol", opt.tol);
 	ok = ok && app->Options()->SetIntegerValue("max_iter", opt.max_iter);
 	ok = ok && app->Options()->SetStringValue("linear_solver", "mumps");
+	ok = ok && app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
 	// Monotone barrier from a small start converged on every robot mode tried,
 	// where the adaptive strategy hit the iteration limit (stiff friction terms).
 	ok = ok && app->Options()->SetStringValue("mu_strategy", "monotone");
-	ok = ok && app->Options()->SetNumericValue("mu_init", 1e-2);
+	// A warm start is already near the optimum: a small barrier keeps it there.
+	ok = ok && app->Options()->SetNumericValue("mu_init", warm ? 1e-5 : 1e-2);
+	if (warm) {
+		ok = ok && app->Options()->SetNumericValue("bound_push", 1e-6);
+		ok = ok && app->Options()->SetNumericValue("bound_frac", 1e-6);
+	}
 	if (!opt.derivative_test_file.empty()) {
 		ok = ok && app->Options()->SetStringValue("derivative_test", "second-order");
 		ok = ok && app->Options()->SetNumericValue("derivative_test_perturbation", opt.derivative_test_perturbation);
@@ -508,79 +559,78 @@ Solution solve_model(const std::string &mode, const RobotParams &robot, const M 
 	}
 	Solution best;
 	best.cost = std::numeric_limits<double>::infinity();
-	int segments = opt.segments;
-	for (int refine = 0; refine <= opt.refinements; refine++, segments *= 2) {
-		Solution round;
-		round.cost = std::numeric_limits<double>::infinity();
-		for (double T : guesses) {
-			T = std::min(std::max(T, bd.T_min), bd.T_max);
-			// Continuation: smoother problems first, each starting the next;
-			// the last one has models.md's exact constants.
-			std::vector<double> start;
-			Ipopt::ApplicationReturnStatus st = Ipopt::Solve_Succeeded;
-			Ipopt::SmartPtr<HsNlp<M>> nlp;
-			Ipopt::SmartPtr<Ipopt::IpoptApplication> app;
-			M relaxed = model;
-			const double levels[] = {100.0, 10.0, 1.0};
-			for (double relax : levels) {
-				if ((!M::kSmoothed || !opt.derivative_test_file.empty()) && relax != 1.0)
-					continue;
-				relaxed.relax = relax;
-				nlp = new HsNlp<M>(relaxed, segments, a, b, T, opt.T_fixed);
-				if (!start.empty())
-					nlp->warm_start(start);
-				app = make_app(opt);
-				st = app->OptimizeTNLP(nlp);
-				if (std::getenv("HYLO_TRAINER_DEBUG"))
-					std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n", T,
-						     segments, relax, status_text(st),
-						     Ipopt::IsValid(app->Statistics())
-							     ? app->Statistics()->IterationCount() : -1);
-				if (succeeded(st))
-					start = nlp->solution();
-			}
-			round.starts++;
-			if (!opt.derivative_test_file.empty())
-				return round;
-			if (!succeeded(st))
+	const bool debug = std::getenv("HYLO_TRAINER_DEBUG") != nullptr;
+	auto run = [&](const M &m, int segments, double T, const std::vector<double> &start,
+		       Ipopt::SmartPtr<HsNlp<M>> &nlp, bool warm) {
+		nlp = new HsNlp<M>(m, segments, a, b, T, opt.T_fixed);
+		if (!start.empty())
+			nlp->warm_start(start);
+		auto app = make_app(opt, warm);
+		Ipopt::ApplicationReturnStatus st = app->OptimizeTNLP(nlp);
+		int it = Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : 0;
+		if (debug)
+			std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n", T, segments,
+				     m.relax, status_text(st), it);
+		return std::make_pair(st, it);
+	};
+	for (double T : guesses) {
+		T = std::min(std::max(T, bd.T_min), bd.T_max);
+		best.starts++;
+		// Continuation on the coarse mesh: smoother problems first, each
+		// starting the next; the last has models.md's exact constants.
+		std::vector<double> start;
+		Ipopt::SmartPtr<HsNlp<M>> nlp;
+		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
+		M relaxed = model;
+		const double levels[] = {100.0, 10.0, 3.0, 1.0};
+		for (double relax : levels) {
+			if ((!M::kSmoothed || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
+			relaxed.relax = relax;
+			res = run(relaxed, opt.segments, T, start, nlp, !start.empty());
+			if (succeeded(res.first))
+				start = nlp->solution();
+		}
+		if (!opt.derivative_test_file.empty())
+			return best;
+		if (!succeeded(res.first))
+			continue;
+		best.converged_starts++;
+		// Mesh refinement until the replay agrees: each finer mesh starts
+		// from the coarser solution (its knots and midpoints become knots).
+		int segments = opt.segments, iterations = res.second;
+		for (int refine = 0;; refine++) {
 			Solution s;
 			nlp->fill(s);
-			s.status = static_cast<int>(st);
-			s.status_text = status_text(st);
-			s.iterations = Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : 0;
+			s.status = static_cast<int>(res.first);
+			s.status_text = status_text(res.first);
+			s.iterations = iterations;
 			s.segments = segments;
-			round.converged_starts++;
 			if (opt.replay) {
 				replay(mode, robot, s);
-				if (std::getenv("HYLO_TRAINER_DEBUG"))
+				if (debug)
 					std::fprintf(stderr, "  replay: error %.3g, cost %.6g vs %.6g (%.2f%%)\n",
 						     s.replay_error, s.replay_cost, s.cost,
 						     100 * (s.replay_cost - s.cost) / s.cost);
-				if (!s.replay_ok)
-					continue;
 			}
-			s.converged = true;
-			if (s.cost < round.cost) {
-				int starts = round.starts, conv = round.converged_starts;
-				round = s;
-				round.starts = starts;
-				round.converged_starts = conv;
+			if (!opt.replay || s.replay_ok) {
+				s.converged = true;
+				if (s.cost < best.cost) {
+					int starts = best.starts, conv = best.converged_starts;
+					best = s;
+					best.starts = starts;
+					best.converged_starts = conv;
+				}
+				break;
 			}
-		}
-		best.starts += round.starts;
-		best.converged_starts += round.converged_starts;
-		// A finer mesh helps only when a solve converged but its replay failed.
-		if (!round.converged && round.converged_starts == 0) {
-			best.status_text = "no start converged";
-			break;
-		}
-		if (round.converged) {
-			int starts = best.starts, conv = best.converged_starts;
-			best = round;
-			best.starts = starts;
-			best.converged_starts = conv;
-			break;
+			if (refine >= opt.refinements)
+				break;
+			std::vector<double> fine = HsNlp<M>::refine(nlp->solution(), segments);
+			segments *= 2;
+			res = run(model, segments, T, fine, nlp, true);
+			iterations += res.second;
+			if (!succeeded(res.first))
+				break;
 		}
 	}
 	if (!best.converged) {
