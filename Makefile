@@ -21,11 +21,12 @@ include mk/bench.mk
 include mk/bench_plan.mk
 include mk/node.mk
 include mk/export.mk
+include mk/fuzz.mk
 
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test demo bench deps venv check-deps clean
+.PHONY: all test demo bench deps venv check-deps clean fuzz fuzz-deps fuzz-corpus
 
 all: check-deps $(ALL_TARGETS)
 
