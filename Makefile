@@ -22,11 +22,12 @@ include mk/bench_plan.mk
 include mk/node.mk
 include mk/export.mk
 include mk/fuzz.mk
+include mk/cross.mk
 
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test demo bench deps venv check-deps clean fuzz fuzz-deps fuzz-corpus
+.PHONY: all test demo bench deps venv check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps
 
 all: check-deps $(ALL_TARGETS)
 
