@@ -27,7 +27,7 @@ include mk/cross.mk
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test demo bench deps venv check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps
+.PHONY: all test demo bench deps venv check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps models
 
 all: check-deps $(ALL_TARGETS)
 

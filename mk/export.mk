@@ -25,7 +25,8 @@ $(EXPORT_TEST_SAN): tests/export/test_export.c $(EXPORT_HEADER) $(ONBOARD_LIB_SA
 	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(ONBOARD_INC) -I$(EXPORT_DIR) -DREFERENCE_TXT='"$(EXPORT_DIR)/reference.txt"' $< $(ONBOARD_LIB_SAN) $(CMOCKA_LIBS) -lm -o $@
 
 ALL_TARGETS += $(EXPORT_TEST) $(EXPORT_TEST_SAN)
-TESTS += $(EXPORT_TEST) tests/export/test_export_bytes.sh
+TESTS += $(EXPORT_TEST) tests/export/test_export_bytes.sh tests/export/test_models.sh
+tests/export/test_models.sh: $(TRAINER) $(ONBOARD_LIB)
 TESTS_SAN += $(EXPORT_TEST_SAN)
 
 # The model fit (trainer/svr_fit.cpp) on synthetic data (tests/export/test_fit.cpp).

@@ -32,3 +32,15 @@ $(TRAINER_TEST): tests/trainer/test_collocation.cpp $(TRAINER_LIB)
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
 ALL_TARGETS += $(TRAINER_TEST)
 TESTS += $(TRAINER_TEST) tests/trainer/test_trainer_cli.sh
+
+# make models: regenerates every committed model (datasets resume; see the
+# README for the time it takes). MODEL_SAMPLES= overrides the sample counts.
+MODEL_JOBS ?= $(shell nproc)
+MODEL_LIST := di:di_neg di:di_pos ambot:ground ambot:marine drivocopter:ground drivocopter:flight
+models: deps $(TRAINER)
+	@for rm in $(MODEL_LIST); do \
+		r=$${rm%%:*}; m=$${rm##*:}; \
+		echo "== $$r $$m"; \
+		$(TRAINER) --robot $$r --mode $$m --jobs $(MODEL_JOBS) --out trainer/datasets/$$r \
+			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)) || exit 1; \
+	done

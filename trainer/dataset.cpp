@@ -151,10 +151,12 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 {
 	std::ostringstream m;
-	m << "robot: " << robot.robot << "\nmode: " << opt.mode << "\nseed: " << opt.seed
-	  << "\nsamples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards
-	  << "\nsegments: " << opt.solve.segments << "\nparams_sha256: " << sha256_file(robot.path)
-	  << "\n";
+	// An unsharded stream does not depend on its length: a longer run extends
+	// a shorter one. Shard boundaries do, so sharded files record it.
+	m << "robot: " << robot.robot << "\nmode: " << opt.mode << "\nseed: " << opt.seed << "\n";
+	if (opt.shards > 1)
+		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
+	m << "segments: " << opt.solve.segments << "\nparams_sha256: " << sha256_file(robot.path) << "\n";
 	return m.str();
 }
 

@@ -151,7 +151,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	std::snprintf(buf, sizeof buf, "median %.4f, p95 %.4f, max %.4f relative; MAE %.4g J",
 		      rep.median_rel_error, rep.p95_rel_error, rep.max_rel_error, rep.mae);
 	m.provenance = {
-		{"robot file", robot.path},
+		{"robot file", "trainer/params/" + robot.robot + ".yaml"},   // location-independent
 		{"robot file sha256", sha256_file(robot.path)},
 		{"dataset sha256", sha256_file(path)},
 		{"samples", std::to_string(rows.n) + " (" + std::to_string(rows.cost.size()) + " converged)"},

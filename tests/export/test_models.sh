@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The committed model headers (onboard/models/): each compiles alone as
+# strict C99 and passes hylo_svr_check; its provenance matches the robot file
+# and the committed dataset (trainer/datasets/) it was fitted on; and
+# refitting one from its dataset gives the same bytes.
+set -u
+cd "$(dirname "$0")/../.."
+. tests/tap.sh
+B=${BUILD:-build}
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+n=0
+for h in onboard/models/*_*.h; do
+  base=$(basename "$h" .h)
+  case "$base" in
+    *_di_neg|*_di_pos) mode=${base##*_di_}; mode=di_$mode; robot=${base%_di_*} ;;
+    *) mode=${base##*_}; robot=${base%_*} ;;
+  esac
+  n=$((n + 1))
+  printf '#include "%s.h"\n#include <stdio.h>\nint main(void) { hylo_reason r; return hylo_svr_check(&hylo_model_%s, &r) == HYLO_OK ? 0 : (puts(r.text), 1); }\n' \
+    "$base" "$base" > "$T/$base.c"
+  if gcc -std=c99 -Wall -Wextra -Werror -pedantic -Ionboard/include -Ionboard/models "$T/$base.c" \
+       -x none "$B/lib/libhylo.a" -lm -o "$T/$base" 2> "$T/$base.err" && "$T/$base" > "$T/$base.out"; then
+    tap_ok "$base.h compiles as strict C99 and passes hylo_svr_check"; else
+    tap_not_ok "$base.h compiles as strict C99 and passes hylo_svr_check" "$(head -3 "$T/$base.err" "$T/$base.out")"; fi
+  ds=trainer/datasets/$robot/$mode.csv
+  want_ds=$(sed -n 's/^ \* dataset sha256: //p' "$h")
+  want_rf=$(sed -n 's/^ \* robot file sha256: //p' "$h")
+  if [ -f "$ds" ] && [ "$want_ds" = "$(sha256sum "$ds" | cut -d' ' -f1)" ] &&
+     [ "$want_rf" = "$(sha256sum "trainer/params/$robot.yaml" | cut -d' ' -f1)" ]; then
+    tap_ok "$base.h: provenance matches $ds and trainer/params/$robot.yaml"; else
+    tap_not_ok "$base.h: provenance matches $ds and trainer/params/$robot.yaml" "dataset ${want_ds:-none}"; fi
+done
+[ "$n" -gt 0 ] || tap_not_ok "there are committed models"
+# Refit the smallest model from its committed dataset: the same bytes.
+small=$(ls -S onboard/models/*_*.h | tail -1)
+base=$(basename "$small" .h)
+case "$base" in
+  *_di_neg|*_di_pos) mode=di_${base##*_di_}; robot=${base%_di_*} ;;
+  *) mode=${base##*_}; robot=${base%_*} ;;
+esac
+mkdir -p "$T/ds"
+cp "trainer/datasets/$robot/$mode.csv" "trainer/datasets/$robot/$mode.csv.meta" "$T/ds/"
+if "$B/bin/trainer" --robot "$robot" --mode "$mode" --stage fit --out "$T/ds" --quiet > "$T/fit.out" 2>&1 &&
+   cmp -s "$T/ds/$base.h" "$small"; then
+  tap_ok "refitting $base from its dataset reproduces the committed header byte for byte"; else
+  tap_not_ok "refitting $base from its dataset reproduces the committed header byte for byte" "$(tail -3 "$T/fit.out")"; fi
+tap_finish
