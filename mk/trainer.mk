@@ -44,3 +44,10 @@ models: deps $(TRAINER)
 		$(TRAINER) --robot $$r --mode $$m --jobs $(MODEL_JOBS) --out trainer/datasets/$$r \
 			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)) || exit 1; \
 	done
+
+# Trainer solve-time benchmark (tools/bench/bench_trainer.cpp).
+BENCH_TRAINER := $(BUILD)/bench/bin/bench_trainer
+$(BENCH_TRAINER): tools/bench/bench_trainer.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+BENCH_TARGETS += $(BENCH_TRAINER)
