@@ -20,6 +20,7 @@ include mk/trainer.mk
 include mk/bench.mk
 include mk/bench_plan.mk
 include mk/node.mk
+include mk/render.mk
 include mk/export.mk
 include mk/fuzz.mk
 include mk/cross.mk
@@ -27,7 +28,7 @@ include mk/cross.mk
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test demo bench deps venv check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps models
+.PHONY: all test demo bench deps venv check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps models update-goldens pictures
 
 all: check-deps $(ALL_TARGETS)
 

@@ -82,6 +82,11 @@ const char *hylo_planner_reason(const hylo_planner *pl)
 	return pl ? pl->reason.text : "planner is NULL";
 }
 
+const hylo_roadmap *hylo_planner_roadmap(const hylo_planner *pl)
+{
+	return pl && pl->has_map && pl->roadmap.built ? &pl->roadmap : NULL;
+}
+
 static const hylo_robot *find_robot(const hylo_planner *pl, const char *name)
 {
 	uint32_t k;

@@ -31,6 +31,7 @@ void usage(FILE *f)
 		"  --lcm-url URL          LCM provider (default: $LCM_DEFAULT_URL, else LCM's default)\n"
 		"  --channel-prefix P     prefix of the channel names (default: none)\n"
 		"  --check                validate and print a summary; publish nothing\n"
+		"  --print-camera         print the render camera as AZ,EL,DIST (hylo-render --camera)\n"
 		"  --help                 this text\n");
 }
 
@@ -112,7 +113,7 @@ void summary(const Scene &sc)
 int run(int argc, char **argv)
 {
 	std::string path, url, prefix, start, goal_state;
-	bool with_goal = false, check = false;
+	bool with_goal = false, check = false, print_camera = false;
 	int64_t request_id = 1, seed = -1;
 	for (int i = 1; i < argc; i++) {
 		std::string a = argv[i];
@@ -128,6 +129,8 @@ int run(int argc, char **argv)
 			with_goal = true;
 		} else if (a == "--check") {
 			check = true;
+		} else if (a == "--print-camera") {
+			print_camera = true;
 		} else if (a == "--start") {
 			start = value("--start");
 		} else if (a == "--goal-state") {
@@ -170,6 +173,11 @@ int run(int argc, char **argv)
 		sc.goal.seed = seed;
 	if (check) {
 		summary(sc);
+		return 0;
+	}
+	if (print_camera) {
+		std::printf("%.17g,%.17g,%.17g\n", sc.camera_azimuth_deg, sc.camera_elevation_deg,
+			    sc.camera_distance_m);
 		return 0;
 	}
 	lcm::LCM lcm(url);

@@ -323,6 +323,18 @@ Scene load(const std::string &path)
 		sc.goal = goal(c, root["goal"]);
 		sc.has_goal = true;
 	}
+	if (YAML::Node r = root["render"]) {
+		c.keys(r, "render", {"camera_azimuth_deg", "camera_elevation_deg", "camera_distance_m"});
+		if (r["camera_azimuth_deg"])
+			sc.camera_azimuth_deg = c.number(r["camera_azimuth_deg"], "camera_azimuth_deg");
+		if (r["camera_elevation_deg"]) {
+			sc.camera_elevation_deg = c.number(r["camera_elevation_deg"], "camera_elevation_deg");
+			if (std::fabs(sc.camera_elevation_deg) > 89)
+				c.fail(r["camera_elevation_deg"], "camera_elevation_deg must be in [-89, 89]");
+		}
+		if (r["camera_distance_m"])
+			sc.camera_distance_m = c.non_negative(r["camera_distance_m"], "camera_distance_m");
+	}
 	return sc;
 }
 

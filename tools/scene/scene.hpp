@@ -44,6 +44,9 @@ struct Scene {
 	std::vector<float> height_m;
 	bool has_goal = false;
 	Goal goal;
+	// render: the 3-D camera of hylo-render (azimuth, elevation [deg],
+	// distance [m]; 0 = fit the map).
+	double camera_azimuth_deg = -60, camera_elevation_deg = 28, camera_distance_m = 0;
 };
 
 // Loads and validates a scene file. Throws Error.

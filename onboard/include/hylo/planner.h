@@ -153,4 +153,8 @@ hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan
 /** The reason for the last failure ("ok" after a success). Never NULL. */
 const char *hylo_planner_reason(const hylo_planner *pl);
 
+/** The roadmap of the current map and the last goal's sampling options, or
+ * NULL when none has been built (for tools that draw it). */
+const hylo_roadmap *hylo_planner_roadmap(const hylo_planner *pl);
+
 #endif

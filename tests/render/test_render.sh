@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# hylo-render and hylo-pngdiff: determinism, one golden image per view,
+# pictures that would fail if they were wrong, and bad input.
+#   phase  di.yaml planned by the node with the committed DI models
+#   top    tests/node/synthetic.yaml planned with the synthetic robot, with a
+#          drawn (fake) trajectory for the robot outlines
+#   3d     chasm_030.yaml with a drawn drive-fly-drive plan (fake_traj chasm)
+# UPDATE_GOLDENS=1 (make update-goldens) rewrites tests/render/golden/.
+set -u
+cd "$(dirname "$0")/../.."
+. tests/tap.sh
+B=${BUILD:-build}
+RENDER=$B/bin/hylo-render
+RENDER_S=$B/test/render/hylo-render-synthetic
+DIFF=$B/bin/hylo-pngdiff
+FAKE=$B/test/render/fake_traj
+GOLD=tests/render/golden
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+
+scene_log() { "$B/bin/hylo-scene" "$@"; }
+scene_log scenes/di.yaml --goal --lcm-url "file://$T/di.in.log?mode=w"
+"$B/bin/hylo-planner" --lcm-url "file://$T/di.in.log?speed=0" \
+  --out-url "file://$T/di.plan.log?mode=w" 2>/dev/null
+scene_log tests/node/synthetic.yaml --goal --lcm-url "file://$T/syn.in.log?mode=w"
+"$B/test/node/hylo-planner-synthetic" --lcm-url "file://$T/syn.in.log?speed=0" \
+  --out-url "file://$T/syn.plan.log?mode=w" 2>/dev/null
+"$FAKE" traj "$T/syn.traj.log" "$T/syn.plan.log"
+scene_log scenes/chasm_030.yaml --lcm-url "file://$T/chasm.in.log?mode=w"
+"$FAKE" chasm "$T/chasm.plan.log" 130
+CAMERA=$("$B/bin/hylo-scene" scenes/chasm_030.yaml --print-camera)
+
+render_phase() { "$RENDER" --quiet --log "$T/di.in.log" --log "$T/di.plan.log" --edges "$@"; }
+render_top() { "$RENDER_S" --quiet --log "$T/syn.in.log" --log "$T/syn.plan.log" --log "$T/syn.traj.log" "$@"; }
+render_3d() { "$RENDER" --quiet --log "$T/chasm.in.log" --log "$T/chasm.plan.log" --camera "$CAMERA" "$@"; }
+
+# Determinism and goldens, one per view.
+for view in phase top 3d; do
+  "render_$view" --out "$T/$view.a.png" && "render_$view" --out "$T/$view.b.png"
+  if cmp -s "$T/$view.a.png" "$T/$view.b.png"; then tap_ok "$view view: same inputs, same bytes"
+  else tap_not_ok "$view view: same inputs, same bytes"; fi
+  if [ "${UPDATE_GOLDENS:-0}" = 1 ]; then mkdir -p "$GOLD" && cp "$T/$view.a.png" "$GOLD/$view.png"; fi
+  tap_check "$view view matches its golden image" \
+    "$DIFF" "$T/$view.a.png" "$GOLD/$view.png" --diff "$T/$view.diff.png"
+done
+render_phase --view phase --out "$T/phase.c.png"
+render_phase --view top --out "$T/phase.d.png"
+if cmp -s "$T/phase.a.png" "$T/phase.c.png" && ! cmp -s "$T/phase.a.png" "$T/phase.d.png"; then
+  tap_ok "the view follows the robot (di: phase) unless --view says otherwise"
+else tap_not_ok "the view follows the robot (di: phase) unless --view says otherwise"; fi
+
+# A changed plan (another sampling seed) fails the golden comparison, and
+# the comparator says where and writes a diff image.
+scene_log tests/node/synthetic.yaml --goal --seed 11 --lcm-url "file://$T/syn11.in.log?mode=w"
+"$B/test/node/hylo-planner-synthetic" --lcm-url "file://$T/syn11.in.log?speed=0" \
+  --out-url "file://$T/syn11.plan.log?mode=w" 2>/dev/null
+"$RENDER_S" --quiet --log "$T/syn11.in.log" --log "$T/syn11.plan.log" --log "$T/syn.traj.log" \
+  --out "$T/top11.png"
+out=$("$DIFF" "$T/top11.png" "$GOLD/top.png" --diff "$T/top11.diff.png"); rc=$?
+if [ $rc -eq 1 ] && [ -s "$T/top11.diff.png" ] && echo "$out" | grep -q "differ by more than"; then
+  tap_ok "a changed plan fails the golden comparison, with a diff image"
+else tap_not_ok "a changed plan fails the golden comparison, with a diff image" "exit $rc" "$out"; fi
+
+# With and without the path differ exactly along the path: the mask of
+# where the path must be is computed from the plan's waypoints by
+# png_tools.py, not by the renderer.
+W=480; H=320
+opts=(--no-annotations --no-nodes --width $W --height $H)
+"$RENDER_S" --quiet --log "$T/syn.in.log" --log "$T/syn.plan.log" "${opts[@]}" --out "$T/with.png"
+"$RENDER_S" --quiet --log "$T/syn.in.log" --log "$T/syn.plan.log" "${opts[@]}" --no-path --out "$T/without.png"
+"$B/bin/hylo-listen" --lcm-url "file://$T/syn.plan.log?speed=0" --json > "$T/syn.plans.jsonl"
+python3 tests/render/png_tools.py path-mask "$T/syn.plans.jsonl" $W $H 30 20 0 0 "$T/mask.png"
+tap_check "adding the path changes the path's pixels and nothing else" \
+  "$DIFF" "$T/with.png" "$T/without.png" --within "$T/mask.png" --grow 2 --min-changed 0.9
+# ... and the check has teeth: a path drawn one waypoint short is caught.
+python3 - "$T/syn.plans.jsonl" > "$T/short.jsonl" <<'PY'
+import json, sys
+p = [json.loads(l) for l in open(sys.argv[1])][-1]
+p["waypoints"] = p["waypoints"][:-1]
+print(json.dumps(p))
+PY
+python3 tests/render/png_tools.py path-mask "$T/short.jsonl" $W $H 30 20 0 0 "$T/short.png"
+if ! "$DIFF" "$T/with.png" "$T/without.png" --within "$T/short.png" --grow 2 >/dev/null; then
+  tap_ok "a mask missing the last path segment is reported"
+else tap_not_ok "a mask missing the last path segment is reported"; fi
+
+# An empty map (no obstacles, no water, no plan) renders the background and
+# the ground colour only.
+cat > "$T/empty.yaml" <<'EOF'
+robot: ambot
+map_id: 5
+grid: {nx: 20, ny: 10, resolution_m: 1.0}
+EOF
+scene_log "$T/empty.yaml" --lcm-url "file://$T/empty.log?mode=w"
+"$RENDER" --quiet --log "$T/empty.log" --map-only --no-annotations --width 200 --height 120 \
+  --out "$T/empty.png"
+cols=$(python3 tests/render/png_tools.py colours "$T/empty.png")
+# 180 x 90 px of map (20 x 10 m at 9 px/m), the rest background
+if [ "$(echo "$cols" | wc -l)" -eq 2 ] && echo "$cols" | grep -q " 16200$" &&
+   echo "$cols" | grep -q "^247,247,247 "; then
+  tap_ok "an empty map renders background and ground only"
+else tap_not_ok "an empty map renders background and ground only" "$cols"; fi
+
+# Bad input: a clear error, exit 1 or 2, and no PNG (an existing one untouched).
+bad() {
+  local name=$1 want=$2; shift 2
+  rm -f "$T/bad.png"
+  echo keep > "$T/old.png"
+  "$RENDER" --quiet "$@" --out "$T/bad.png" > "$T/bad.out" 2>&1; local rc=$?
+  "$RENDER" --quiet "$@" --out "$T/old.png" > /dev/null 2>&1
+  if [ $rc -ne 0 ] && [ ! -e "$T/bad.png" ] && [ "$(cat "$T/old.png")" = keep ] &&
+     grep -q "$want" "$T/bad.out" && [ -z "$(ls "$T" | grep '\.tmp\.')" ]; then
+    tap_ok "bad input: $name"
+  else tap_not_ok "bad input: $name" "exit $rc" "$(cat "$T/bad.out")"; fi
+}
+bad "missing log" "cannot open log $T/nothere.log" --log "$T/nothere.log"
+printf 'not a log at all' > "$T/junk.log"
+bad "a file that is not an LCM log" "junk.log holds no LCM events" --log "$T/junk.log"
+bad "log without a map" "no map (channel HYLO_MAP)" --log "$T/di.plan.log"
+bad "plan for another map" "is for map 1, which is not in the input" \
+  --log "$T/syn.in.log" --log "$T/di.plan.log"
+bad "no plan without --map-only" "no plan" --log "$T/di.in.log"
+bad "unknown request id" "no plan with request_id 9" --log "$T/di.in.log" --log "$T/di.plan.log" \
+  --request-id 9
+bad "zero image size" "is not a size" --log "$T/di.in.log" --log "$T/di.plan.log" --width 0
+bad "huge image size" "is not a size" --log "$T/di.in.log" --log "$T/di.plan.log" --height 100000
+bad "bad camera" "is not AZ,EL" --log "$T/di.in.log" --log "$T/di.plan.log" --camera 1,95
+mkdir -p "$T/ro" && chmod 500 "$T/ro"
+if [ "$(id -u)" -ne 0 ]; then
+  "$RENDER" --quiet --log "$T/di.in.log" --log "$T/di.plan.log" --out "$T/ro/x.png" 2> "$T/ro.err"
+  if [ $? -eq 1 ] && grep -q "cannot write" "$T/ro.err" && [ -z "$(ls "$T/ro")" ]; then
+    tap_ok "unwritable output directory: error, nothing left behind"
+  else tap_not_ok "unwritable output directory: error, nothing left behind" "$(cat "$T/ro.err")"; fi
+else
+  tap_skip "unwritable output directory" "running as root (permissions do not apply)"
+fi
+"$RENDER" --out "$T/x.png" > /dev/null 2>&1; rc=$?
+if [ $rc -eq 2 ]; then tap_ok "no input: usage error (exit 2)"; else tap_not_ok "no input: usage error (exit 2)" "exit $rc"; fi
+tap_check "--help lists --camera and --map-only" sh -c "'$RENDER' --help | grep -q -- --camera && '$RENDER' --help | grep -q -- --map-only"
+tap_finish

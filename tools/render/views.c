@@ -1,0 +1,832 @@
+#include "views.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <GL/gl.h>
+#include "hylo/types.h"
+
+#define PI 3.14159265358979323846
+#define TITLE_H 26      /* pixels of the title strip (annotations on) */
+#define LEGEND_H 30     /* pixels of the legend strip */
+#define FONT_PX 13
+#define AMBOT_LENGTH_M 0.60   /* outline drawn along the smoothed trajectory */
+#define AMBOT_WIDTH_M 0.45    /* the track width B of models.md */
+#define DRONE_ARM_M 0.35
+
+static const rgba_color BG = {0.97f, 0.97f, 0.97f, 1};
+static const rgba_color INK = {0.08f, 0.08f, 0.08f, 1};
+static const rgba_color OBSTACLE = {0.33f, 0.33f, 0.36f, 1};
+static const rgba_color GROUND = {0.87f, 0.81f, 0.66f, 1};
+static const rgba_color WATER = {0.56f, 0.75f, 0.93f, 1};
+static const rgba_color DI_NEG_BG = {0.86f, 0.91f, 0.98f, 1};
+static const rgba_color DI_POS_BG = {0.99f, 0.90f, 0.84f, 1};
+static const rgba_color START = {0.10f, 0.62f, 0.24f, 1};
+static const rgba_color GOAL = {0.82f, 0.10f, 0.12f, 1};
+static const rgba_color WHITE = {1, 1, 1, 1};
+static const rgba_color SMOOTH = {0.08f, 0.08f, 0.08f, 1};
+static const rgba_color BASELINE = {0.10f, 0.62f, 0.24f, 1};
+
+static rgba_color mode_color(int mode)
+{
+	static const rgba_color c[HYLO_MODE_COUNT] = {
+		{0.5f, 0.5f, 0.5f, 1},      /* none */
+		{0.80f, 0.38f, 0.02f, 1},   /* ground */
+		{0.04f, 0.26f, 0.72f, 1},   /* marine */
+		{0.55f, 0.12f, 0.70f, 1},   /* flight */
+		{0.04f, 0.36f, 0.80f, 1},   /* di_neg */
+		{0.85f, 0.30f, 0.05f, 1},   /* di_pos */
+	};
+	return hylo_mode_valid(mode) ? c[mode] : c[0];
+}
+
+static rgba_color with_alpha(rgba_color c, float a)
+{
+	c.a = a;
+	return c;
+}
+
+static void color(rgba_color c) { glColor4f(c.r, c.g, c.b, c.a); }
+
+/* ---- 2-D frame: world (metres, or p/v) to GL pixels (y up) ---------------- */
+
+typedef struct {
+	double wx0, wy0, wx1, wy1;   /* world rectangle shown */
+	double s, ox, oy;            /* pixel = o + s * (world - w0) */
+	int W, H;
+} frame;
+
+static void frame_fit(frame *f, int W, int H, double l, double b, double r, double t,
+                      double wx0, double wy0, double wx1, double wy1)
+{
+	double pw = W - l - r, ph = H - b - t;
+	double sx = pw / (wx1 - wx0), sy = ph / (wy1 - wy0);
+
+	f->W = W;
+	f->H = H;
+	f->wx0 = wx0;
+	f->wy0 = wy0;
+	f->wx1 = wx1;
+	f->wy1 = wy1;
+	f->s = sx < sy ? sx : sy;
+	f->ox = l + 0.5 * (pw - f->s * (wx1 - wx0));
+	f->oy = b + 0.5 * (ph - f->s * (wy1 - wy0));
+}
+
+static double fx(const frame *f, double x) { return f->ox + f->s * (x - f->wx0); }
+static double fy(const frame *f, double y) { return f->oy + f->s * (y - f->wy0); }
+
+static void pixel_projection(int W, int H)
+{
+	glViewport(0, 0, W, H);
+	glMatrixMode(GL_PROJECTION);
+	glLoadIdentity();
+	glOrtho(0, W, 0, H, -1, 1);
+	glMatrixMode(GL_MODELVIEW);
+	glLoadIdentity();
+	glDisable(GL_DEPTH_TEST);
+	glDisable(GL_LIGHTING);
+}
+
+static void disk(double x, double y, double r, rgba_color c)
+{
+	int k;
+
+	color(c);
+	glBegin(GL_TRIANGLE_FAN);
+	glVertex2d(x, y);
+	for (k = 0; k <= 24; k++)
+		glVertex2d(x + r * cos(2 * PI * k / 24), y + r * sin(2 * PI * k / 24));
+	glEnd();
+}
+
+/* A line of width w pixels as a quad with round caps (wide GL lines vary
+ * between drivers; this does not). */
+static void thick_line(double x0, double y0, double x1, double y1, double w, rgba_color c)
+{
+	double dx = x1 - x0, dy = y1 - y0, n = sqrt(dx * dx + dy * dy), h = 0.5 * w;
+
+	if (n > 1e-9) {
+		double ux = -dy / n * h, uy = dx / n * h;
+		color(c);
+		glBegin(GL_QUADS);
+		glVertex2d(x0 + ux, y0 + uy);
+		glVertex2d(x1 + ux, y1 + uy);
+		glVertex2d(x1 - ux, y1 - uy);
+		glVertex2d(x0 - ux, y0 - uy);
+		glEnd();
+	}
+	disk(x0, y0, h, c);
+	disk(x1, y1, h, c);
+}
+
+static void rect(double x0, double y0, double x1, double y1, rgba_color c)
+{
+	color(c);
+	glBegin(GL_QUADS);
+	glVertex2d(x0, y0);
+	glVertex2d(x1, y0);
+	glVertex2d(x1, y1);
+	glVertex2d(x0, y1);
+	glEnd();
+}
+
+/* ---- terrain --------------------------------------------------------------- */
+
+static void height_range(const hylo_map_t *m, float *lo, float *hi)
+{
+	int i;
+
+	*lo = *hi = m->n_cells > 0 ? m->height_m[0] : 0;
+	for (i = 1; i < m->n_cells; i++) {
+		if (m->height_m[i] < *lo)
+			*lo = m->height_m[i];
+		if (m->height_m[i] > *hi)
+			*hi = m->height_m[i];
+	}
+}
+
+static rgba_color terrain_color(const hylo_map_t *m, int cell, float lo, float hi)
+{
+	rgba_color c;
+	float t;
+
+	switch (m->terrain[cell]) {
+	case 1: c = GROUND; break;
+	case 2: c = WATER; break;
+	default: return OBSTACLE;
+	}
+	/* Higher ground is darker, so platforms read at a glance. */
+	t = hi > lo ? (m->height_m[cell] - lo) / (hi - lo) : 0;
+	c.r *= 1 - 0.30f * t;
+	c.g *= 1 - 0.30f * t;
+	c.b *= 1 - 0.30f * t;
+	return c;
+}
+
+static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plane)
+{
+	int ix, iy;
+	float lo, hi;
+	double r = m->resolution_m;
+
+	height_range(m, &lo, &hi);
+	glBegin(GL_QUADS);
+	for (iy = 0; iy < m->ny; iy++)
+		for (ix = 0; ix < m->nx; ix++) {
+			int k = iy * m->nx + ix;
+			double x0 = m->origin_x_m + ix * r, y0 = m->origin_y_m + iy * r;
+			rgba_color c;
+			if (phase_plane)
+				c = m->terrain[k] == 0 ? OBSTACLE : x0 + 0.5 * r < 0 ? DI_NEG_BG : DI_POS_BG;
+			else
+				c = terrain_color(m, k, lo, hi);
+			color(c);
+			glVertex2d(fx(f, x0), fy(f, y0));
+			glVertex2d(fx(f, x0 + r), fy(f, y0));
+			glVertex2d(fx(f, x0 + r), fy(f, y0 + r));
+			glVertex2d(fx(f, x0), fy(f, y0 + r));
+		}
+	glEnd();
+}
+
+/* ---- graph ------------------------------------------------------------------ */
+
+static void draw_edges_2d(const frame *f, const hylo_roadmap *rm)
+{
+	uint32_t i, a;
+
+	glLineWidth(1);
+	glBegin(GL_LINES);
+	for (i = 0; i < rm->n_positions; i++) {
+		const hylo_position *p = &rm->pos[i];
+		color(with_alpha(mode_color(p->mode), 0.22f));
+		for (a = p->adj_begin; a < p->adj_end; a++) {
+			const hylo_position *q = &rm->pos[rm->adjacency[a]];
+			if (rm->adjacency[a] <= i)
+				continue;
+			glVertex2d(fx(f, p->p.x), fy(f, p->p.y));
+			glVertex2d(fx(f, q->p.x), fy(f, q->p.y));
+		}
+	}
+	glEnd();
+}
+
+static void draw_nodes_2d(const frame *f, const hylo_roadmap *rm)
+{
+	uint32_t i;
+
+	for (i = 0; i < rm->n_positions; i++) {
+		const hylo_position *p = &rm->pos[i];
+		disk(fx(f, p->p.x), fy(f, p->p.y), p->kind == HYLO_POS_GUARD ? 2.2 : 1.8,
+		     with_alpha(mode_color(p->mode), 0.85f));
+	}
+}
+
+/* Mode a path segment k -> k+1 travels in (a switch has zero length). */
+static int segment_mode(const hylo_plan_t *p, int k)
+{
+	return p->mode[k] == p->mode[k + 1] ? p->mode[k + 1] : p->mode[k];
+}
+
+static int plan_drawable(const hylo_plan_t *p) { return p && p->status == 0 && p->n_waypoints > 0; }
+
+static void draw_path_2d(const frame *f, const hylo_plan_t *p, double w)
+{
+	int k;
+
+	for (k = 0; k + 1 < p->n_waypoints; k++)
+		thick_line(fx(f, p->state[k][0]), fy(f, p->state[k][1]), fx(f, p->state[k + 1][0]),
+		           fy(f, p->state[k + 1][1]), w, mode_color(segment_mode(p, k)));
+	for (k = 0; k < p->n_waypoints; k++)
+		if (p->guard[k] && (k == 0 || !p->guard[k - 1])) {
+			disk(fx(f, p->state[k][0]), fy(f, p->state[k][1]), 5.5, INK);
+			disk(fx(f, p->state[k][0]), fy(f, p->state[k][1]), 3.5, WHITE);
+		}
+	disk(fx(f, p->state[0][0]), fy(f, p->state[0][1]), 6, START);
+	disk(fx(f, p->state[p->n_waypoints - 1][0]), fy(f, p->state[p->n_waypoints - 1][1]), 6, GOAL);
+}
+
+static void draw_traj_2d(const frame *f, const hylo_traj_t *t, double w, rgba_color c)
+{
+	int k;
+
+	for (k = 0; k + 1 < t->n_samples; k++)
+		thick_line(fx(f, t->state[k][0]), fy(f, t->state[k][1]), fx(f, t->state[k + 1][0]),
+		           fy(f, t->state[k + 1][1]), w, c);
+}
+
+/* Pose at time t of a trajectory (linear between samples): x, y, heading,
+ * mode. Heading: theta of ground and marine (state 4), yaw of flight (8). */
+static void traj_pose(const hylo_traj_t *t, double time, double *x, double *y, double *z,
+                      double *yaw, int *mode)
+{
+	int k = 0;
+	double a = 0;
+	const double *s0, *s1;
+
+	while (k + 1 < t->n_samples - 1 && t->t_s[k + 1] <= time)
+		k++;
+	if (t->n_samples > 1 && t->t_s[k + 1] > t->t_s[k])
+		a = (time - t->t_s[k]) / (t->t_s[k + 1] - t->t_s[k]);
+	a = a < 0 ? 0 : a > 1 ? 1 : a;
+	s0 = t->state[k];
+	s1 = t->state[t->n_samples > 1 ? k + 1 : k];
+	*mode = t->mode[k];
+	*x = s0[0] + a * (s1[0] - s0[0]);
+	*y = s0[1] + a * (s1[1] - s0[1]);
+	*z = *mode == HYLO_MODE_FLIGHT ? s0[2] + a * (s1[2] - s0[2]) : 0;
+	if (*mode == HYLO_MODE_FLIGHT)
+		*yaw = s0[8] + a * (s1[8] - s0[8]);
+	else if (*mode == HYLO_MODE_GROUND || *mode == HYLO_MODE_MARINE)
+		*yaw = s0[4] + a * (s1[4] - s0[4]);
+	else
+		*yaw = 0;
+}
+
+static void draw_outline_2d(const frame *f, double x, double y, double yaw, int mode)
+{
+	double c = cos(yaw), s = sin(yaw);
+	int k;
+
+	if (mode == HYLO_MODE_FLIGHT) {
+		for (k = 0; k < 4; k++) {
+			double a = yaw + PI / 4 + k * PI / 2;
+			thick_line(fx(f, x), fy(f, y), fx(f, x + DRONE_ARM_M * cos(a)),
+			           fy(f, y + DRONE_ARM_M * sin(a)), 1.5, INK);
+		}
+		return;
+	}
+	{
+		const double hl = 0.5 * AMBOT_LENGTH_M, hw = 0.5 * AMBOT_WIDTH_M;
+		const double cx[4] = {hl, -hl, -hl, hl}, cy[4] = {hw, hw, -hw, -hw};
+		double px[4], py[4];
+		for (k = 0; k < 4; k++) {
+			px[k] = fx(f, x + c * cx[k] - s * cy[k]);
+			py[k] = fy(f, y + s * cx[k] + c * cy[k]);
+		}
+		for (k = 0; k < 4; k++)
+			thick_line(px[k], py[k], px[(k + 1) % 4], py[(k + 1) % 4], 1.5, INK);
+		/* the nose: which way it faces */
+		disk(fx(f, x + c * hl), fy(f, y + s * hl), 2.0, INK);
+	}
+}
+
+static void draw_poses_2d(const frame *f, const hylo_traj_t *t, int n)
+{
+	int i;
+	double t0, t1;
+
+	if (!t || t->n_samples < 2 || n < 1)
+		return;
+	t0 = t->t_s[0];
+	t1 = t->t_s[t->n_samples - 1];
+	for (i = 0; i < n; i++) {
+		double x, y, z, yaw;
+		int mode;
+		traj_pose(t, n == 1 ? t0 : t0 + (t1 - t0) * i / (n - 1), &x, &y, &z, &yaw, &mode);
+		draw_outline_2d(f, x, y, yaw, mode);
+	}
+}
+
+/* ---- 3-D ---------------------------------------------------------------------- */
+
+static void normalize3(double *v)
+{
+	double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+	if (n > 0) {
+		v[0] /= n;
+		v[1] /= n;
+		v[2] /= n;
+	}
+}
+
+static void cross3(const double *a, const double *b, double *o)
+{
+	o[0] = a[1] * b[2] - a[2] * b[1];
+	o[1] = a[2] * b[0] - a[0] * b[2];
+	o[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* Column-major perspective and look-at matrices (as gluPerspective and
+ * gluLookAt, without linking GLU). */
+static void perspective(double fovy_deg, double aspect, double zn, double zf, double *m)
+{
+	double t = 1.0 / tan(fovy_deg * PI / 360.0);
+
+	memset(m, 0, 16 * sizeof *m);
+	m[0] = t / aspect;
+	m[5] = t;
+	m[10] = (zf + zn) / (zn - zf);
+	m[11] = -1;
+	m[14] = 2 * zf * zn / (zn - zf);
+}
+
+static void look_at(const double *eye, const double *target, double *m)
+{
+	double fwd[3] = {target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]};
+	double up[3] = {0, 0, 1}, side[3], u[3];
+
+	normalize3(fwd);
+	cross3(fwd, up, side);
+	normalize3(side);
+	cross3(side, fwd, u);
+	memset(m, 0, 16 * sizeof *m);
+	m[0] = side[0]; m[4] = side[1]; m[8] = side[2];
+	m[1] = u[0];    m[5] = u[1];    m[9] = u[2];
+	m[2] = -fwd[0]; m[6] = -fwd[1]; m[10] = -fwd[2];
+	m[12] = -(side[0] * eye[0] + side[1] * eye[1] + side[2] * eye[2]);
+	m[13] = -(u[0] * eye[0] + u[1] * eye[1] + u[2] * eye[2]);
+	m[14] = fwd[0] * eye[0] + fwd[1] * eye[1] + fwd[2] * eye[2];
+	m[15] = 1;
+}
+
+static double cell_height(const hylo_map_t *m, int ix, int iy)
+{
+	if (ix < 0 || iy < 0 || ix >= m->nx || iy >= m->ny)
+		return 0;
+	return m->height_m[iy * m->nx + ix];
+}
+
+static double surface_at(const hylo_map_t *m, double x, double y)
+{
+	int ix = (int)floor((x - m->origin_x_m) / m->resolution_m);
+	int iy = (int)floor((y - m->origin_y_m) / m->resolution_m);
+	ix = ix < 0 ? 0 : ix >= m->nx ? m->nx - 1 : ix;
+	iy = iy < 0 ? 0 : iy >= m->ny ? m->ny - 1 : iy;
+	return cell_height(m, ix, iy);
+}
+
+/* A vertical wall between heights za and zb along the cell edge (x0,y0)-(x1,y1). */
+static void wall(double x0, double y0, double x1, double y1, double za, double zb, double nx,
+                 double ny)
+{
+	glNormal3d(nx, ny, 0);
+	glVertex3d(x0, y0, za);
+	glVertex3d(x1, y1, za);
+	glVertex3d(x1, y1, zb);
+	glVertex3d(x0, y0, zb);
+}
+
+static void draw_terrain_3d(const hylo_map_t *m, double base)
+{
+	int ix, iy;
+	float lo, hi;
+	double r = m->resolution_m;
+
+	height_range(m, &lo, &hi);
+	glBegin(GL_QUADS);
+	for (iy = 0; iy < m->ny; iy++)
+		for (ix = 0; ix < m->nx; ix++) {
+			double x0 = m->origin_x_m + ix * r, y0 = m->origin_y_m + iy * r;
+			double h = cell_height(m, ix, iy);
+			double hx = ix + 1 < m->nx ? cell_height(m, ix + 1, iy) : base;
+			double hy = iy + 1 < m->ny ? cell_height(m, ix, iy + 1) : base;
+			color(terrain_color(m, iy * m->nx + ix, lo, hi));
+			glNormal3d(0, 0, 1);
+			glVertex3d(x0, y0, h);
+			glVertex3d(x0 + r, y0, h);
+			glVertex3d(x0 + r, y0 + r, h);
+			glVertex3d(x0, y0 + r, h);
+			/* walls to the +x and +y neighbours, and skirts at the border */
+			if (hx != h)
+				wall(x0 + r, y0, x0 + r, y0 + r, hx, h, h > hx ? 1 : -1, 0);
+			if (hy != h)
+				wall(x0, y0 + r, x0 + r, y0 + r, hy, h, 0, h > hy ? 1 : -1);
+			if (ix == 0)
+				wall(x0, y0, x0, y0 + r, base, h, -1, 0);
+			if (iy == 0)
+				wall(x0, y0, x0 + r, y0, base, h, 0, -1);
+		}
+	glEnd();
+}
+
+static void path_point_3d(const hylo_map_t *m, const hylo_plan_t *p, int k, double *v)
+{
+	v[0] = p->state[k][0];
+	v[1] = p->state[k][1];
+	v[2] = p->mode[k] == HYLO_MODE_FLIGHT ? p->state[k][2] : surface_at(m, v[0], v[1]) + 0.15;
+}
+
+static void draw_path_3d(const hylo_map_t *m, const hylo_plan_t *p)
+{
+	int k;
+	double a[3], b[3];
+
+	glLineWidth(4);
+	glBegin(GL_LINES);
+	for (k = 0; k + 1 < p->n_waypoints; k++) {
+		path_point_3d(m, p, k, a);
+		path_point_3d(m, p, k + 1, b);
+		color(mode_color(segment_mode(p, k)));
+		glVertex3dv(a);
+		glVertex3dv(b);
+	}
+	glEnd();
+	glPointSize(9);
+	glBegin(GL_POINTS);
+	for (k = 0; k < p->n_waypoints; k++) {
+		rgba_color c = k == 0 ? START : k == p->n_waypoints - 1 ? GOAL : INK;
+		if (!(k == 0 || k == p->n_waypoints - 1 || p->guard[k]))
+			continue;
+		path_point_3d(m, p, k, a);
+		color(c);
+		glVertex3dv(a);
+	}
+	glEnd();
+}
+
+static void draw_traj_3d(const hylo_map_t *m, const hylo_traj_t *t, rgba_color c)
+{
+	int k;
+
+	glLineWidth(2);
+	color(c);
+	glBegin(GL_LINE_STRIP);
+	for (k = 0; k < t->n_samples; k++) {
+		const double *s = t->state[k];
+		glVertex3d(s[0], s[1], t->mode[k] == HYLO_MODE_FLIGHT ? s[2] : surface_at(m, s[0], s[1]) + 0.15);
+	}
+	glEnd();
+}
+
+static void draw_drones_3d(const hylo_map_t *m, const hylo_traj_t *t, int n)
+{
+	int i, k;
+	double t0, t1;
+	/* drawn larger than life on big maps, so that it stays visible */
+	double arm = fmax(2 * DRONE_ARM_M, 0.015 * m->nx * m->resolution_m);
+
+	if (!t || t->n_samples < 2 || n < 1)
+		return;
+	t0 = t->t_s[0];
+	t1 = t->t_s[t->n_samples - 1];
+	glLineWidth(2);
+	for (i = 0; i < n; i++) {
+		double x, y, z, yaw;
+		int mode;
+		traj_pose(t, n == 1 ? t0 : t0 + (t1 - t0) * i / (n - 1), &x, &y, &z, &yaw, &mode);
+		if (mode != HYLO_MODE_FLIGHT)
+			z = surface_at(m, x, y) + 0.15;
+		color(INK);
+		glBegin(GL_LINES);
+		for (k = 0; k < 4; k++) {
+			double a = yaw + PI / 4 + k * PI / 2;
+			glVertex3d(x, y, z);
+			glVertex3d(x + arm * cos(a), y + arm * sin(a), z);
+		}
+		glEnd();
+	}
+}
+
+static int render_3d(canvas *c, const input_set *in, const hylo_roadmap *rm, const view_options *o)
+{
+	const hylo_map_t *m = in->map;
+	int top = o->annotations ? TITLE_H : 0, bottom = o->annotations ? LEGEND_H : 0;
+	int ph = c->height - top - bottom;
+	double proj[16], view[16], eye[3], target[3], R, dist;
+	double w = m->nx * m->resolution_m, d = m->ny * m->resolution_m;
+	float lo, hi;
+	const float light_pos[4] = {-0.45f, -0.75f, 0.8f, 0};
+	const float ambient[4] = {0.40f, 0.40f, 0.40f, 1}, diffuse[4] = {0.55f, 0.55f, 0.55f, 1};
+	double az = o->azimuth_deg * PI / 180, el = o->elevation_deg * PI / 180;
+	double base;
+
+	if (ph < 8)
+		return -1;
+	height_range(m, &lo, &hi);
+	base = lo < 0 ? lo : 0;
+	target[0] = m->origin_x_m + 0.5 * w;
+	target[1] = m->origin_y_m + 0.5 * d;
+	target[2] = 0.5 * (base + hi);
+	R = 0.5 * sqrt(w * w + d * d + (hi - base) * (hi - base));
+	dist = o->distance_m > 0 ? o->distance_m : 0.8 * R / sin(17.5 * PI / 180);
+	eye[0] = target[0] + dist * cos(el) * cos(az);
+	eye[1] = target[1] + dist * cos(el) * sin(az);
+	eye[2] = target[2] + dist * sin(el);
+
+	glViewport(0, bottom, c->width, ph);
+	glMatrixMode(GL_PROJECTION);
+	perspective(35, (double)c->width / ph, dist * 0.05, dist * 4, proj);
+	glLoadMatrixd(proj);
+	glMatrixMode(GL_MODELVIEW);
+	look_at(eye, target, view);
+	glLoadMatrixd(view);
+	glEnable(GL_DEPTH_TEST);
+	glDepthFunc(GL_LEQUAL);
+
+	glLightfv(GL_LIGHT0, GL_POSITION, light_pos);
+	glLightfv(GL_LIGHT0, GL_AMBIENT, ambient);
+	glLightfv(GL_LIGHT0, GL_DIFFUSE, diffuse);
+	glEnable(GL_LIGHT0);
+	glEnable(GL_LIGHTING);
+	glEnable(GL_NORMALIZE);
+	glEnable(GL_COLOR_MATERIAL);
+	glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
+	glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
+	glEnable(GL_POLYGON_OFFSET_FILL);
+	glPolygonOffset(1, 1);
+	draw_terrain_3d(m, base);
+	glDisable(GL_POLYGON_OFFSET_FILL);
+	glDisable(GL_LIGHTING);
+
+	if (rm && (o->nodes || o->edges)) {
+		uint32_t i, a;
+		if (o->edges) {
+			glLineWidth(1);
+			glBegin(GL_LINES);
+			for (i = 0; i < rm->n_positions; i++) {
+				const hylo_position *p = &rm->pos[i];
+				color(with_alpha(mode_color(p->mode), 0.18f));
+				for (a = p->adj_begin; a < p->adj_end; a++) {
+					const hylo_position *q = &rm->pos[rm->adjacency[a]];
+					if (rm->adjacency[a] > i) {
+						glVertex3d(p->p.x, p->p.y, p->p.z + 0.1);
+						glVertex3d(q->p.x, q->p.y, q->p.z + 0.1);
+					}
+				}
+			}
+			glEnd();
+		}
+		if (o->nodes) {
+			glPointSize(3);
+			glBegin(GL_POINTS);
+			for (i = 0; i < rm->n_positions; i++) {
+				color(with_alpha(mode_color(rm->pos[i].mode), 0.8f));
+				glVertex3d(rm->pos[i].p.x, rm->pos[i].p.y, rm->pos[i].p.z + 0.1);
+			}
+			glEnd();
+		}
+	}
+	if (o->path && plan_drawable(in->plan))
+		draw_path_3d(m, in->plan);
+	if (in->traj) {
+		draw_traj_3d(m, in->traj, SMOOTH);
+		draw_drones_3d(m, in->traj, o->n_poses);
+	}
+	return 0;
+}
+
+/* ---- annotations (drawn on the resolved image) ---------------------------------- */
+
+typedef struct {
+	canvas *c;
+	int x, y;   /* pen: left, vertical centre of the legend strip */
+} legend_pen;
+
+static void legend_item(legend_pen *lp, rgba_color col, int line, const char *label)
+{
+	if (line)
+		canvas_fill_rect(lp->c, lp->x, lp->y - 2, 18, 4, col);
+	else
+		canvas_fill_rect(lp->c, lp->x, lp->y - 6, 14, 12, col);
+	lp->x += line ? 22 : 18;
+	lp->x += canvas_text(lp->c, lp->x, lp->y + 5, FONT_PX - 1, label, INK) + 12;
+}
+
+static const char *mode_label(int mode)
+{
+	return hylo_mode_valid(mode) ? hylo_mode_str((hylo_mode)mode) : "?";
+}
+
+static void title(canvas *c, const input_set *in)
+{
+	char t[512];
+	size_t k;
+	int i;
+	const hylo_plan_t *p = in->plan;
+
+	if (!p) {
+		snprintf(t, sizeof t, "%s map %lld", in->map->robot, (long long)in->map->map_id);
+	} else if (p->status != 0) {
+		snprintf(t, sizeof t, "%s request %lld: no path drawn (%s)", in->map->robot,
+		         (long long)p->request_id, p->reason);
+	} else {
+		snprintf(t, sizeof t, "%s request %lld   predicted E = %.4g J   ", in->map->robot,
+		         (long long)p->request_id, p->total_cost_j);
+		for (i = 0; i < p->n_modes; i++) {
+			k = strlen(t);
+			snprintf(t + k, sizeof t - k, "%s%s", i ? " > " : "", mode_label(p->mode_sequence[i]));
+		}
+		if (in->traj) {
+			k = strlen(t);
+			snprintf(t + k, sizeof t - k, "   smoothed E = %.4g J, %.3g s", in->traj->energy_j,
+			         in->traj->n_samples ? in->traj->t_s[in->traj->n_samples - 1] : 0.0);
+		}
+	}
+	canvas_text(c, 8, 18, FONT_PX, t, INK);
+}
+
+static int map_has(const hylo_map_t *m, int cls)
+{
+	int i;
+	for (i = 0; i < m->n_cells; i++)
+		if (m->terrain[i] == cls)
+			return 1;
+	return 0;
+}
+
+static void legend(canvas *c, const input_set *in, const hylo_roadmap *rm, const view_options *o,
+                   view_kind kind)
+{
+	legend_pen lp;
+	int i, seen[HYLO_MODE_COUNT] = {0};
+	char label[64];
+
+	lp.c = c;
+	lp.x = 8;
+	lp.y = c->height - LEGEND_H / 2;
+	if (kind == VIEW_PHASE) {
+		legend_item(&lp, DI_NEG_BG, 0, "p <= 0");
+		legend_item(&lp, DI_POS_BG, 0, "p >= 0");
+	} else {
+		if (map_has(in->map, 1))
+			legend_item(&lp, GROUND, 0, "ground");
+		if (map_has(in->map, 2))
+			legend_item(&lp, WATER, 0, "water");
+	}
+	if (map_has(in->map, 0))
+		legend_item(&lp, OBSTACLE, 0, "obstacle");
+	if (o->path && plan_drawable(in->plan))
+		for (i = 0; i < in->plan->n_modes; i++) {
+			int mo = in->plan->mode_sequence[i];
+			if (!hylo_mode_valid(mo) || seen[mo])
+				continue;
+			seen[mo] = 1;
+			snprintf(label, sizeof label, "path: %s", mode_label(mo));
+			legend_item(&lp, mode_color(mo), 1, label);
+		}
+	if (rm && o->nodes && kind != VIEW_PHASE)
+		for (i = 1; i < HYLO_MODE_COUNT; i++)
+			if (rm->n_per_mode[i]) {
+				snprintf(label, sizeof label, "%s nodes", mode_label(i));
+				legend_item(&lp, with_alpha(mode_color(i), 0.6f), 0, label);
+			}
+	if (in->traj)
+		legend_item(&lp, SMOOTH, 1, "smoothed");
+	if (in->baseline && kind == VIEW_PHASE)
+		legend_item(&lp, BASELINE, 1, "multi-phase baseline");
+}
+
+static void nice_length(double max, double *len)
+{
+	double e = pow(10, floor(log10(max)));
+	*len = max >= 5 * e ? 5 * e : max >= 2 * e ? 2 * e : e;
+}
+
+static void scale_bar(canvas *c, const frame *f)
+{
+	double len;
+	int px, x1, y;
+	char label[32];
+
+	nice_length((f->wx1 - f->wx0) / 5, &len);
+	px = (int)lround(len * f->s);
+	x1 = c->width - 10;
+	y = c->height - LEGEND_H / 2;
+	snprintf(label, sizeof label, "%g m", len);
+	canvas_fill_rect(c, x1 - px, y - 2, px, 4, INK);
+	canvas_fill_rect(c, x1 - px, y - 6, 2, 12, INK);
+	canvas_fill_rect(c, x1 - 2, y - 6, 2, 12, INK);
+	canvas_text(c, x1 - px - 8 - canvas_text_width(c, FONT_PX - 1, label), y + 5, FONT_PX - 1,
+	            label, INK);
+}
+
+static void phase_axes_text(canvas *c, const frame *f)
+{
+	static const double ticks[5] = {-1, -0.5, 0, 0.5, 1};
+	char label[16];
+	int i;
+
+	for (i = 0; i < 5; i++) {
+		int tw;
+		snprintf(label, sizeof label, "%g", ticks[i]);
+		tw = canvas_text_width(c, FONT_PX - 2, label);
+		if (ticks[i] >= f->wx0 && ticks[i] <= f->wx1)
+			canvas_text(c, (int)lround(fx(f, ticks[i])) - tw / 2,
+			            c->height - (int)lround(f->oy) + 16, FONT_PX - 2, label, INK);
+		if (ticks[i] >= f->wy0 && ticks[i] <= f->wy1)
+			canvas_text(c, (int)lround(f->ox) - tw - 8,
+			            c->height - (int)lround(fy(f, ticks[i])) + 4, FONT_PX - 2, label, INK);
+	}
+	canvas_text(c, (int)lround(fx(f, f->wx1)) - 8, c->height - (int)lround(f->oy) + 30, FONT_PX,
+	            "p", INK);
+	canvas_text(c, (int)lround(f->ox) - 44, c->height - (int)lround(fy(f, f->wy1)) + 4, FONT_PX,
+	            "v", INK);
+}
+
+static void phase_ticks(const frame *f)
+{
+	static const double ticks[5] = {-1, -0.5, 0, 0.5, 1};
+	int i;
+
+	for (i = 0; i < 5; i++) {
+		if (ticks[i] >= f->wx0 && ticks[i] <= f->wx1)
+			rect(fx(f, ticks[i]) - 0.75, f->oy - 5, fx(f, ticks[i]) + 0.75, f->oy, INK);
+		if (ticks[i] >= f->wy0 && ticks[i] <= f->wy1)
+			rect(f->ox - 5, fy(f, ticks[i]) - 0.75, f->ox, fy(f, ticks[i]) + 0.75, INK);
+	}
+}
+
+/* ---- entry point ---------------------------------------------------------------- */
+
+int view_render(canvas *c, view_kind kind, const input_set *in, const hylo_roadmap *rm,
+                const view_options *o, char *err, size_t errlen)
+{
+	const hylo_map_t *m = in->map;
+	frame f;
+	int ann = o->annotations;
+
+	memset(&f, 0, sizeof f);
+	if (kind == VIEW_3D) {
+		if (render_3d(c, in, rm, o) != 0) {
+			snprintf(err, errlen, "image of %dx%d pixels is too small for the 3-D view",
+			         c->width, c->height);
+			return -1;
+		}
+	} else {
+		int phase = kind == VIEW_PHASE;
+		double l = ann && phase ? 48 : 10, b = (ann ? LEGEND_H : 0) + (ann && phase ? 36 : 0) + 10;
+		double t = (ann ? TITLE_H : 0) + 10;
+		frame_fit(&f, c->width, c->height, l, b, 10, t, m->origin_x_m, m->origin_y_m,
+		          m->origin_x_m + m->nx * m->resolution_m, m->origin_y_m + m->ny * m->resolution_m);
+		if (f.s <= 0) {
+			snprintf(err, errlen, "image of %dx%d pixels is too small for the map", c->width,
+			         c->height);
+			return -1;
+		}
+		pixel_projection(c->width, c->height);
+		draw_terrain_top(&f, m, phase);
+		if (phase) {
+			thick_line(fx(&f, 0), f.oy, fx(&f, 0), fy(&f, f.wy1), 2, INK);   /* the guard p = 0 */
+			if (ann)
+				phase_ticks(&f);
+		}
+		if (rm && o->edges)
+			draw_edges_2d(&f, rm);
+		if (rm && o->nodes)
+			draw_nodes_2d(&f, rm);
+		if (phase && in->baseline)
+			draw_traj_2d(&f, in->baseline, 2.5, BASELINE);
+		if (o->path && plan_drawable(in->plan))
+			draw_path_2d(&f, in->plan, phase ? 3.5 : 4.0);
+		if (in->traj) {
+			draw_traj_2d(&f, in->traj, 1.5, SMOOTH);
+			if (!phase)
+				draw_poses_2d(&f, in->traj, o->n_poses);
+		}
+	}
+	if (canvas_finish(c, err, errlen) != 0)
+		return -1;
+	if (ann) {
+		canvas_fill_rect(c, 0, 0, c->width, TITLE_H, BG);
+		canvas_fill_rect(c, 0, c->height - LEGEND_H, c->width, LEGEND_H, BG);
+		title(c, in);
+		legend(c, in, rm, o, kind);
+		if (kind == VIEW_TOP)
+			scale_bar(c, &f);
+		if (kind == VIEW_PHASE)
+			phase_axes_text(c, &f);
+	}
+	return 0;
+}
