@@ -3,7 +3,7 @@
 #   build/bin/trainer
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/sha256.cpp \
-	trainer/pipeline.cpp
+	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread
@@ -29,9 +29,13 @@ TRAINER_TEST := $(BUILD)/test/trainer/test_collocation
 $(TRAINER_TEST): tests/trainer/test_collocation.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+MULTIPHASE_TEST := $(BUILD)/test/trainer/test_multiphase
+$(MULTIPHASE_TEST): tests/trainer/test_multiphase.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
-ALL_TARGETS += $(TRAINER_TEST)
-TESTS += $(TRAINER_TEST) tests/trainer/test_trainer_cli.sh
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST)
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) tests/trainer/test_trainer_cli.sh
 
 # make models: regenerates every committed model (datasets resume; see the
 # README for the time it takes). MODEL_SAMPLES= overrides the sample counts.
@@ -51,3 +55,15 @@ $(BENCH_TRAINER): tools/bench/bench_trainer.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 BENCH_TARGETS += $(BENCH_TRAINER)
+
+# hylo-smooth: the final path smoothing node (trainer/smooth_main.cpp).
+HYLO_SMOOTH := $(BUILD)/bin/hylo-smooth
+$(BUILD)/obj/trainer/smooth_main.o: trainer/smooth_main.cpp $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) -isystem $(LCM_GEN_DIR)/cpp -c $< -o $@
+$(HYLO_SMOOTH): $(BUILD)/obj/trainer/smooth_main.o $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $^ $(TRAINER_LIBS) $(LCM_LIBS) -o $@
+ALL_TARGETS += $(HYLO_SMOOTH)
+tests/trainer/test_smooth.sh: $(HYLO_SMOOTH) $(TRAINER)
+TESTS += tests/trainer/test_smooth.sh

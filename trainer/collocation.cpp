@@ -5,103 +5,81 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <stdexcept>
-
-#include <Eigen/Dense>
-#include <unsupported/Eigen/AutoDiff>
 
 #include <IpIpoptApplication.hpp>
 #include <IpSolveStatistics.hpp>
 #include <IpTNLP.hpp>
 
+#include "trainer/hs_phase.hpp"
 #include "trainer/models.hpp"
 #include "trainer/replay.hpp"
 
 namespace hylo::trainer {
 namespace {
 
-using Ipopt::Index;
-using Ipopt::Number;
+using internal::Index;
+using internal::Number;
+using internal::PhaseBlock;
+using internal::PhaseSetup;
 
-// One mode's transcription. M provides NX, NU, NP, eval<S>() and bounds().
-template <class M>
-class HsNlp : public Ipopt::TNLP {
+// A linear row resolved to variable indices of the stacked problem.
+struct Row {
+	std::vector<std::pair<int, double>> terms;
+	double lo = 0, hi = 0;
+};
+
+// The Ipopt problem: phases stacked (variables and constraints in phase
+// order), then the linear rows joining them. Held by SmartPtr, one per solve.
+class CollocationNlp : public Ipopt::TNLP {
 public:
-	static constexpr int NX = M::NX, NU = M::NU, NP = M::NP, NZ = NX + NU;
-	static constexpr int NPO = NP > 0 ? NP : 1;   // array size for path outputs
-	using AD1 = Eigen::AutoDiffScalar<Eigen::Matrix<double, NZ, 1>>;
-	using AD2 = Eigen::AutoDiffScalar<Eigen::Matrix<AD1, NZ, 1>>;
-
-	HsNlp(const M &model, int segments, const std::array<double, NX> &x0,
-	      const std::array<double, NX> &x1, double T_guess, double T_fixed)
-		: m_(model), N_(segments), x0_(x0), x1_(x1), T_guess_(T_guess), T_fixed_(T_fixed),
-		  b_(model.bounds())
+	CollocationNlp(std::vector<std::unique_ptr<PhaseBlock>> phases, std::vector<Row> rows)
+		: ph_(std::move(phases)), rows_(std::move(rows))
 	{
-		npts_ = 2 * N_ + 1;
-		nvar_ = npts_ * NZ + 1;
-		ncon_ = 2 * N_ * NX + npts_ * NP + N_ * NU;
-		f_.resize(static_cast<size_t>(npts_) * NX);
-		L_.resize(static_cast<size_t>(npts_));
-		path_.resize(static_cast<size_t>(npts_) * NPO);
-		jf_.resize(static_cast<size_t>(npts_) * NX * NZ);
-		jl_.resize(static_cast<size_t>(npts_) * NZ);
-		jp_.resize(static_cast<size_t>(npts_) * NPO * NZ);
+		for (const auto &p : ph_) {
+			vo_.push_back(nvar_);
+			co_.push_back(ncon_);
+			nvar_ += p->nvar();
+			ncon_ += p->ncon();
+		}
 	}
 
-	// Point p: knots 0..N are points 0..N, midpoint k is point N+1+k.
-	int knot(int i) const { return i; }
-	int mid(int k) const { return N_ + 1 + k; }
-	int zi(int p) const { return p * NZ; }
-	int Ti() const { return npts_ * NZ; }
+	int var_offset(size_t phase) const { return vo_[phase]; }
+	const PhaseBlock &phase(size_t k) const { return *ph_[k]; }
+	size_t n_phases() const { return ph_.size(); }
+	// Start from z (a solution of the same size) instead of the guess.
+	void warm_start(const std::vector<double> &z) { warm_ = z; }
+	const std::vector<double> &solution() const { return z_; }
 
-	bool get_nlp_info(Index &n, Index &m, Index &nnz_jac, Index &nnz_h,
-			  IndexStyleEnum &style) override
+	bool get_nlp_info(Index &n, Index &m, Index &nnz_jac, Index &nnz_h, IndexStyleEnum &style) override
 	{
 		n = nvar_;
-		m = ncon_;
-		// C1: NX x (2 NZ + NX + 1), C2: NX x (3 NZ + 1), path: NP x NZ per point.
-		nnz_jac = N_ * NX * (2 * NZ + NX + 1) + N_ * NX * (3 * NZ + 1) + npts_ * NP * NZ +
-			  3 * N_ * NU;
-		nnz_h = npts_ * (NZ * (NZ + 1) / 2 + NZ) + 1;
+		m = ncon_ + static_cast<int>(rows_.size());
+		nnz_jac = 0;
+		nnz_h = 0;
+		for (const auto &p : ph_) {
+			nnz_jac += p->nnz_jac();
+			nnz_h += p->nnz_h();
+		}
+		for (const Row &r : rows_)
+			nnz_jac += static_cast<int>(r.terms.size());
 		style = TNLP::C_STYLE;
 		return true;
 	}
 
 	bool get_bounds_info(Index, Number *xl, Number *xu, Index, Number *gl, Number *gu) override
 	{
-		for (int p = 0; p < npts_; p++) {
-			for (int k = 0; k < NX; k++) {
-				xl[zi(p) + k] = b_.x_lo[static_cast<size_t>(k)];
-				xu[zi(p) + k] = b_.x_hi[static_cast<size_t>(k)];
-			}
-			for (int k = 0; k < NU; k++) {
-				xl[zi(p) + NX + k] = b_.u_lo[static_cast<size_t>(k)];
-				xu[zi(p) + NX + k] = b_.u_hi[static_cast<size_t>(k)];
-			}
+		for (size_t k = 0; k < ph_.size(); k++)
+			ph_[k]->bounds(xl + vo_[k], xu + vo_[k], gl + co_[k], gu + co_[k]);
+		for (size_t i = 0; i < rows_.size(); i++) {
+			gl[ncon_ + static_cast<int>(i)] = rows_[i].lo;
+			gu[ncon_ + static_cast<int>(i)] = rows_[i].hi;
 		}
-		for (int k = 0; k < NX; k++) {
-			xl[zi(knot(0)) + k] = xu[zi(knot(0)) + k] = x0_[static_cast<size_t>(k)];
-			xl[zi(knot(N_)) + k] = xu[zi(knot(N_)) + k] = x1_[static_cast<size_t>(k)];
-		}
-		xl[Ti()] = T_fixed_ > 0 ? T_fixed_ : b_.T_min;
-		xu[Ti()] = T_fixed_ > 0 ? T_fixed_ : b_.T_max;
-		for (int r = 0; r < 2 * N_ * NX; r++)
-			gl[r] = gu[r] = 0;
-		for (int p = 0; p < npts_; p++)
-			for (int j = 0; j < NP; j++) {
-				gl[2 * N_ * NX + p * NP + j] = b_.path_lo[static_cast<size_t>(j)];
-				gu[2 * N_ * NX + p * NP + j] = b_.path_hi[static_cast<size_t>(j)];
-			}
-		for (int r = c3(0); r < ncon_; r++)
-			gl[r] = gu[r] = 0;
 		return true;
 	}
-
-	// Start from z (a solution of the same size) instead of the straight-line guess.
-	void warm_start(const std::vector<double> &z) { warm_ = z; }
-	const std::vector<double> &solution() const { return z_; }
 
 	bool get_starting_point(Index n, bool, Number *z, bool, Number *, Number *, Index, bool,
 				Number *) override
@@ -110,352 +88,120 @@ public:
 			std::copy(warm_.begin(), warm_.end(), z);
 			return true;
 		}
-		auto ug = m_.input_guess();
-		for (int p = 0; p < npts_; p++) {
-			double s = p <= N_ ? static_cast<double>(p) / N_
-					   : (static_cast<double>(p - N_ - 1) + 0.5) / N_;
-			for (int k = 0; k < NX; k++) {
-				double a = x0_[static_cast<size_t>(k)], b = x1_[static_cast<size_t>(k)];
-				z[zi(p) + k] = clamp(a + s * (b - a), b_.x_lo[static_cast<size_t>(k)],
-						     b_.x_hi[static_cast<size_t>(k)]);
-			}
-			for (int k = 0; k < NU; k++)
-				z[zi(p) + NX + k] = ug[static_cast<size_t>(k)];
-		}
-		z[Ti()] = T_fixed_ > 0 ? T_fixed_ : T_guess_;
+		for (size_t k = 0; k < ph_.size(); k++)
+			ph_[k]->start(z + vo_[k]);
 		return true;
 	}
 
-	// Variables and constraints in units of each state's typical magnitude
-	// (rotor and paddle speeds are hundreds of rad/s, positions metres).
-	bool get_scaling_parameters(Number &obj_scaling, bool &use_x_scaling, Index n, Number *x_scaling,
-				    bool &use_g_scaling, Index m, Number *g_scaling) override
+	bool get_scaling_parameters(Number &obj_scaling, bool &use_x_scaling, Index, Number *x_scaling,
+				    bool &use_g_scaling, Index, Number *g_scaling) override
 	{
-		auto sc = m_.scale();
-		obj_scaling = 1.0 / std::max(1.0, T_guess_ * 10.0);
+		double T = 0;
+		for (const auto &p : ph_)
+			T += p->T_guess();
+		obj_scaling = 1.0 / std::max(1.0, T * 10.0);
 		use_x_scaling = true;
 		use_g_scaling = true;
-		for (int p = 0; p < npts_; p++) {
-			for (int k = 0; k < NX; k++)
-				x_scaling[zi(p) + k] = 1.0 / sc[static_cast<size_t>(k)];
-			for (int k = 0; k < NU; k++)
-				x_scaling[zi(p) + NX + k] = 1.0;
-		}
-		x_scaling[n - 1] = 1.0 / std::max(1.0, T_guess_);
-		for (int r = 0; r < m; r++)
-			g_scaling[r] = 1.0;
-		for (int k = 0; k < N_; k++)
-			for (int r = 0; r < NX; r++) {
-				g_scaling[c1(k) + r] = 1.0 / sc[static_cast<size_t>(r)];
-				g_scaling[c2(k) + r] = 1.0 / sc[static_cast<size_t>(r)];
-			}
+		for (size_t k = 0; k < ph_.size(); k++)
+			ph_[k]->scaling(x_scaling + vo_[k], g_scaling + co_[k]);
+		for (size_t i = 0; i < rows_.size(); i++)
+			g_scaling[ncon_ + static_cast<int>(i)] = 1.0;
 		return true;
 	}
 
 	bool eval_f(Index, const Number *z, bool new_x, Number &obj) override
 	{
-		update(z, new_x);
-		double sum = 0;
-		for (int p = 0; p < npts_; p++)
-			sum += weight(p) * L_[static_cast<size_t>(p)];
-		obj = z[Ti()] / (6.0 * N_) * sum;
+		obj = 0;
+		for (size_t k = 0; k < ph_.size(); k++)
+			obj += ph_[k]->objective(z + vo_[k], new_x);
 		return true;
 	}
 
-	bool eval_grad_f(Index n, const Number *z, bool new_x, Number *g) override
+	bool eval_grad_f(Index, const Number *z, bool new_x, Number *g) override
 	{
-		update(z, new_x);
-		std::fill(g, g + n, 0.0);
-		double h6 = z[Ti()] / (6.0 * N_), sum = 0;
-		for (int p = 0; p < npts_; p++) {
-			for (int j = 0; j < NZ; j++)
-				g[zi(p) + j] = h6 * weight(p) * jl_[static_cast<size_t>(p * NZ + j)];
-			sum += weight(p) * L_[static_cast<size_t>(p)];
-		}
-		g[Ti()] = sum / (6.0 * N_);
+		for (size_t k = 0; k < ph_.size(); k++)
+			ph_[k]->gradient(z + vo_[k], new_x, g + vo_[k]);
 		return true;
 	}
 
 	bool eval_g(Index, const Number *z, bool new_x, Index, Number *g) override
 	{
-		update(z, new_x);
-		double T = z[Ti()], h8 = T / (8.0 * N_), h6 = T / (6.0 * N_);
-		for (int k = 0; k < N_; k++) {
-			int a = knot(k), b = knot(k + 1), c = mid(k);
-			for (int r = 0; r < NX; r++) {
-				g[c1(k) + r] = z[zi(c) + r] - 0.5 * (z[zi(a) + r] + z[zi(b) + r]) -
-					       h8 * (F(a, r) - F(b, r));
-				g[c2(k) + r] = z[zi(b) + r] - z[zi(a) + r] -
-					       h6 * (F(a, r) + 4 * F(c, r) + F(b, r));
-			}
+		for (size_t k = 0; k < ph_.size(); k++)
+			ph_[k]->constraints(z + vo_[k], new_x, g + co_[k]);
+		for (size_t i = 0; i < rows_.size(); i++) {
+			double s = 0;
+			for (const auto &t : rows_[i].terms)
+				s += t.second * z[t.first];
+			g[ncon_ + static_cast<int>(i)] = s;
 		}
-		for (int p = 0; p < npts_; p++)
-			for (int j = 0; j < NP; j++)
-				g[2 * N_ * NX + p * NP + j] = path_[static_cast<size_t>(p * NPO + j)];
-		for (int k = 0; k < N_; k++)
-			for (int j = 0; j < NU; j++)
-				g[c3(k) + j] = z[zi(mid(k)) + NX + j] -
-					       0.5 * (z[zi(knot(k)) + NX + j] + z[zi(knot(k + 1)) + NX + j]);
 		return true;
 	}
 
-	bool eval_jac_g(Index, const Number *z, bool new_x, Index, Index, Index *iRow,
-			Index *jCol, Number *v) override
+	bool eval_jac_g(Index, const Number *z, bool new_x, Index, Index, Index *iRow, Index *jCol,
+			Number *v) override
 	{
 		int e = 0;
-		if (!v) {
-			for (int k = 0; k < N_; k++) {
-				int a = knot(k), b = knot(k + 1), c = mid(k);
-				for (int r = 0; r < NX; r++) {
-					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c1(k) + r, zi(a) + j);
-					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c1(k) + r, zi(b) + j);
-					for (int j = 0; j < NX; j++) put(iRow, jCol, e, c1(k) + r, zi(c) + j);
-					put(iRow, jCol, e, c1(k) + r, Ti());
-				}
-				for (int r = 0; r < NX; r++) {
-					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c2(k) + r, zi(a) + j);
-					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c2(k) + r, zi(b) + j);
-					for (int j = 0; j < NZ; j++) put(iRow, jCol, e, c2(k) + r, zi(c) + j);
-					put(iRow, jCol, e, c2(k) + r, Ti());
-				}
-			}
-			for (int p = 0; p < npts_; p++)
-				for (int r = 0; r < NP; r++)
-					for (int j = 0; j < NZ; j++)
-						put(iRow, jCol, e, 2 * N_ * NX + p * NP + r, zi(p) + j);
-			for (int k = 0; k < N_; k++)
-				for (int j = 0; j < NU; j++) {
-					put(iRow, jCol, e, c3(k) + j, zi(mid(k)) + NX + j);
-					put(iRow, jCol, e, c3(k) + j, zi(knot(k)) + NX + j);
-					put(iRow, jCol, e, c3(k) + j, zi(knot(k + 1)) + NX + j);
-				}
-			return true;
+		for (size_t k = 0; k < ph_.size(); k++) {
+			if (v)
+				ph_[k]->jac_values(z + vo_[k], new_x, v + e);
+			else
+				ph_[k]->jac_structure(iRow + e, jCol + e, vo_[k], co_[k]);
+			e += ph_[k]->nnz_jac();
 		}
-		update(z, new_x);
-		double T = z[Ti()], h8 = T / (8.0 * N_), h6 = T / (6.0 * N_);
-		for (int k = 0; k < N_; k++) {
-			int a = knot(k), b = knot(k + 1), c = mid(k);
-			for (int r = 0; r < NX; r++) {
-				for (int j = 0; j < NZ; j++)
-					v[e++] = -(j == r ? 0.5 : 0.0) - h8 * JF(a, r, j);
-				for (int j = 0; j < NZ; j++)
-					v[e++] = -(j == r ? 0.5 : 0.0) + h8 * JF(b, r, j);
-				for (int j = 0; j < NX; j++)
-					v[e++] = j == r ? 1.0 : 0.0;
-				v[e++] = -(F(a, r) - F(b, r)) / (8.0 * N_);
-			}
-			for (int r = 0; r < NX; r++) {
-				for (int j = 0; j < NZ; j++)
-					v[e++] = -(j == r ? 1.0 : 0.0) - h6 * JF(a, r, j);
-				for (int j = 0; j < NZ; j++)
-					v[e++] = (j == r ? 1.0 : 0.0) - h6 * JF(b, r, j);
-				for (int j = 0; j < NZ; j++)
-					v[e++] = -4 * h6 * JF(c, r, j);
-				v[e++] = -(F(a, r) + 4 * F(c, r) + F(b, r)) / (6.0 * N_);
-			}
-		}
-		for (int p = 0; p < npts_; p++)
-			for (int r = 0; r < NP; r++)
-				for (int j = 0; j < NZ; j++)
-					v[e++] = jp_[static_cast<size_t>((p * NPO + r) * NZ + j)];
-		for (int k = 0; k < N_; k++)
-			for (int j = 0; j < NU; j++) {
-				v[e++] = 1.0;
-				v[e++] = -0.5;
-				v[e++] = -0.5;
+		for (size_t i = 0; i < rows_.size(); i++)
+			for (const auto &t : rows_[i].terms) {
+				if (v) {
+					v[e] = t.second;
+				} else {
+					iRow[e] = ncon_ + static_cast<int>(i);
+					jCol[e] = t.first;
+				}
+				e++;
 			}
 		return true;
 	}
 
-	bool eval_h(Index, const Number *z, bool, Number sigma, Index, const Number *lambda, bool,
-		    Index, Index *iRow, Index *jCol, Number *v) override
+	// The rows are linear: only the phases contribute to the Hessian.
+	bool eval_h(Index, const Number *z, bool, Number sigma, Index, const Number *lambda, bool, Index,
+		    Index *iRow, Index *jCol, Number *v) override
 	{
 		int e = 0;
-		if (!v) {
-			for (int p = 0; p < npts_; p++) {
-				for (int i = 0; i < NZ; i++)
-					for (int j = 0; j <= i; j++)
-						put(iRow, jCol, e, zi(p) + i, zi(p) + j);
-				for (int j = 0; j < NZ; j++)
-					put(iRow, jCol, e, Ti(), zi(p) + j);
-			}
-			put(iRow, jCol, e, Ti(), Ti());
-			return true;
+		for (size_t k = 0; k < ph_.size(); k++) {
+			if (v)
+				ph_[k]->hess_values(z + vo_[k], sigma, lambda + co_[k], v + e);
+			else
+				ph_[k]->hess_structure(iRow + e, jCol + e, vo_[k]);
+			e += ph_[k]->nnz_h();
 		}
-		double T = z[Ti()];
-		for (int p = 0; p < npts_; p++) {
-			// The point's share of the Lagrangian: T * (Lambda . f + beta L) + mu . path.
-			double w[NX + 1 + NPO] = {};
-			for (int r = 0; r < NX; r++)
-				w[r] = dyn_weight(p, r, lambda);
-			w[NX] = sigma * weight(p) / (6.0 * N_);
-			double grad[NZ], hess[NZ * NZ];
-			hessian(z + zi(p), w, false, grad, hess);
-			double hp[NZ * NZ] = {};
-			if (NP > 0) {
-				double wp[NX + 1 + NPO] = {};
-				for (int r = 0; r < NP; r++)
-					wp[NX + 1 + r] = lambda[2 * N_ * NX + p * NP + r];
-				double gp[NZ];
-				hessian(z + zi(p), wp, true, gp, hp);
-			}
-			for (int i = 0; i < NZ; i++)
-				for (int j = 0; j <= i; j++)
-					v[e++] = T * hess[i * NZ + j] + hp[i * NZ + j];
-			for (int j = 0; j < NZ; j++)
-				v[e++] = grad[j];
-		}
-		v[e++] = 0;
 		return true;
 	}
 
 	void finalize_solution(Ipopt::SolverReturn, Index n, const Number *z, const Number *,
-			       const Number *, Index, const Number *, const Number *, Number obj,
+			       const Number *, Index, const Number *, const Number *, Number,
 			       const Ipopt::IpoptData *, Ipopt::IpoptCalculatedQuantities *) override
 	{
 		z_.assign(z, z + n);
-		obj_ = obj;
 	}
 
-	// Variables of the 2N-segment mesh from those of the N-segment one: the old
-	// knots and midpoints, in time order, become the new knots; new midpoints
-	// are the means of their knots.
-	static std::vector<double> refine(const std::vector<double> &z, int N)
+	// Phase k of the solution.
+	void fill(size_t k, Solution &s) { ph_[k]->fill(z_.data() + vo_[k], s); }
+	// The solution on meshes of twice the segments, phase by phase.
+	std::vector<double> refined() const
 	{
-		int M2 = 2 * N, npts2 = 2 * M2 + 1;
-		std::vector<double> out(static_cast<size_t>(npts2) * NZ + 1);
-		auto old_point = [&](int i) { return i % 2 == 0 ? i / 2 : N + 1 + i / 2; };
-		for (int i = 0; i <= M2; i++)
-			for (int j = 0; j < NZ; j++)
-				out[static_cast<size_t>(i * NZ + j)] = z[static_cast<size_t>(old_point(i) * NZ + j)];
-		for (int k = 0; k < M2; k++)
-			for (int j = 0; j < NZ; j++)
-				out[static_cast<size_t>((M2 + 1 + k) * NZ + j)] =
-					0.5 * (out[static_cast<size_t>(k * NZ + j)] + out[static_cast<size_t>((k + 1) * NZ + j)]);
-		out.back() = z.back();
+		std::vector<double> out;
+		for (size_t k = 0; k < ph_.size(); k++) {
+			std::vector<double> r = ph_[k]->refine(z_.data() + vo_[k]);
+			out.insert(out.end(), r.begin(), r.end());
+		}
 		return out;
 	}
 
-	// The solution as a time-ordered trajectory.
-	void fill(Solution &s) const
-	{
-		s.T = z_[static_cast<size_t>(Ti())];
-		s.cost = obj_;
-		s.traj.nx = NX;
-		s.traj.nu = NU;
-		s.traj.t.clear();
-		s.traj.x.clear();
-		s.traj.u.clear();
-		for (int i = 0; i <= 2 * N_; i++) {
-			int p = i % 2 == 0 ? knot(i / 2) : mid(i / 2);
-			s.traj.t.push_back(s.T * i / (2.0 * N_));
-			for (int k = 0; k < NX; k++)
-				s.traj.x.push_back(z_[static_cast<size_t>(zi(p) + k)]);
-			for (int k = 0; k < NU; k++)
-				s.traj.u.push_back(z_[static_cast<size_t>(zi(p) + NX + k)]);
-		}
-	}
-
 private:
-	static double clamp(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
-	static void put(Index *iRow, Index *jCol, int &e, int r, int c)
-	{
-		iRow[e] = r;
-		jCol[e] = c;
-		e++;
-	}
-	int c1(int k) const { return k * 2 * NX; }
-	int c2(int k) const { return k * 2 * NX + NX; }
-	// Piecewise-linear control: the midpoint input is the mean of its knots'
-	// (the optimizer cannot exploit Simpson's rule with chattering inputs).
-	int c3(int k) const { return 2 * N_ * NX + npts_ * NP + k * NU; }
-	double F(int p, int r) const { return f_[static_cast<size_t>(p * NX + r)]; }
-	double JF(int p, int r, int j) const { return jf_[static_cast<size_t>((p * NX + r) * NZ + j)]; }
-	// Simpson weight of point p in the cost.
-	double weight(int p) const
-	{
-		if (p > N_)
-			return 4;
-		return (p == 0 || p == N_) ? 1 : 2;
-	}
-
-	// Coefficient (per T) of f_p's row r in the constraints, times the multipliers.
-	double dyn_weight(int p, int r, const Number *lambda) const
-	{
-		double s = 0, a8 = 1.0 / (8.0 * N_), a6 = 1.0 / (6.0 * N_);
-		if (p > N_) {
-			int k = p - N_ - 1;
-			return -4 * a6 * lambda[c2(k) + r];
-		}
-		if (p < N_)   // as the segment's left knot
-			s += -a8 * lambda[c1(p) + r] - a6 * lambda[c2(p) + r];
-		if (p > 0)    // as the previous segment's right knot
-			s += a8 * lambda[c1(p - 1) + r] - a6 * lambda[c2(p - 1) + r];
-		return s;
-	}
-
-	// Values and first derivatives at every point, once per new iterate.
-	void update(const Number *z, bool new_x)
-	{
-		if (!new_x && have_)
-			return;
-		have_ = true;
-		for (int p = 0; p < npts_; p++) {
-			AD1 in[NZ], out[NX], L, path[NPO];
-			for (int j = 0; j < NZ; j++)
-				in[j] = AD1(z[zi(p) + j], NZ, j);
-			m_.template eval<AD1>(in, in + NX, out, L, path);
-			for (int r = 0; r < NX; r++) {
-				f_[static_cast<size_t>(p * NX + r)] = out[r].value();
-				for (int j = 0; j < NZ; j++)
-					jf_[static_cast<size_t>((p * NX + r) * NZ + j)] = out[r].derivatives()(j);
-			}
-			L_[static_cast<size_t>(p)] = L.value();
-			for (int j = 0; j < NZ; j++)
-				jl_[static_cast<size_t>(p * NZ + j)] = L.derivatives()(j);
-			for (int r = 0; r < NP; r++) {
-				path_[static_cast<size_t>(p * NPO + r)] = path[r].value();
-				for (int j = 0; j < NZ; j++)
-					jp_[static_cast<size_t>((p * NPO + r) * NZ + j)] = path[r].derivatives()(j);
-			}
-		}
-	}
-
-	// Gradient and Hessian of w . (f, L, path) at point variables zp (second-order AutoDiff).
-	void hessian(const Number *zp, const double *w, bool path_only, double *grad, double *hess) const
-	{
-		AD2 in[NZ], out[NX], L, path[NPO];
-		for (int j = 0; j < NZ; j++) {
-			in[j].value() = AD1(zp[j], NZ, j);
-			in[j].derivatives() = Eigen::Matrix<AD1, NZ, 1>::Constant(AD1(0.0, Eigen::Matrix<double, NZ, 1>::Zero()));
-			in[j].derivatives()(j) = AD1(1.0, Eigen::Matrix<double, NZ, 1>::Zero());
-		}
-		m_.template eval<AD2>(in, in + NX, out, L, path);
-		AD2 s = AD2(0.0);
-		if (!path_only) {
-			for (int r = 0; r < NX; r++)
-				s = s + w[r] * out[r];
-			s = s + w[NX] * L;
-		}
-		for (int r = 0; r < NP; r++)
-			s = s + w[NX + 1 + r] * path[r];
-		for (int i = 0; i < NZ; i++) {
-			const AD1 &d = s.derivatives().size() ? s.derivatives()(i) : AD1(0.0);
-			grad[i] = d.value();
-			for (int j = 0; j < NZ; j++)
-				hess[i * NZ + j] = d.derivatives().size() ? d.derivatives()(j) : 0.0;
-		}
-	}
-
-	const M &m_;
-	int N_, npts_, nvar_, ncon_;
-	std::array<double, NX> x0_, x1_;
-	double T_guess_, T_fixed_;
-	Bounds b_;
-	bool have_ = false;
-	std::vector<double> f_, L_, path_, jf_, jl_, jp_;
+	std::vector<std::unique_ptr<PhaseBlock>> ph_;
+	std::vector<Row> rows_;
+	std::vector<int> vo_, co_;
+	int nvar_ = 0, ncon_ = 0;
 	std::vector<double> z_, warm_;
-	double obj_ = 0;
 };
 
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm = false)
@@ -535,59 +281,129 @@ const char *status_text(Ipopt::ApplicationReturnStatus st)
 	}
 }
 
+// What the solver needs of a mode outside the model templates.
+struct ModeInfo {
+	int nx = 0, nu = 0;
+	bool smoothed = false;
+	Bounds bounds;
+	std::function<std::unique_ptr<PhaseBlock>(double relax, const PhaseSetup &)> make;
+	std::function<std::vector<double>(const double *xs)> full_state;
+	std::function<double(const double *a, const double *b)> distance;   // between full states
+	double typical_speed = 1;
+};
+
 template <class M>
-Solution solve_model(const std::string &mode, const RobotParams &robot, const M &model,
-		     const double *x1s, const double *x2s, const SolveOptions &opt)
+ModeInfo info_of(const M &model)
+{
+	ModeInfo i;
+	i.nx = M::NX;
+	i.nu = M::NU;
+	i.smoothed = M::kSmoothed;
+	i.bounds = model.bounds();
+	i.make = [model](double relax, const PhaseSetup &s) -> std::unique_ptr<PhaseBlock> {
+		M m = model;
+		m.relax = relax;
+		return std::make_unique<internal::HsPhase<M>>(m, s);
+	};
+	i.full_state = [model](const double *xs) {
+		auto a = model.full_state(xs);
+		return std::vector<double>(a.begin(), a.end());
+	};
+	i.distance = [model](const double *a, const double *b) { return model.position_distance(a, b); };
+	i.typical_speed = model.typical_speed();
+	return i;
+}
+
+ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
+{
+	if (!known_mode(mode))
+		throw std::invalid_argument("unknown mode '" + mode + "' (ground, marine, flight, di_neg, di_pos)");
+	const ModeParams &p = robot.mode(mode);
+	if (mode == "ground")
+		return info_of(GroundModel(p, robot.g));
+	if (mode == "marine")
+		return info_of(MarineModel(p, robot.g));
+	if (mode == "flight")
+		return info_of(FlightModel(p, robot.g));
+	return info_of(DiModel(p, mode == "di_pos"));
+}
+
+// One stacked problem as the engine sees it: modes, their setups and the
+// rows by knot reference (resolved per mesh, since offsets change).
+struct Stacked {
+	std::vector<std::string> modes;
+	std::vector<ModeInfo> info;
+	std::vector<PhaseSetup> setups;
+	std::vector<LinearRow> rows;
+};
+
+Ipopt::SmartPtr<CollocationNlp> build(const Stacked &p, double relax)
+{
+	std::vector<std::unique_ptr<PhaseBlock>> blocks;
+	std::vector<int> offset;
+	int n = 0;
+	for (size_t k = 0; k < p.setups.size(); k++) {
+		blocks.push_back(p.info[k].make(relax, p.setups[k]));
+		offset.push_back(n);
+		n += blocks.back()->nvar();
+	}
+	std::vector<Row> rows;
+	for (const LinearRow &lr : p.rows) {
+		Row r;
+		r.lo = lr.lo;
+		r.hi = lr.hi;
+		for (const auto &t : lr.terms) {
+			size_t k = static_cast<size_t>(t.first.phase);
+			r.terms.emplace_back(offset[k] + blocks[k]->state_var(t.first.last, t.first.component), t.second);
+		}
+		rows.push_back(std::move(r));
+	}
+	return new CollocationNlp(std::move(blocks), std::move(rows));
+}
+
+// Solves from each start (one set of phase setups per start): continuation
+// over the smoothing on the coarse mesh, then mesh refinement until every
+// phase's replay passes. Keeps the cheapest.
+MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
+				 const std::vector<std::vector<double>> &starts_T, double switch_cost,
+				 const SolveOptions &opt)
 {
 	auto t0 = std::chrono::steady_clock::now();
-	auto a = model.full_state(x1s), b = model.full_state(x2s);
-	Bounds bd = model.bounds();
-	for (int k = 0; k < M::NX; k++)
-		for (double v : {a[static_cast<size_t>(k)], b[static_cast<size_t>(k)]})
-			if (!std::isfinite(v) || v < bd.x_lo[static_cast<size_t>(k)] - 1e-12 ||
-			    v > bd.x_hi[static_cast<size_t>(k)] + 1e-12)
-				throw std::invalid_argument("boundary state component " + std::to_string(k) +
-							    " = " + std::to_string(v) + " is outside [" +
-							    std::to_string(bd.x_lo[static_cast<size_t>(k)]) + ", " +
-							    std::to_string(bd.x_hi[static_cast<size_t>(k)]) +
-							    "] of mode " + mode);
-	std::vector<double> guesses = opt.T_guesses;
-	if (guesses.empty()) {
-		double d = model.position_distance(a.data(), b.data());
-		double base = std::max(bd.T_min * 2, d / model.typical_speed());
-		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
-	}
-	Solution best;
+	MultiPhaseSolution best;
+	best.modes = base.modes;
 	best.cost = std::numeric_limits<double>::infinity();
 	const bool debug = std::getenv("HYLO_TRAINER_DEBUG") != nullptr;
-	auto run = [&](const M &m, int segments, double T, const std::vector<double> &start,
-		       Ipopt::SmartPtr<HsNlp<M>> &nlp, bool warm) {
-		nlp = new HsNlp<M>(m, segments, a, b, T, opt.T_fixed);
+	bool smoothed = false;
+	for (const ModeInfo &i : base.info)
+		smoothed = smoothed || i.smoothed;
+	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
+		       Ipopt::SmartPtr<CollocationNlp> &nlp, bool warm) {
+		nlp = build(p, relax);
 		if (!start.empty())
 			nlp->warm_start(start);
 		auto app = make_app(opt, warm);
 		Ipopt::ApplicationReturnStatus st = app->OptimizeTNLP(nlp);
 		int it = Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : 0;
 		if (debug)
-			std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n", T, segments,
-				     m.relax, status_text(st), it);
+			std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n",
+				     p.setups[0].T_guess, p.setups[0].segments, relax, status_text(st), it);
 		return std::make_pair(st, it);
 	};
-	for (double T : guesses) {
-		T = std::min(std::max(T, bd.T_min), bd.T_max);
+	for (const std::vector<double> &Ts : starts_T) {
+		Stacked p = base;
+		for (size_t k = 0; k < p.setups.size(); k++)
+			p.setups[k].T_guess = Ts[k];
 		best.starts++;
 		// Continuation on the coarse mesh: smoother problems first, each
 		// starting the next; the last has models.md's exact constants.
 		std::vector<double> start;
-		Ipopt::SmartPtr<HsNlp<M>> nlp;
+		Ipopt::SmartPtr<CollocationNlp> nlp;
 		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
-		M relaxed = model;
 		const double levels[] = {100.0, 10.0, 3.0, 1.0};
 		for (double relax : levels) {
-			if ((!M::kSmoothed || !opt.derivative_test_file.empty()) && relax != 1.0)
+			if ((!smoothed || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
-			relaxed.relax = relax;
-			res = run(relaxed, opt.segments, T, start, nlp, !start.empty());
+			res = run(p, relax, start, nlp, !start.empty());
 			if (succeeded(res.first))
 				start = nlp->solution();
 		}
@@ -596,38 +412,53 @@ Solution solve_model(const std::string &mode, const RobotParams &robot, const M 
 		if (!succeeded(res.first))
 			continue;
 		best.converged_starts++;
-		// Mesh refinement until the replay agrees: each finer mesh starts
+		// Mesh refinement until the replays agree: each finer mesh starts
 		// from the coarser solution (its knots and midpoints become knots).
-		int segments = opt.segments, iterations = res.second;
+		int iterations = res.second;
 		for (int refine = 0;; refine++) {
-			Solution s;
-			nlp->fill(s);
+			MultiPhaseSolution s;
+			s.modes = p.modes;
 			s.status = static_cast<int>(res.first);
 			s.status_text = status_text(res.first);
 			s.iterations = iterations;
-			s.segments = segments;
-			if (opt.replay) {
-				replay(mode, robot, s);
-				if (debug)
-					std::fprintf(stderr, "  replay: error %.3g, cost %.6g vs %.6g (%.2f%%)\n",
-						     s.replay_error, s.replay_cost, s.cost,
-						     100 * (s.replay_cost - s.cost) / s.cost);
+			bool all_ok = true;
+			for (size_t k = 0; k < p.setups.size(); k++) {
+				Solution ph;
+				nlp->fill(k, ph);
+				ph.status = s.status;
+				ph.status_text = s.status_text;
+				ph.iterations = iterations;
+				if (opt.replay) {
+					replay(p.modes[k], robot, ph, opt.replay_state_tol);
+					if (debug)
+						std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g\n",
+							     p.modes[k].c_str(), ph.replay_error, ph.replay_cost, ph.cost);
+					all_ok = all_ok && ph.replay_ok;
+				}
+				ph.converged = !opt.replay || ph.replay_ok;
+				s.cost += ph.cost;
+				s.T += ph.T;
+				s.replay_cost += ph.replay_cost;
+				s.replay_error = std::max(s.replay_error, ph.replay_error);
+				s.phases.push_back(std::move(ph));
 			}
-			if (!opt.replay || s.replay_ok) {
+			if (all_ok) {
 				s.converged = true;
+				s.cost += switch_cost;
+				s.replay_cost += switch_cost;
 				if (s.cost < best.cost) {
-					int starts = best.starts, conv = best.converged_starts;
-					best = s;
-					best.starts = starts;
-					best.converged_starts = conv;
+					s.starts = best.starts;
+					s.converged_starts = best.converged_starts;
+					best = std::move(s);
 				}
 				break;
 			}
 			if (refine >= opt.refinements)
 				break;
-			std::vector<double> fine = HsNlp<M>::refine(nlp->solution(), segments);
-			segments *= 2;
-			res = run(model, segments, T, fine, nlp, true);
+			std::vector<double> fine = nlp->refined();
+			for (PhaseSetup &st : p.setups)
+				st.segments *= 2;
+			res = run(p, 1.0, fine, nlp, true);
 			iterations += res.second;
 			if (!succeeded(res.first))
 				break;
@@ -639,6 +470,17 @@ Solution solve_model(const std::string &mode, const RobotParams &robot, const M 
 	}
 	best.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	return best;
+}
+
+// Throws std::invalid_argument unless v has n finite components inside [lo, hi].
+void check_state(const std::vector<double> &v, const Bounds &bd, const std::string &mode)
+{
+	for (size_t k = 0; k < v.size(); k++)
+		if (!std::isfinite(v[k]) || v[k] < bd.x_lo[k] - 1e-12 || v[k] > bd.x_hi[k] + 1e-12)
+			throw std::invalid_argument("boundary state component " + std::to_string(k) + " = " +
+						    std::to_string(v[k]) + " is outside [" +
+						    std::to_string(bd.x_lo[k]) + ", " + std::to_string(bd.x_hi[k]) +
+						    "] of mode " + mode);
 }
 
 }  // namespace
@@ -659,19 +501,139 @@ int sampled_dim(const std::string &m)
 	return 0;
 }
 
+int state_dim(const std::string &m)
+{
+	if (m == "ground")
+		return GroundModel::NX;
+	if (m == "marine")
+		return MarineModel::NX;
+	if (m == "flight")
+		return FlightModel::NX;
+	return known_mode(m) ? DiModel::NX : 0;
+}
+
+int input_dim(const std::string &m)
+{
+	if (m == "ground")
+		return GroundModel::NU;
+	if (m == "marine")
+		return MarineModel::NU;
+	if (m == "flight")
+		return FlightModel::NU;
+	return known_mode(m) ? DiModel::NU : 0;
+}
+
+std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs)
+{
+	return mode_info(mode, robot).full_state(xs);
+}
+
+std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
+								 const RobotParams &robot)
+{
+	Bounds b = mode_info(mode, robot).bounds;
+	return {b.x_lo, b.x_hi};
+}
+
 Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
 		   const double *x2s, const SolveOptions &opt)
 {
-	if (!known_mode(mode))
-		throw std::invalid_argument("unknown mode '" + mode + "' (ground, marine, flight, di_neg, di_pos)");
-	const ModeParams &p = robot.mode(mode);
-	if (mode == "ground")
-		return solve_model(mode, robot, GroundModel(p, robot.g), x1s, x2s, opt);
-	if (mode == "marine")
-		return solve_model(mode, robot, MarineModel(p, robot.g), x1s, x2s, opt);
-	if (mode == "flight")
-		return solve_model(mode, robot, FlightModel(p, robot.g), x1s, x2s, opt);
-	return solve_model(mode, robot, DiModel(p, mode == "di_pos"), x1s, x2s, opt);
+	ModeInfo info = mode_info(mode, robot);
+	std::vector<double> a = info.full_state(x1s), b = info.full_state(x2s);
+	check_state(a, info.bounds, mode);
+	check_state(b, info.bounds, mode);
+	const Bounds &bd = info.bounds;
+	std::vector<double> guesses = opt.T_guesses;
+	if (guesses.empty()) {
+		double d = info.distance(a.data(), b.data());
+		double base = std::max(bd.T_min * 2, d / info.typical_speed);
+		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
+	}
+	std::vector<std::vector<double>> starts;
+	for (double T : guesses)
+		starts.push_back({std::min(std::max(T, bd.T_min), bd.T_max)});
+	PhaseSetup s;
+	s.segments = opt.segments;
+	s.T_fixed = opt.T_fixed;
+	s.guess = {a, b};
+	s.first_lo = s.first_hi = a;
+	s.last_lo = s.last_hi = b;
+	Stacked p{{mode}, {info}, {s}, {}};
+	MultiPhaseSolution m = solve_stacked(robot, p, starts, 0, opt);
+	Solution out;
+	if (!m.phases.empty())
+		out = m.phases[0];
+	out.converged = m.converged;
+	out.status = m.status;
+	out.status_text = m.status_text;
+	out.iterations = m.iterations;
+	out.starts = m.starts;
+	out.converged_starts = m.converged_starts;
+	out.solve_seconds = m.solve_seconds;
+	if (!m.converged)
+		out.cost = 0;
+	return out;
+}
+
+MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhaseProblem &prob,
+				    const SolveOptions &opt)
+{
+	if (prob.phases.empty())
+		throw std::invalid_argument("a multi-phase problem needs at least one phase");
+	Stacked p;
+	for (size_t k = 0; k < prob.phases.size(); k++) {
+		const PhaseSpec &ps = prob.phases[k];
+		ModeInfo info = mode_info(ps.mode, robot);
+		const size_t nx = static_cast<size_t>(info.nx);
+		std::string where = "phase " + std::to_string(k) + " (" + ps.mode + ")";
+		if (ps.guess.size() < 2)
+			throw std::invalid_argument(where + ": the initial guess needs at least two states");
+		for (const auto &g : ps.guess)
+			if (g.size() != nx)
+				throw std::invalid_argument(where + ": a guess state has " + std::to_string(g.size()) +
+							    " components, the mode has " + std::to_string(nx));
+		PhaseSetup s;
+		s.segments = ps.segments;
+		s.guess = ps.guess;
+		auto bound = [&](const std::vector<double> &v, const std::vector<double> &dflt, const char *what) {
+			if (v.empty())
+				return dflt;
+			if (v.size() != nx)
+				throw std::invalid_argument(where + ": " + what + " has " + std::to_string(v.size()) +
+							    " components, the mode has " + std::to_string(nx));
+			return v;
+		};
+		s.first_lo = bound(ps.first_lo, info.bounds.x_lo, "first_lo");
+		s.first_hi = bound(ps.first_hi, info.bounds.x_hi, "first_hi");
+		s.last_lo = bound(ps.last_lo, info.bounds.x_lo, "last_lo");
+		s.last_hi = bound(ps.last_hi, info.bounds.x_hi, "last_hi");
+		double length = 0;
+		for (size_t i = 1; i < ps.guess.size(); i++)
+			length += info.distance(ps.guess[i - 1].data(), ps.guess[i].data());
+		s.T_guess = ps.T_guess > 0 ? ps.T_guess
+					   : std::max(info.bounds.T_min * 2, length / info.typical_speed);
+		p.modes.push_back(ps.mode);
+		p.info.push_back(std::move(info));
+		p.setups.push_back(std::move(s));
+	}
+	for (const LinearRow &r : prob.rows)
+		for (const auto &t : r.terms)
+			if (t.first.phase < 0 || static_cast<size_t>(t.first.phase) >= p.setups.size() ||
+			    t.first.component < 0 || t.first.component >= p.info[static_cast<size_t>(t.first.phase)].nx)
+				throw std::invalid_argument("a linear row names phase " + std::to_string(t.first.phase) +
+							    " component " + std::to_string(t.first.component) +
+							    ", which does not exist");
+	p.rows = prob.rows;
+	std::vector<std::vector<double>> starts;
+	for (double f : prob.T_scales) {
+		std::vector<double> Ts;
+		for (size_t k = 0; k < p.setups.size(); k++) {
+			const Bounds &bd = p.info[k].bounds;
+			Ts.push_back(std::min(std::max(f * p.setups[k].T_guess, bd.T_min), bd.T_max));
+		}
+		starts.push_back(Ts);
+	}
+	return solve_stacked(robot, p, starts, prob.switch_cost, opt);
 }
 
 }  // namespace hylo::trainer

@@ -1,23 +1,18 @@
-// Hermite-Simpson direct collocation of one mode's optimal control problem
-// (free final time, fixed boundary states) solved with Ipopt, with exact
-// sparse first and second derivatives from Eigen's forward-mode AutoDiff.
-//
-// Transcription (separated form): N segments, states and inputs at N+1 knots
-// and N midpoints, and T. Per segment k, with h = T/N and f_j = f(x_j, u_j):
-//   x_m - (x_k + x_k+1)/2 - h/8 (f_k - f_k+1) = 0
-//   x_k+1 - x_k - h/6 (f_k + 4 f_m + f_k+1)   = 0
-// cost J = h/6 sum_k (L_k + 4 L_m + L_k+1) (Simpson), path constraints at
-// every knot and midpoint, bounds on states and inputs everywhere. The input
-// is piecewise linear (u_m = (u_k + u_k+1)/2): with free midpoint inputs the
-// optimizer chattered and Simpson's rule undercounted the energy by 5-25%
-// against the CVODE replay.
+// Hermite-Simpson direct collocation (free final time) solved with Ipopt, with
+// exact sparse first and second derivatives from Eigen's forward-mode
+// AutoDiff: single-mode boundary value problems (the training samples) and
+// multi-phase problems whose phases, in different modes, are joined at guard
+// points by reset maps (the smoother and the fixed-sequence baselines). The
+// transcription of one phase is in hs_phase.hpp.
 #ifndef HYLO_TRAINER_COLLOCATION_HPP
 #define HYLO_TRAINER_COLLOCATION_HPP
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "trainer/params.hpp"
+#include "trainer/replay.hpp"
 
 namespace hylo::trainer {
 
@@ -28,6 +23,7 @@ struct SolveOptions {
 	double T_fixed = 0;               // > 0: T is fixed to this value
 	std::vector<double> T_guesses;    // empty: derived from distance and speed
 	int refinements = 2;              // mesh doublings when the replay rejects a solution
+	double replay_state_tol = kReplayStateTol;  // largest scaled end-state error a replay may show
 	bool replay = true;               // check every solution with CVODE
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here
 	double derivative_test_perturbation = 1e-8;  // relative finite-difference step of the checker
@@ -68,10 +64,76 @@ int sampled_dim(const std::string &mode);
 Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
 		   const double *x2s, const SolveOptions &opt);
 
+// State and input sizes of a mode, and the full state its sampled
+// coordinates stand for (the virtual constraints of models.md section 7).
+int state_dim(const std::string &mode);
+int input_dim(const std::string &mode);
+std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs);
+// The mode's state bounds (lo, hi), state_dim each.
+std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
+								 const RobotParams &robot);
+
+// ---- multi-phase problems ------------------------------------------------
+// Phases run one after another, each in one mode with its own free duration;
+// linear rows tie the last knot of a phase to the first of the next (reset
+// maps) and keep switch points on their guards. switching.hpp builds them.
+
+struct PhaseSpec {
+	std::string mode;
+	int segments = 20;
+	double T_guess = 0;                       // [s]; 0: guess path length / typical speed
+	std::vector<std::vector<double>> guess;   // full states the initial guess runs through (>= 2)
+	// Bounds of the first and last knot's state (state_dim each; empty: the
+	// mode's bounds). Equal bounds fix a component.
+	std::vector<double> first_lo, first_hi, last_lo, last_hi;
+};
+
+// A state component of a phase's first or last knot.
+struct KnotRef {
+	int phase = 0;
+	bool last = false;
+	int component = 0;
+};
+
+// lo <= sum coef * component <= hi.
+struct LinearRow {
+	std::vector<std::pair<KnotRef, double>> terms;
+	double lo = 0, hi = 0;
+};
+
+struct MultiPhaseProblem {
+	std::vector<PhaseSpec> phases;
+	std::vector<LinearRow> rows;
+	double switch_cost = 0;                      // constant switching costs [J], added to the cost
+	std::vector<double> T_scales{1.0, 2.0, 0.5}; // starts: every phase's T_guess times each
+};
+
+struct MultiPhaseSolution {
+	bool converged = false;        // Ipopt succeeded and every phase's replay passed
+	int status = 0;                // Ipopt's ApplicationReturnStatus of the kept start
+	std::string status_text;
+	int iterations = 0;
+	int starts = 0, converged_starts = 0;
+	double cost = 0;               // sum of the phase costs plus switch_cost [J]
+	double T = 0;                  // total duration [s]
+	double replay_cost = 0;        // sum of the phases' CVODE replay costs plus switch_cost [J]
+	double replay_error = 0;       // largest scaled end-state error over the phases
+	std::vector<std::string> modes;
+	std::vector<Solution> phases;  // per phase: cost, T, trajectory (t from 0), replay
+	double solve_seconds = 0;
+};
+
+// Solves a multi-phase problem from every start; keeps the cheapest
+// converged one whose phases all replay. Throws std::invalid_argument for a
+// malformed problem (unknown mode, wrong sizes, a row naming a missing phase).
+MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhaseProblem &problem,
+				    const SolveOptions &opt);
+
 // Re-integrates a solution's control with CVODE (input interpolated as the
 // transcription does: linear between knots, through the midpoint); fills
 // replay_cost and replay_error. Exposed for tests (a corrupted control).
-void replay(const std::string &mode, const RobotParams &robot, Solution &s);
+void replay(const std::string &mode, const RobotParams &robot, Solution &s,
+	    double state_tol = kReplayStateTol);
 
 }  // namespace hylo::trainer
 

@@ -9,6 +9,7 @@
 #include "trainer/collocation.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
+#include "trainer/switching.hpp"
 #include "trainer/svr_fit.hpp"
 
 namespace hylo::trainer {
@@ -164,13 +165,9 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	};
 	if (g.mode == "flight") {
 		// Takeoff and landing (models.md section 6): hover at h to hover at h+1, and back.
-		double lo[6] = {0, 0, 0, 0, 0, 0}, hi[6] = {0, 0, 1, 0, 0, 0};
-		Solution up = solve_bvp("flight", robot, lo, hi, g.solve);
-		Solution down = solve_bvp("flight", robot, hi, lo, g.solve);
-		if (!up.converged || !down.converged)
-			throw std::runtime_error("the takeoff or landing optimization did not converge");
-		m.constants = {{"TAKEOFF_J", up.cost, "ground rest -> hover 1 m above [J]"},
-			       {"LANDING_J", down.cost, "hover 1 m above -> ground rest [J]"}};
+		TakeoffLanding tl = takeoff_landing(robot, g.solve);
+		m.constants = {{"TAKEOFF_J", tl.takeoff_j, "ground rest -> hover 1 m above [J]"},
+			       {"LANDING_J", tl.landing_j, "hover 1 m above -> ground rest [J]"}};
 	}
 	std::string header = g.out_dir + "/" + robot.robot + "_" + g.mode + ".h";
 	write_svr_header(m, header);

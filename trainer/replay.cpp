@@ -64,7 +64,7 @@ struct Replay {
 };
 
 template <class M>
-void replay_model(const M &model, Solution &s)
+void replay_model(const M &model, Solution &s, double state_tol)
 {
 	const Trajectory &tr = s.traj;
 	int N = (static_cast<int>(tr.t.size()) - 1) / 2;
@@ -107,7 +107,7 @@ void replay_model(const M &model, Solution &s)
 			err = std::max(err, std::fabs(yv[k] - xe[k]) / sc[static_cast<size_t>(k)]);
 		s.replay_error = err;
 		s.replay_cost = yv[M::NX];
-		s.replay_ok = err <= kReplayStateTol && worst_bound <= kReplayStateTol &&
+		s.replay_ok = err <= state_tol && worst_bound <= state_tol &&
 			      std::fabs(s.replay_cost - s.cost) <= kReplayCostTol * std::fabs(s.cost);
 	} else {
 		s.replay_error = INFINITY;
@@ -122,17 +122,17 @@ void replay_model(const M &model, Solution &s)
 
 }  // namespace
 
-void replay(const std::string &mode, const RobotParams &robot, Solution &s)
+void replay(const std::string &mode, const RobotParams &robot, Solution &s, double state_tol)
 {
 	const ModeParams &p = robot.mode(mode);
 	if (mode == "ground")
-		replay_model(GroundModel(p, robot.g), s);
+		replay_model(GroundModel(p, robot.g), s, state_tol);
 	else if (mode == "marine")
-		replay_model(MarineModel(p, robot.g), s);
+		replay_model(MarineModel(p, robot.g), s, state_tol);
 	else if (mode == "flight")
-		replay_model(FlightModel(p, robot.g), s);
+		replay_model(FlightModel(p, robot.g), s, state_tol);
 	else if (mode == "di_neg" || mode == "di_pos")
-		replay_model(DiModel(p, mode == "di_pos"), s);
+		replay_model(DiModel(p, mode == "di_pos"), s, state_tol);
 	else
 		throw std::invalid_argument("replay: unknown mode '" + mode + "'");
 }

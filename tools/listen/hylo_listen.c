@@ -123,6 +123,20 @@ static void print_plan_text(const hylo_plan_t *p)
 			       p->guard[k] ? "  guard" : "");
 }
 
+/* One JSON array of n numbers, after a comma when comma is set. */
+static void jrow(const double *v, int n, int comma)
+{
+	int j;
+
+	printf(comma ? ",[" : "[");
+	for (j = 0; j < n; j++) {
+		if (j)
+			putchar(',');
+		jnum(v[j]);
+	}
+	putchar(']');
+}
+
 static void print_traj(const hylo_traj_t *t)
 {
 	if (json) {
@@ -147,6 +161,15 @@ static void print_traj(const hylo_traj_t *t)
 				putchar(',');
 			jnum(t->t_s[k]);
 		}
+		printf("],\"mode\":[");
+		for (k = 0; k < t->n_samples; k++)
+			printf(k ? ",%d" : "%d", t->mode[k]);
+		printf("],\"state\":[");
+		for (k = 0; k < t->n_samples; k++)
+			jrow(t->state[k], 16, k > 0);
+		printf("],\"input\":[");
+		for (k = 0; k < t->n_samples; k++)
+			jrow(t->input[k], 4, k > 0);
 		printf("],\"n_samples\":%d}\n", t->n_samples);
 		return;
 	}

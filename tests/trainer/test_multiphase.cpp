@@ -1,0 +1,257 @@
+// Multi-phase collocation (trainer/collocation.hpp, switching.hpp): Ipopt's
+// derivative checker on a joined ground -> marine problem, the hybrid double
+// integrator's two-phase optimum against a dense sweep of the switching
+// velocity on the guard p = 0 (the paper's reference, Fig. 10), and an Ambot
+// shore crossing whose free switch point does at least as well as a fixed one,
+// and the takeoff and landing conditions of a drive-fly-drive chain.
+// Prints TAP.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+#include "trainer/collocation.hpp"
+#include "trainer/params.hpp"
+#include "trainer/replay.hpp"
+#include "trainer/switching.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+int n_checks = 0, n_failed = 0;
+
+void check(bool ok, const std::string &name, const std::string &why = "")
+{
+	n_checks++;
+	std::printf("%s %d - %s\n", ok ? "ok" : "not ok", n_checks, name.c_str());
+	if (!ok) {
+		n_failed++;
+		if (!why.empty())
+			std::printf("# %s\n", why.c_str());
+	}
+	std::fflush(stdout);
+}
+
+std::string fmt(double v)
+{
+	char b[64];
+	std::snprintf(b, sizeof b, "%.9g", v);
+	return b;
+}
+
+// Phase from sampled start to sampled end (either may be left free by passing nullptr).
+PhaseSpec phase(const std::string &mode, const RobotParams &r, const double *xs0, const double *xs1,
+		const double *guess0, const double *guess1, int segments)
+{
+	PhaseSpec p;
+	p.mode = mode;
+	p.segments = segments;
+	p.guess = {full_state(mode, r, guess0), full_state(mode, r, guess1)};
+	auto b = state_bounds(mode, r);
+	p.first_lo = p.last_lo = b.first;
+	p.first_hi = p.last_hi = b.second;
+	if (xs0)
+		p.first_lo = p.first_hi = full_state(mode, r, xs0);
+	if (xs1)
+		p.last_lo = p.last_hi = full_state(mode, r, xs1);
+	return p;
+}
+
+// The two-phase DI problem a -> (0, v) -> b, v free.
+MultiPhaseSolution di_two_phase(const RobotParams &di, const double *a, const double *b, double v_guess)
+{
+	double s[2] = {0, v_guess};
+	MultiPhaseProblem p;
+	p.phases = {phase("di_pos", di, a, nullptr, a, s, 20), phase("di_neg", di, nullptr, b, s, b, 20)};
+	join_phases(p, 0, di, SwitchGuard{});
+	return solve_multiphase(di, p, SolveOptions());
+}
+
+// Cost of the two single-phase problems through the fixed switch state (0, v).
+double di_through(const RobotParams &di, const double *a, const double *b, double v)
+{
+	double s[2] = {0, v};
+	Solution x = solve_bvp("di_pos", di, a, s, SolveOptions());
+	Solution y = solve_bvp("di_neg", di, s, b, SolveOptions());
+	return x.converged && y.converged ? x.cost + y.cost : INFINITY;
+}
+
+void di_case(const RobotParams &di, double a0, double a1, double b0, double b1)
+{
+	double a[2] = {a0, a1}, b[2] = {b0, b1};
+	// Dense sweep of the switching velocity, then golden-section around the best.
+	double best_v = 0, best = INFINITY;
+	for (int i = 0; i <= 40; i++) {
+		double v = -1 + 2.0 * i / 40;
+		double c = di_through(di, a, b, v);
+		if (c < best) {
+			best = c;
+			best_v = v;
+		}
+	}
+	double lo = std::max(-1.0, best_v - 0.05), hi = std::min(1.0, best_v + 0.05);
+	const double gr = (std::sqrt(5.0) - 1) / 2;
+	for (int it = 0; it < 20; it++) {
+		double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+		if (di_through(di, a, b, x1) < di_through(di, a, b, x2))
+			hi = x2;
+		else
+			lo = x1;
+	}
+	double v_sweep = 0.5 * (lo + hi), sweep = std::min(best, di_through(di, a, b, v_sweep));
+	MultiPhaseSolution m = di_two_phase(di, a, b, 0.0);
+	std::string name = "double integrator (" + fmt(a0) + ", " + fmt(a1) + ") -> (" + fmt(b0) + ", " + fmt(b1) + ")";
+	std::printf("# %s: two-phase %.9g (switch v %.6f), swept %.9g (v %.6f)\n", name.c_str(), m.cost,
+		    m.converged ? m.phases[1].traj.x[1] : NAN, sweep, v_sweep);
+	check(m.converged && m.cost <= sweep * (1 + 1e-6) && m.cost >= sweep * (1 - 5e-3),
+	      name + ": two-phase optimum within 0.5% of the swept one and not above it",
+	      fmt(m.cost) + " vs " + fmt(sweep));
+	bool joined = m.converged && std::fabs(m.phases[0].traj.x[m.phases[0].traj.x.size() - 2]) < 1e-7 &&
+		      std::fabs(m.phases[1].traj.x[0]) < 1e-7 &&
+		      std::fabs(m.phases[0].traj.x.back() - m.phases[1].traj.x[1]) < 1e-7;
+	check(joined, name + ": the phases meet on the guard p = 0 with one velocity");
+	check(m.converged && m.replay_error < 1e-6 && std::fabs(m.replay_cost - m.cost) < 1e-5 * m.cost,
+	      name + ": both phases replay", fmt(m.replay_error));
+}
+
+// Ipopt's first- and second-order derivative checker on problem; names the
+// first entry it flags.
+void derivative_test(const RobotParams &robot, const MultiPhaseProblem &p, double perturbation,
+		     const std::string &name)
+{
+	SolveOptions o;
+	o.derivative_test_perturbation = perturbation;
+	char path[] = "/tmp/hylo-dtest-XXXXXX";
+	int fd = mkstemp(path);
+	close(fd);
+	o.derivative_test_file = path;
+	solve_multiphase(robot, p, o);
+	std::ifstream f(path);
+	std::ostringstream log;
+	log << f.rdbuf();
+	unlink(path);
+	std::string first;
+	size_t star = log.str().find("\n*");
+	if (star != std::string::npos)
+		first = log.str().substr(star + 1, log.str().find('\n', star + 1) - star - 1);
+	check(log.str().find("No errors detected by derivative checker") != std::string::npos,
+	      "Ipopt derivative checker (first and second order): " + name, first);
+}
+
+void derivative_tests(const RobotParams &ambot)
+{
+	// Short phases (as in the single-phase checks): the objective's curvature
+	// in the inputs grows with T and swamps the finite differences.
+	double a[4] = {0.1, 0.2, 0.3, 0.4}, s[4] = {0.4, 0.5, 0.6, 0.45}, b[4] = {0.7, 0.8, 0.9, 0.5};
+	MultiPhaseProblem p;
+	p.phases = {phase("ground", ambot, a, nullptr, a, s, 3), phase("marine", ambot, nullptr, b, s, b, 3)};
+	join_phases(p, 0, ambot, SwitchGuard{0.4, -1.0, 0.4, 2.0, 0});
+	derivative_test(ambot, p, 1e-8, "ambot ground -> marine, joined");
+
+}
+
+// Drive, take off, fly, land, drive: the switch conditions of models.md section 6.
+void takeoff_landing_joins(const RobotParams &drivo)
+{
+	double g0[4] = {0, 0, 0, 0}, g1[4] = {5, 0, 0, 0}, g3[4] = {20, 0, 0, 0};
+	double f1[6] = {5, 0, 7, 0, 0, 0}, f2[6] = {15, 0, 7, 0, 0, 0};
+	MultiPhaseProblem q;
+	q.phases = {phase("ground", drivo, g0, nullptr, g0, g1, 3), phase("flight", drivo, nullptr, nullptr, f1, f2, 3),
+		    phase("ground", drivo, nullptr, g3, g1, g3, 3)};
+	join_phases(q, 0, drivo, SwitchGuard{2, 0, 8, 0, 6}, TakeoffLanding{100, 40});
+	join_phases(q, 1, drivo, SwitchGuard{12, 0, 18, 0, 6}, TakeoffLanding{100, 40});
+	double hover_xs[6] = {0, 0, 7, 0, 0, 0};
+	std::vector<double> hover = full_state("flight", drivo, hover_xs);
+	bool ok = q.switch_cost == 140;
+	const PhaseSpec &d1 = q.phases[0], &fl = q.phases[1], &d2 = q.phases[2];
+	for (int i : {2, 3, 5})   // at rest before takeoff and after landing
+		ok = ok && d1.last_lo[i] == 0 && d1.last_hi[i] == 0 && d2.first_lo[i] == 0 && d2.first_hi[i] == 0;
+	ok = ok && d2.first_lo[4] == 0 && d2.first_hi[4] == 0;   // heading 0 (the hover's yaw)
+	for (int i = 2; i < 16; i++)   // hover 1 m above the 6 m platform, yaw 0, rotors at phi_n
+		ok = ok && fl.first_lo[i] == hover[i] && fl.first_hi[i] == hover[i] && fl.last_lo[i] == hover[i] &&
+		     fl.last_hi[i] == hover[i];
+	ok = ok && fl.first_lo[0] < -1e10 && fl.last_hi[1] > 1e10;   // position free, tied by rows
+	// Rows per switch: px and py carried, and two for the guard segment.
+	ok = ok && q.rows.size() == 8;
+	check(ok, "Drivocopter takeoff and landing: rest on the ground, hover at h + 1, position carried, "
+		  "switching costs added");
+}
+
+
+void shore_crossing(const RobotParams &ambot)
+{
+	// Land x < 4, water beyond; start on land at rest, goal in the water at rest.
+	double a[4] = {0, 0, 0, 0}, b[4] = {8, 3, 0, 0};
+	double th = std::atan2(3.0, 8.0), s[4] = {4, 1.5, 0.4, th};
+	MultiPhaseProblem p;
+	p.phases = {phase("ground", ambot, a, nullptr, a, s, 20), phase("marine", ambot, nullptr, b, s, b, 20)};
+	join_phases(p, 0, ambot, SwitchGuard{4, -4, 4, 6, 0});
+	MultiPhaseSolution m = solve_multiphase(ambot, p, SolveOptions());
+	Solution g = solve_bvp("ground", ambot, a, s, SolveOptions());
+	Solution w = solve_bvp("marine", ambot, s, b, SolveOptions());
+	double fixed = g.cost + w.cost;
+	std::printf("# ambot shore crossing: free switch %.6g J (T %.3g s, %.2f s to solve), "
+		    "fixed switch %.6g J\n", m.cost, m.T, m.solve_seconds, fixed);
+	check(m.converged && g.converged && w.converged && m.cost <= fixed * (1 + 1e-6),
+	      "Ambot ground -> marine: a free switch point costs no more than a fixed one",
+	      fmt(m.cost) + " vs " + fmt(fixed));
+	const auto &gx = m.phases[0].traj.x, &mx = m.phases[1].traj.x;
+	size_t end = gx.size() - 6;   // the ground phase's last state
+	bool on_shore = m.converged && std::fabs(gx[end] - 4) < 1e-6 && gx[end + 1] >= -4 - 1e-6 &&
+			gx[end + 1] <= 6 + 1e-6;
+	bool carried = m.converged;
+	for (int i = 0; carried && i < 6; i++)
+		carried = std::fabs(mx[static_cast<size_t>(i)] - gx[end + static_cast<size_t>(i)]) < 1e-6;
+	double phin = full_state("marine", ambot, s)[6] / s[2] * gx[end + 2];
+	carried = carried && std::fabs(mx[6] - phin) < 1e-6 && std::fabs(mx[7] - phin) < 1e-6;
+	check(on_shore && carried, "Ambot ground -> marine: the switch is on the shoreline and the reset "
+				  "carries the state (phi = phi_n(vx))");
+	check(m.converged && m.replay_error < kReplayStateTol, "Ambot ground -> marine: both phases replay",
+	      fmt(m.replay_error));
+}
+
+void bad_problems(const RobotParams &di)
+{
+	double a[2] = {0.5, 0}, b[2] = {-0.5, 0};
+	MultiPhaseProblem p;
+	p.phases = {phase("di_pos", di, a, nullptr, a, a, 5), phase("di_pos", di, nullptr, b, a, a, 5)};
+	try {
+		join_phases(p, 0, di, SwitchGuard{});
+		check(false, "a switch between two phases of one mode is refused");
+	} catch (const std::invalid_argument &e) {
+		check(std::string(e.what()).find("di_pos -> di_pos") != std::string::npos,
+		      "a switch between two phases of one mode is refused", e.what());
+	}
+	MultiPhaseProblem q;
+	q.phases = {phase("di_pos", di, a, nullptr, a, a, 5)};
+	LinearRow r;
+	r.terms = {{KnotRef{3, true, 0}, 1.0}};
+	q.rows = {r};
+	try {
+		solve_multiphase(di, q, SolveOptions());
+		check(false, "a row naming a missing phase is refused");
+	} catch (const std::invalid_argument &e) {
+		check(std::string(e.what()).find("phase 3") != std::string::npos,
+		      "a row naming a missing phase is refused", e.what());
+	}
+}
+
+}  // namespace
+
+int main()
+{
+	RobotParams di = load_robot("trainer/params/di.yaml");
+	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
+	RobotParams drivo = load_robot("trainer/params/drivocopter.yaml");
+	derivative_tests(ambot);
+	takeoff_landing_joins(drivo);
+	di_case(di, 0.8, 0.2, -0.8, 0.0);
+	di_case(di, 0.7, -0.1, -0.5, 0.2);
+	shore_crossing(ambot);
+	bad_problems(di);
+	std::printf("1..%d\n", n_checks);
+	return n_failed ? 1 : 0;
+}

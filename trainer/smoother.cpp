@@ -1,0 +1,264 @@
+#include "trainer/smoother.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace hylo::trainer {
+namespace {
+
+const char *const kModes[] = {"", "ground", "marine", "flight", "di_neg", "di_pos"};
+constexpr int8_t kGround = 1, kWater = 2;
+
+struct Cell {
+	bool inside = false;
+	int index = 0;
+};
+
+Cell cell_at(const TerrainGrid &m, double x, double y)
+{
+	double fx = (x - m.origin_x_m) / m.resolution_m, fy = (y - m.origin_y_m) / m.resolution_m;
+	if (!(fx >= 0 && fy >= 0 && fx < m.nx && fy < m.ny))
+		return {};
+	return {true, static_cast<int>(fy) * m.nx + static_cast<int>(fx)};
+}
+
+struct Point {
+	double x, y;
+};
+
+// Midpoints of the edges between ground and water cells within r of (x, y).
+std::vector<Point> shore_points(const TerrainGrid &m, double x, double y, double r)
+{
+	std::vector<Point> pts;
+	int cx = static_cast<int>((x - m.origin_x_m) / m.resolution_m);
+	int cy = static_cast<int>((y - m.origin_y_m) / m.resolution_m);
+	int span = static_cast<int>(std::ceil(r / m.resolution_m)) + 1;
+	for (int iy = std::max(0, cy - span); iy <= std::min(m.ny - 1, cy + span); iy++)
+		for (int ix = std::max(0, cx - span); ix <= std::min(m.nx - 1, cx + span); ix++) {
+			int8_t t = m.terrain[static_cast<size_t>(iy * m.nx + ix)];
+			const int nb[2][2] = {{1, 0}, {0, 1}};
+			for (const auto &d : nb) {
+				int jx = ix + d[0], jy = iy + d[1];
+				if (jx >= m.nx || jy >= m.ny)
+					continue;
+				int8_t u = m.terrain[static_cast<size_t>(jy * m.nx + jx)];
+				if (!((t == kGround && u == kWater) || (t == kWater && u == kGround)))
+					continue;
+				Point p{m.origin_x_m + (ix + 0.5 + 0.5 * d[0]) * m.resolution_m,
+					m.origin_y_m + (iy + 0.5 + 0.5 * d[1]) * m.resolution_m};
+				if (std::hypot(p.x - x, p.y - y) <= r)
+					pts.push_back(p);
+			}
+		}
+	return pts;
+}
+
+// A straight piece of shoreline through the switch point: its direction
+// fitted (principal axis) to the shore near it, extended each way while the
+// shore stays within a cell of the line.
+SwitchGuard shoreline_guard(const TerrainGrid &m, double x, double y, double half_length)
+{
+	double fit_r = std::max(1.5, 3 * m.resolution_m);
+	std::vector<Point> near = shore_points(m, x, y, fit_r);
+	if (near.size() < 2)
+		throw std::invalid_argument("no shoreline near the switch point (" + std::to_string(x) + ", " +
+					    std::to_string(y) + ")");
+	double mx = 0, my = 0;
+	for (const Point &p : near) {
+		mx += p.x;
+		my += p.y;
+	}
+	mx /= static_cast<double>(near.size());
+	my /= static_cast<double>(near.size());
+	double sxx = 0, sxy = 0, syy = 0;
+	for (const Point &p : near) {
+		sxx += (p.x - mx) * (p.x - mx);
+		sxy += (p.x - mx) * (p.y - my);
+		syy += (p.y - my) * (p.y - my);
+	}
+	double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
+	double tx = std::cos(angle), ty = std::sin(angle);
+	std::vector<Point> shore = shore_points(m, x, y, half_length + m.resolution_m);
+	auto on_shore = [&](double px, double py) {
+		for (const Point &p : shore)
+			if (std::hypot(p.x - px, p.y - py) <= m.resolution_m)
+				return true;
+		return false;
+	};
+	double step = 0.5 * m.resolution_m, ends[2] = {0, 0};
+	for (int side = 0; side < 2; side++) {
+		double sgn = side ? 1.0 : -1.0;
+		for (double s = step; s <= half_length + 1e-9 && on_shore(x + sgn * s * tx, y + sgn * s * ty); s += step)
+			ends[side] = s;
+	}
+	return {x - ends[0] * tx, y - ends[0] * ty, x + ends[1] * tx, y + ends[1] * ty, 0};
+}
+
+// The stretch of level, drivable ground through (x, y) along (dx, dy) where
+// the robot may take off or land.
+SwitchGuard platform_guard(const TerrainGrid &m, double x, double y, double dx, double dy, double half_length)
+{
+	Cell c = cell_at(m, x, y);
+	if (!c.inside || m.terrain[static_cast<size_t>(c.index)] != kGround)
+		throw std::invalid_argument("the takeoff or landing point (" + std::to_string(x) + ", " +
+					    std::to_string(y) + ") is not on drivable ground");
+	double h = m.height_m[static_cast<size_t>(c.index)];
+	double n = std::hypot(dx, dy);
+	if (n < 1e-12)
+		return {x, y, x, y, h};
+	dx /= n;
+	dy /= n;
+	auto level = [&](double px, double py) {
+		Cell k = cell_at(m, px, py);
+		return k.inside && m.terrain[static_cast<size_t>(k.index)] == kGround &&
+		       std::fabs(m.height_m[static_cast<size_t>(k.index)] - h) < 1e-3;
+	};
+	// Keep half a cell from the platform's edge: the guard must stay on it.
+	double step = 0.5 * m.resolution_m, ends[2] = {0, 0};
+	for (int side = 0; side < 2; side++) {
+		double sgn = side ? 1.0 : -1.0;
+		for (double s = step; s <= half_length + 1e-9 && level(x + sgn * (s + step) * dx, y + sgn * (s + step) * dy);
+		     s += step)
+			ends[side] = s;
+	}
+	return {x - ends[0] * dx, y - ends[0] * dy, x + ends[1] * dx, y + ends[1] * dy, h};
+}
+
+std::vector<double> sampled(const Waypoint &w)
+{
+	int n = sampled_dim(mode_name(w.mode));
+	return std::vector<double>(w.state, w.state + n);
+}
+
+bool same_place(const Waypoint &a, const Waypoint &b)
+{
+	return std::hypot(a.state[0] - b.state[0], a.state[1] - b.state[1]) < 1e-6;
+}
+
+}  // namespace
+
+std::string mode_name(int m)
+{
+	return m >= 1 && m <= 5 ? kModes[m] : "";
+}
+
+int mode_number(const std::string &mode)
+{
+	for (int m = 1; m <= 5; m++)
+		if (mode == kModes[m])
+			return m;
+	return 0;
+}
+
+MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<Waypoint> &plan,
+				    const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
+{
+	if (plan.size() < 2)
+		throw std::invalid_argument("a plan needs at least two waypoints to smooth");
+	for (size_t i = 0; i < plan.size(); i++) {
+		std::string m = mode_name(plan[i].mode);
+		if (m.empty() || !robot.modes.count(m))
+			throw std::invalid_argument("waypoint " + std::to_string(i) + " has mode " +
+						    std::to_string(plan[i].mode) + ", which robot " + robot.robot +
+						    " does not have");
+		for (int k = 0; k < sampled_dim(m); k++)
+			if (!std::isfinite(plan[i].state[k]))
+				throw std::invalid_argument("waypoint " + std::to_string(i) + " has a non-finite state");
+	}
+	// Runs of one mode; a switch is a guard pair at one place.
+	std::vector<std::pair<size_t, size_t>> runs{{0, 0}};
+	for (size_t i = 1; i < plan.size(); i++) {
+		if (plan[i].mode == plan[i - 1].mode) {
+			runs.back().second = i;
+			continue;
+		}
+		if (!plan[i - 1].guard || !plan[i].guard || !same_place(plan[i - 1], plan[i]))
+			throw std::invalid_argument("waypoints " + std::to_string(i - 1) + " and " + std::to_string(i) +
+						    " switch mode without a guard pair at one place");
+		runs.push_back({i, i});
+	}
+	MultiPhaseProblem p;
+	for (size_t k = 0; k < runs.size(); k++) {
+		PhaseSpec s;
+		s.mode = mode_name(plan[runs[k].first].mode);
+		for (size_t i = runs[k].first; i <= runs[k].second; i++)
+			s.guess.push_back(full_state(s.mode, robot, plan[i].state));
+		if (s.guess.size() == 1)
+			s.guess.push_back(s.guess[0]);
+		int edges = static_cast<int>(runs[k].second - runs[k].first);
+		s.segments = std::min(opt.max_segments, std::max(opt.min_segments, opt.segments_per_edge * edges));
+		auto b = state_bounds(s.mode, robot);
+		s.first_lo = s.last_lo = b.first;
+		s.first_hi = s.last_hi = b.second;
+		if (k == 0)
+			s.first_lo = s.first_hi = s.guess.front();
+		if (k + 1 == runs.size())
+			s.last_lo = s.last_hi = s.guess.back();
+		p.phases.push_back(std::move(s));
+	}
+	for (size_t k = 0; k + 1 < runs.size(); k++) {
+		const Waypoint &g = plan[runs[k].second];
+		const std::string a = p.phases[k].mode, b = p.phases[k + 1].mode;
+		SwitchGuard guard;
+		if (a == "ground" && b == "marine") {
+			guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
+		} else if (a == "marine" && b == "ground") {
+			guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
+		} else if (a == "ground" && b == "flight") {
+			const Waypoint &prev = runs[k].second > runs[k].first ? plan[runs[k].second - 1] : g;
+			const Waypoint &next = plan[std::min(runs[k + 1].first + 1, runs[k + 1].second)];
+			double dx = g.state[0] - prev.state[0], dy = g.state[1] - prev.state[1];
+			if (std::hypot(dx, dy) < 1e-9) {
+				dx = next.state[0] - g.state[0];
+				dy = next.state[1] - g.state[1];
+			}
+			guard = platform_guard(map, g.state[0], g.state[1], dx, dy, opt.guard_half_length_m);
+		} else if (a == "flight" && b == "ground") {
+			const Waypoint &land = plan[runs[k + 1].first];
+			const Waypoint &next = runs[k + 1].second > runs[k + 1].first ? plan[runs[k + 1].first + 1] : land;
+			double dx = next.state[0] - land.state[0], dy = next.state[1] - land.state[1];
+			if (std::hypot(dx, dy) < 1e-9 && runs[k].second > runs[k].first) {
+				const Waypoint &before = plan[runs[k].second - 1];   // no later motion: the approach
+				dx = land.state[0] - before.state[0];
+				dy = land.state[1] - before.state[1];
+			}
+			guard = platform_guard(map, land.state[0], land.state[1], dx, dy, opt.guard_half_length_m);
+		}
+		join_phases(p, k, robot, guard, costs);
+	}
+	return p;
+}
+
+SolveOptions smoothing_solve_options()
+{
+	SolveOptions o;
+	o.replay_state_tol = 0.05;
+	return o;
+}
+
+double graph_path_cost(const RobotParams &robot, const std::vector<Waypoint> &plan, const TakeoffLanding &costs,
+		       const SolveOptions &opt)
+{
+	double sum = 0;
+	for (size_t i = 1; i < plan.size(); i++) {
+		const Waypoint &a = plan[i - 1], &b = plan[i];
+		std::string ma = mode_name(a.mode), mb = mode_name(b.mode);
+		if (ma != mb) {
+			if (ma == "ground" && mb == "flight")
+				sum += costs.takeoff_j;
+			else if (ma == "flight" && mb == "ground")
+				sum += costs.landing_j;
+			continue;
+		}
+		std::vector<double> xa = sampled(a), xb = sampled(b);
+		Solution s = solve_bvp(ma, robot, xa.data(), xb.data(), opt);
+		if (!s.converged)
+			return std::numeric_limits<double>::infinity();
+		sum += s.cost;
+	}
+	return sum;
+}
+
+}  // namespace hylo::trainer

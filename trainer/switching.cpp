@@ -1,0 +1,116 @@
+#include "trainer/switching.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hylo::trainer {
+namespace {
+
+// x_{k+1}(0)[to] - coef * x_k(T)[from] = 0
+LinearRow carry(size_t k, int from, int to, double coef = 1.0)
+{
+	LinearRow r;
+	r.terms = {{KnotRef{static_cast<int>(k) + 1, false, to}, 1.0},
+		   {KnotRef{static_cast<int>(k), true, from}, -coef}};
+	return r;
+}
+
+void fix(std::vector<double> &lo, std::vector<double> &hi, int component, double value)
+{
+	lo[static_cast<size_t>(component)] = hi[static_cast<size_t>(component)] = value;
+}
+
+// The switch point (components 0, 1 of phase k's last knot) on the guard segment.
+void on_segment(MultiPhaseProblem &p, size_t k, const SwitchGuard &g)
+{
+	const int ph = static_cast<int>(k);
+	double tx = g.bx - g.ax, ty = g.by - g.ay, len2 = tx * tx + ty * ty;
+	if (len2 < 1e-18) {
+		fix(p.phases[k].last_lo, p.phases[k].last_hi, 0, g.ax);
+		fix(p.phases[k].last_lo, p.phases[k].last_hi, 1, g.ay);
+		return;
+	}
+	LinearRow normal, along;
+	normal.terms = {{KnotRef{ph, true, 0}, -ty}, {KnotRef{ph, true, 1}, tx}};
+	normal.lo = normal.hi = -ty * g.ax + tx * g.ay;
+	along.terms = {{KnotRef{ph, true, 0}, tx}, {KnotRef{ph, true, 1}, ty}};
+	along.lo = tx * g.ax + ty * g.ay;
+	along.hi = along.lo + len2;
+	p.rows.push_back(normal);
+	p.rows.push_back(along);
+}
+
+void default_bounds(PhaseSpec &s, const RobotParams &robot)
+{
+	auto b = state_bounds(s.mode, robot);
+	if (s.first_lo.empty()) s.first_lo = b.first;
+	if (s.first_hi.empty()) s.first_hi = b.second;
+	if (s.last_lo.empty()) s.last_lo = b.first;
+	if (s.last_hi.empty()) s.last_hi = b.second;
+}
+
+}  // namespace
+
+TakeoffLanding takeoff_landing(const RobotParams &robot, const SolveOptions &opt)
+{
+	double lo[6] = {0, 0, 0, 0, 0, 0}, hi[6] = {0, 0, 1, 0, 0, 0};
+	Solution up = solve_bvp("flight", robot, lo, hi, opt);
+	Solution down = solve_bvp("flight", robot, hi, lo, opt);
+	if (!up.converged || !down.converged)
+		throw std::runtime_error("the takeoff or landing optimization did not converge");
+	return {up.cost, down.cost};
+}
+
+void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const SwitchGuard &g,
+		 const TakeoffLanding &costs)
+{
+	if (k + 1 >= p.phases.size())
+		throw std::invalid_argument("join_phases: phase " + std::to_string(k) + " has no successor");
+	PhaseSpec &a = p.phases[k], &b = p.phases[k + 1];
+	default_bounds(a, robot);
+	default_bounds(b, robot);
+	const std::string pair = a.mode + " -> " + b.mode;
+	if ((a.mode == "di_pos" && b.mode == "di_neg") || (a.mode == "di_neg" && b.mode == "di_pos")) {
+		fix(a.last_lo, a.last_hi, 0, 0.0);
+		p.rows.push_back(carry(k, 0, 0));
+		p.rows.push_back(carry(k, 1, 1));
+	} else if ((a.mode == "ground" && b.mode == "marine") || (a.mode == "marine" && b.mode == "ground")) {
+		for (int i = 0; i < 6; i++)
+			p.rows.push_back(carry(k, i, i));
+		if (b.mode == "marine") {
+			double xs[4] = {0, 0, 1, 0};   // phi_n is linear in vx: its slope
+			double slope = full_state("marine", robot, xs)[6];
+			p.rows.push_back(carry(k, 2, 6, slope));
+			p.rows.push_back(carry(k, 2, 7, slope));
+		}
+		on_segment(p, k, g);
+	} else if (a.mode == "ground" && b.mode == "flight") {
+		for (int i : {2, 3, 5})
+			fix(a.last_lo, a.last_hi, i, 0.0);
+		double xs[6] = {0, 0, g.height_m + 1, 0, 0, 0};
+		std::vector<double> hover = full_state("flight", robot, xs);
+		for (int i = 2; i < 16; i++)
+			fix(b.first_lo, b.first_hi, i, hover[static_cast<size_t>(i)]);
+		p.rows.push_back(carry(k, 0, 0));
+		p.rows.push_back(carry(k, 1, 1));
+		on_segment(p, k, g);
+		p.switch_cost += costs.takeoff_j;
+	} else if (a.mode == "flight" && b.mode == "ground") {
+		double xs[6] = {0, 0, g.height_m + 1, 0, 0, 0};
+		std::vector<double> hover = full_state("flight", robot, xs);
+		for (int i = 2; i < 16; i++)
+			fix(a.last_lo, a.last_hi, i, hover[static_cast<size_t>(i)]);
+		for (int i : {2, 3, 4, 5})
+			fix(b.first_lo, b.first_hi, i, 0.0);
+		p.rows.push_back(carry(k, 0, 0));
+		p.rows.push_back(carry(k, 1, 1));
+		on_segment(p, k, g);
+		p.switch_cost += costs.landing_j;
+	} else {
+		throw std::invalid_argument("no mode switch " + pair + " (models.md section 6)");
+	}
+}
+
+}  // namespace hylo::trainer

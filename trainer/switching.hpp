@@ -1,0 +1,43 @@
+// Mode switches of multi-phase problems (models.md section 6): the reset map
+// between consecutive phases, the guard the switch point stays on, and the
+// switching cost.
+//   di_pos <-> di_neg   guard p = 0, identity reset, cost 0
+//   ground <-> marine   guard: the shoreline (a segment here), state carried
+//                       over, phiL = phiR = phi_n(vx) entering the water, cost 0
+//   ground -> flight    takeoff from rest at terrain height h to hover at h + 1
+//                       (yaw 0), cost J_takeoff
+//   flight -> ground    landing from that hover to rest with heading 0, cost J_landing
+#ifndef HYLO_TRAINER_SWITCHING_HPP
+#define HYLO_TRAINER_SWITCHING_HPP
+
+#include <cstddef>
+
+#include "trainer/collocation.hpp"
+#include "trainer/params.hpp"
+
+namespace hylo::trainer {
+
+// Where a switch may happen: its (px, py) on the segment a-b (a == b pins it)
+// at terrain height height_m. Unused by the double integrator (p = 0).
+struct SwitchGuard {
+	double ax = 0, ay = 0, bx = 0, by = 0;
+	double height_m = 0;
+};
+
+// Energies of takeoff and landing [J]: the flight problems from hover at h to
+// hover at h + 1 and back (translation-invariant, so any h).
+struct TakeoffLanding {
+	double takeoff_j = 0, landing_j = 0;
+};
+TakeoffLanding takeoff_landing(const RobotParams &robot, const SolveOptions &opt);
+
+// Joins phase k to phase k + 1 of problem: reset rows, guard rows and the
+// knot bounds of the switch, and adds its cost. Fills empty knot bounds of the
+// two phases with their modes' bounds first. Throws std::invalid_argument for
+// a pair of modes with no switch between them.
+void join_phases(MultiPhaseProblem &problem, size_t k, const RobotParams &robot, const SwitchGuard &guard,
+		 const TakeoffLanding &costs = {});
+
+}  // namespace hylo::trainer
+
+#endif
