@@ -10,25 +10,13 @@
 #include <vector>
 
 extern "C" {
+#include "tests/tap.hpp"
 #include "hylo/svr.h"
 }
 #include "trainer/svr_export.hpp"
 #include "trainer/svr_fit.hpp"
 
 namespace {
-
-int n_checks = 0, n_failed = 0;
-
-void check(bool ok, const std::string &name, const std::string &why = "")
-{
-	n_checks++;
-	std::printf("%s %d - %s\n", ok ? "ok" : "not ok", n_checks, name.c_str());
-	if (!ok) {
-		n_failed++;
-		if (!why.empty())
-			std::printf("# %s\n", why.c_str());
-	}
-}
 
 void check_throws(const std::function<void()> &f, const std::string &needle, const std::string &name)
 {
@@ -163,6 +151,5 @@ int main()
 	ClassifierExport cf;
 	check_throws([&] { fit_feasibility(5, bad.x, all, o, cf); }, "both feasible and infeasible",
 		     "one class only: clear error");
-	std::printf("1..%d\n", n_checks);
-	return n_failed ? 1 : 0;
+	return tap_finish();
 }

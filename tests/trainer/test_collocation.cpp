@@ -10,6 +10,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
@@ -17,20 +18,6 @@
 namespace {
 
 using namespace hylo::trainer;
-int n_checks = 0, n_failed = 0;
-
-void check(bool ok, const std::string &name, const std::string &why = "")
-{
-	n_checks++;
-	std::printf("%s %d - %s\n", ok ? "ok" : "not ok", n_checks, name.c_str());
-	if (!ok) {
-		n_failed++;
-		if (!why.empty())
-			std::printf("# %s\n", why.c_str());
-	}
-	std::fflush(stdout);
-}
-
 std::string slurp(const std::string &p)
 {
 	std::ifstream f(p);
@@ -124,6 +111,5 @@ int main()
 		check(std::string(e.what()).find("outside") != std::string::npos,
 		      "a boundary state outside the mode's bounds is refused", e.what());
 	}
-	std::printf("1..%d\n", n_checks);
-	return n_failed ? 1 : 0;
+	return tap_finish();
 }

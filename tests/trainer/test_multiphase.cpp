@@ -13,6 +13,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
@@ -21,20 +22,6 @@
 namespace {
 
 using namespace hylo::trainer;
-int n_checks = 0, n_failed = 0;
-
-void check(bool ok, const std::string &name, const std::string &why = "")
-{
-	n_checks++;
-	std::printf("%s %d - %s\n", ok ? "ok" : "not ok", n_checks, name.c_str());
-	if (!ok) {
-		n_failed++;
-		if (!why.empty())
-			std::printf("# %s\n", why.c_str());
-	}
-	std::fflush(stdout);
-}
-
 std::string fmt(double v)
 {
 	char b[64];
@@ -252,6 +239,5 @@ int main()
 	di_case(di, 0.7, -0.1, -0.5, 0.2);
 	shore_crossing(ambot);
 	bad_problems(di);
-	std::printf("1..%d\n", n_checks);
-	return n_failed ? 1 : 0;
+	return tap_finish();
 }
