@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # make pictures: plans every scene through the planner node (file:// logs)
-# with the committed models and draws it with hylo-render into
-# docs/pictures/<scene>.png. A scene whose robot has no committed model yet
+# with the committed models, smooths the plan (hylo-smooth) and draws both
+# with hylo-render into docs/pictures/<scene>.png. A scene whose robot has no committed model yet
 # is drawn without a path (the title says why).
 set -u
 cd "$(dirname "$0")/.."
@@ -16,7 +16,10 @@ for scene in scenes/*.yaml; do
   "$B/bin/hylo-scene" "$scene" --goal --lcm-url "file://$W/$name.in.log?mode=w" || { status=1; continue; }
   "$B/bin/hylo-planner" --lcm-url "file://$W/$name.in.log?speed=0" \
     --out-url "file://$W/$name.plan.log?mode=w" 2> "$W/$name.node.log" || status=1
-  "$B/bin/hylo-render" --log "$W/$name.in.log" --log "$W/$name.plan.log" \
+  cat "$W/$name.in.log" "$W/$name.plan.log" > "$W/$name.planned.log"
+  "$B/bin/hylo-smooth" --quiet --lcm-url "file://$W/$name.planned.log?speed=0" \
+    --out-url "file://$W/$name.traj.log?mode=w" 2> "$W/$name.smooth.log" || status=1
+  "$B/bin/hylo-render" --log "$W/$name.in.log" --log "$W/$name.plan.log" --log "$W/$name.traj.log" \
     --camera "$("$B/bin/hylo-scene" "$scene" --print-camera)" --out "$OUT/$name.png" || status=1
 done
 exit $status
