@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <dlfcn.h>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -204,8 +205,23 @@ private:
 	std::vector<double> z_, warm_;
 };
 
+// MUMPS calls BLAS on small fronts; OpenBLAS's worker threads only add
+// spinning there (and the trainer is already parallel over processes). Found
+// at run time so that any BLAS works.
+void single_threaded_blas()
+{
+	static bool done = false;
+	if (done)
+		return;
+	done = true;
+	using set_threads_fn = void (*)(int);
+	if (void *sym = dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))
+		reinterpret_cast<set_threads_fn>(sym)(1);
+}
+
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm = false)
 {
+	single_threaded_blas();
 	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
 	bool ok = app->Options()->SetIntegerValue("print_level", 0);
 	ok = ok && app->Options()->SetStringValue("sb", "yes");
@@ -401,7 +417,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
 		const double levels[] = {100.0, 10.0, 3.0, 1.0};
 		for (double relax : levels) {
-			if ((!smoothed || !opt.derivative_test_file.empty()) && relax != 1.0)
+			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
 			res = run(p, relax, start, nlp, !start.empty());
 			if (succeeded(res.first))

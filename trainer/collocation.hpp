@@ -25,6 +25,7 @@ struct SolveOptions {
 	int refinements = 2;              // mesh doublings when the replay rejects a solution
 	double replay_state_tol = kReplayStateTol;  // largest scaled end-state error a replay may show
 	bool replay = true;               // check every solution with CVODE
+	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here
 	double derivative_test_perturbation = 1e-8;  // relative finite-difference step of the checker
 };

@@ -1,8 +1,11 @@
 // Trainer solve times: median wall time and Ipopt iterations per mode on a
-// fixed set of BVPs (the same starts, tolerance and meshes every run).
-// No CasADi reference yet (issue 3 asks for one): rows carry no ratio.
+// fixed set of BVPs (the same starts, tolerance and meshes every run), and
+// the same BVPs as single Ipopt solves of the bare transcription (one T guess,
+// no continuation, no refinement, no replay) for tools/bench/casadi_hs.py to
+// solve with CasADi side by side: those go to argv[2] as JSON.
 // Writes a table to stdout and JSON rows to argv[1].
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -26,12 +29,58 @@ double median(std::vector<double> v)
 	return n == 0 ? 0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// Bare single solves (median time of 5) of every DI, ground and marine BVP,
+// with what the CasADi side needs to pose the same problem.
+int bare_solves(const std::vector<Case> &cases, const char *path)
+{
+	std::FILE *f = std::fopen(path, "w");
+	if (!f)
+		return 1;
+	std::fprintf(f, "[\n");
+	bool first = true;
+	for (const Case &c : cases) {
+		if (std::string(c.mode) == "flight")
+			continue;
+		RobotParams r = load_robot(robot_file(c.robot));
+		for (const auto &p : c.pairs) {
+			size_t d = p.size() / 2;
+			SolveOptions o;
+			o.continuation = false;
+			o.refinements = 0;
+			o.replay = false;
+			o.T_guesses = {std::max(0.2, std::hypot(p[d] - p[0], p[d + 1] - p[1]) / 0.5)};
+			std::vector<double> secs;
+			Solution s;
+			for (int rep = 0; rep < 5; rep++) {
+				s = solve_bvp(c.mode, r, p.data(), p.data() + d, o);
+				secs.push_back(s.solve_seconds);
+			}
+			std::fprintf(f, "%s {\"robot\": \"%s\", \"mode\": \"%s\", \"x1s\": [", first ? "" : ",\n",
+				     c.robot, c.mode);
+			for (size_t k = 0; k < d; k++)
+				std::fprintf(f, "%s%.17g", k ? ", " : "", p[k]);
+			std::fprintf(f, "], \"x2s\": [");
+			for (size_t k = 0; k < d; k++)
+				std::fprintf(f, "%s%.17g", k ? ", " : "", p[d + k]);
+			std::fprintf(f, "], \"T_guess\": %.17g, \"segments\": %d, \"tol\": %.17g, "
+				     "\"hylo\": {\"converged\": %s, \"seconds\": %.9g, \"iterations\": %d, "
+				     "\"cost\": %.17g, \"T\": %.17g}}",
+				     o.T_guesses[0], o.segments, o.tol, s.converged ? "true" : "false", median(secs),
+				     s.iterations, s.cost, s.T);
+			first = false;
+		}
+	}
+	std::fprintf(f, "\n]\n");
+	std::fclose(f);
+	return 0;
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
 {
-	if (argc != 2) {
-		std::fprintf(stderr, "usage: %s RESULTS.json\n", argv[0]);
+	if (argc < 2 || argc > 3) {
+		std::fprintf(stderr, "usage: %s RESULTS.json [BARE_SOLVES.json]\n", argv[0]);
 		return 2;
 	}
 	const std::vector<Case> cases = {
@@ -71,5 +120,7 @@ int main(int argc, char **argv)
 	}
 	std::fprintf(f, "]\n");
 	std::fclose(f);
+	if (argc == 3)
+		return bare_solves(cases, argv[2]);
 	return 0;
 }
