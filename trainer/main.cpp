@@ -14,6 +14,7 @@
 #include "trainer/dataset.hpp"
 #include "trainer/params.hpp"
 #include "trainer/pipeline.hpp"
+#include "trainer/switching.hpp"
 
 namespace {
 
@@ -29,11 +30,14 @@ void usage(FILE *f)
 	std::fprintf(f,
 		"usage: trainer --mode M --robot R [options]\n"
 		"       trainer --mode M --robot R --solve X1 X2 [--json] [--trajectory]\n"
+		"       trainer --mode switch --robot R [--json]\n"
 		"Generates training data by trajectory optimization (Hermite-Simpson\n"
 		"collocation with Ipopt, checked by a CVODE replay), fits the SVR cost model\n"
 		"and exports it as onboard/models/<robot>_<mode>.h.\n"
 		"\n"
-		"  --mode M          di_neg, di_pos, ground, marine or flight (required)\n"
+		"  --mode M          di_neg, di_pos, ground, marine or flight (required); switch:\n"
+		"                    print the robot's mode switches and their costs (models.md\n"
+		"                    section 6; Drivocopter takeoff and landing are solved, ~2 min)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required)\n"
 		"  --stage S         gen, fit, export or all (default: all)\n"
 		"  --samples N       training pairs (default: 11520; flight 17016; di 2000)\n"
@@ -118,6 +122,43 @@ void print_solution(const Solution &s, const std::string &mode, const std::strin
 	std::printf("}\n");
 }
 
+// trainer --mode switch: the robot's mode switches (models.md section 6).
+int print_switches(const RobotParams &robot, const SolveOptions &opt, bool json)
+{
+	struct Switch {
+		std::string from, to, how;
+		double cost;
+	};
+	std::vector<Switch> sw;
+	const auto &m = robot.modes;
+	if (m.count("di_neg") && m.count("di_pos")) {
+		sw.push_back({"di_pos", "di_neg", "guard p = 0, identity reset", 0});
+		sw.push_back({"di_neg", "di_pos", "guard p = 0, identity reset", 0});
+	}
+	if (m.count("ground") && m.count("marine")) {
+		sw.push_back({"ground", "marine", "shoreline, phiL = phiR = phi_n(vx)", 0});
+		sw.push_back({"marine", "ground", "shoreline, paddle speeds dropped", 0});
+	}
+	if (m.count("ground") && m.count("flight")) {
+		TakeoffLanding tl = takeoff_landing(robot, opt);
+		sw.push_back({"ground", "flight", "takeoff: rest at height h -> hover at h + 1", tl.takeoff_j});
+		sw.push_back({"flight", "ground", "landing: hover at h + 1 -> rest at height h", tl.landing_j});
+	}
+	if (json)
+		std::printf("{\"robot\":\"%s\",\"switches\":[", robot.robot.c_str());
+	for (size_t i = 0; i < sw.size(); i++) {
+		if (json)
+			std::printf("%s{\"from\":\"%s\",\"to\":\"%s\",\"cost_j\":%.17g,\"how\":\"%s\"}",
+				    i ? "," : "", sw[i].from.c_str(), sw[i].to.c_str(), sw[i].cost, sw[i].how.c_str());
+		else
+			std::printf("%s %s -> %s: %.6g J (%s)\n", robot.robot.c_str(), sw[i].from.c_str(),
+				    sw[i].to.c_str(), sw[i].cost, sw[i].how.c_str());
+	}
+	if (json)
+		std::printf("]}\n");
+	return 0;
+}
+
 int run(int argc, char **argv)
 {
 	PipelineOptions po;
@@ -185,14 +226,16 @@ int run(int argc, char **argv)
 	}
 	if (mode.empty() || robot_name.empty())
 		throw Usage("--mode and --robot are required (see --help)");
-	if (!known_mode(mode))
-		throw Usage("unknown mode '" + mode + "' (di_neg, di_pos, ground, marine, flight)");
+	if (!known_mode(mode) && mode != "switch")
+		throw Usage("unknown mode '" + mode + "' (di_neg, di_pos, ground, marine, flight, switch)");
 	RobotParams robot;
 	try {
 		robot = load_robot(robot_file(robot_name));
 	} catch (const ParamError &e) {
 		throw Usage(std::string("robot '") + robot_name + "': " + e.what());
 	}
+	if (mode == "switch")
+		return print_switches(robot, po.gen.solve, json);
 	if (!robot.modes.count(mode))
 		throw Usage("robot " + robot_name + " has no mode '" + mode + "'");
 	if (solve) {

@@ -119,4 +119,10 @@ expect_fail "too few samples for the folds: clear error" 2 "too few" "$TR" --mod
 cp "$T/pipe/di_neg.csv" "$T/bad/"; sed -i 's/params_sha256: .*/params_sha256: 0000/' "$T/bad/di_neg.csv.meta"
 expect_fail "a dataset from another robot file: clear error" 2 "another robot file" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
 if ls "$T/bad"/*.h > /dev/null 2>&1; then tap_not_ok "no header written from bad data"; else tap_ok "no header written from bad data"; fi
+
+# --mode switch: the robot's switches (models.md section 6).
+if "$TR" --mode switch --robot ambot --json > "$T/sw.json" &&
+   python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); s=[(x["from"],x["to"],x["cost_j"]) for x in d["switches"]]; assert s == [("ground","marine",0),("marine","ground",0)], s' "$T/sw.json"; then
+  tap_ok "--mode switch: Ambot's two shoreline switches at no cost"
+else tap_not_ok "--mode switch: Ambot's two shoreline switches at no cost" "$(cat "$T/sw.json")"; fi
 tap_finish
