@@ -202,9 +202,7 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 		const Waypoint &g = plan[runs[k].second];
 		const std::string a = p.phases[k].mode, b = p.phases[k + 1].mode;
 		SwitchGuard guard;
-		if (a == "ground" && b == "marine") {
-			guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
-		} else if (a == "marine" && b == "ground") {
+		if ((a == "ground" && b == "marine") || (a == "marine" && b == "ground")) {
 			guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
 		} else if (a == "ground" && b == "flight") {
 			const Waypoint &prev = runs[k].second > runs[k].first ? plan[runs[k].second - 1] : g;
