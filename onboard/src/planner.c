@@ -369,9 +369,11 @@ static void node_state(const hylo_planner *pl, uint32_t i, uint32_t c, hylo_real
 }
 
 /* Appends the open nodes of position j as heads of an edge from a tail at
- * tail_p. */
-static hylo_status add_heads(hylo_planner *pl, const hylo_search *s, uint32_t j,
-			     hylo_point tail_p, uint32_t *heads, uint32_t cap, uint32_t *n)
+ * tail_p whose cost so far is g_tail (s is NULL during the bound's walk:
+ * nothing is closed then). */
+static hylo_status add_heads(hylo_planner *pl, const hylo_search *s, uint32_t j, hylo_point tail_p,
+			     hylo_real g_tail, hylo_real floor_j_tail, hylo_real floor_m_tail,
+			     uint32_t *heads, uint32_t cap, uint32_t *n)
 {
 	const hylo_position *q = &pl->roadmap.pos[j];
 	hylo_real dist;
@@ -382,10 +384,16 @@ static hylo_status add_heads(hylo_planner *pl, const hylo_search *s, uint32_t j,
 	if (pl->use_heuristic && !isfinite(pl->h_pos[j]))
 		return HYLO_OK;
 	dist = hylo_roadmap_distance(tail_p, q->p);
+	/* No path through this edge can beat the bound's path (A* only). */
+	if (pl->use_heuristic &&
+	    g_tail + floor_j_tail + floor_m_tail * dist + pl->h_pos[j] > pl->bound * (1 + 1e-9)) {
+		pl->n_pruned += q->n_combos;
+		return HYLO_OK;
+	}
 	for (c = 0; c < q->n_combos; c++) {
 		uint32_t v = q->node_base + c;
 
-		if (hylo_search_closed(s, v))
+		if (s && hylo_search_closed(s, v))
 			continue;
 		if (*n >= cap)
 			return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
@@ -479,13 +487,17 @@ static hylo_status expand_node(void *ctx, const hylo_search *s, uint32_t u, uint
 	const hylo_position *p = &rm->pos[i];
 	const uint32_t *adj;
 	uint32_t k, n_adj, n = 0, combos[HYLO_MAX_COMBOS];
-	hylo_real tail[HYLO_XS_DIM];
+	hylo_real tail[HYLO_XS_DIM], g = s ? hylo_search_cost(s, u) : 0, fj, fm;
+	const hylo_mode_model *mm;
 	hylo_status st = HYLO_OK;
 
 	(void)r;
 	*n_out = 0;
 	if (i == pl->goal_pos)
 		return HYLO_OK;
+	mm = mode_model(pl, (hylo_mode)p->mode);
+	fj = floor_j(mm);
+	fm = floor_per_m(mm);
 	node_state(pl, i, c, tail);
 	if (i == pl->start_pos) {
 		adj = pl->start_adj;
@@ -495,10 +507,10 @@ static hylo_status expand_node(void *ctx, const hylo_search *s, uint32_t u, uint
 		n_adj = p->adj_end - p->adj_begin;
 	}
 	for (k = 0; k < n_adj && st == HYLO_OK; k++)
-		st = add_heads(pl, s, adj[k], p->p, heads, cap, &n);
+		st = add_heads(pl, s, adj[k], p->p, g, fj, fm, heads, cap, &n);
 	if (st == HYLO_OK && ((i == pl->start_pos && pl->start_goal_linked) ||
 			      (i < rm->n_positions && pl->links_goal[i])))
-		st = add_heads(pl, s, pl->goal_pos, p->p, heads, cap, &n);
+		st = add_heads(pl, s, pl->goal_pos, p->p, g, fj, fm, heads, cap, &n);
 	if (st == HYLO_OK)
 		st = evaluate(pl, (hylo_mode)p->mode, tail, n, costs);
 	if (st != HYLO_OK)
@@ -512,7 +524,7 @@ static hylo_status expand_node(void *ctx, const hylo_search *s, uint32_t u, uint
 		for (k = 0; k < m; k++) {
 			uint32_t v = t->node_base + combos[k];
 
-			if (hylo_search_closed(s, v) ||
+			if ((s && hylo_search_closed(s, v)) ||
 			    (pl->use_heuristic && !isfinite(pl->h_pos[p->twin])))
 				continue;
 			if (n >= cap)
@@ -624,6 +636,61 @@ static hylo_status compute_heuristic(hylo_planner *pl, const hylo_budget *budget
 	}
 	pl->h_pos[pl->start_pos] = best;
 	return HYLO_OK;
+}
+
+/*
+ * An upper bound for A*: the cost of a real path, found by a greedy walk from
+ * the start that takes, at every node, the evaluated edge with the least cost
+ * plus heuristic among those that get strictly nearer the goal by the
+ * heuristic (a mode switch may keep the heuristic, but not twice in a row).
+ * The optimum is at most this bound, so A* skips, without evaluating them,
+ * the edges u -> v with g(u) + lower_bound(u, v) + h(v) above it: no path
+ * through them can do better (g(u) is final when u is expanded, the
+ * heuristic being consistent). Infinity, and no pruning, when the walk gets
+ * stuck or runs past HYLO_MAX_WAYPOINTS steps. Its evaluations are counted
+ * with the search's.
+ */
+static hylo_real greedy_bound(hylo_planner *pl)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t u = rm->n_nodes, goal = rm->n_nodes + 1, step, k, n;
+	hylo_real total = 0;
+	int switched = 0;
+	hylo_reason r;
+
+	pl->bound = INFINITY;
+	for (step = 0; step < HYLO_MAX_WAYPOINTS; step++) {
+		uint32_t best_v = goal + 1, ui = rm->node_pos[u];
+		hylo_real best = INFINITY, best_c = 0, hu = pl->h_pos[ui];
+		int best_switch = 0;
+
+		if (u == goal)
+			return total;
+		if (expand_node(pl, NULL, u, pl->walk_heads, pl->walk_costs, HYLO_MAX_SUCCESSORS, &n, &r) !=
+		    HYLO_OK)
+			return INFINITY;
+		pl->n_walk_evaluated += n;
+		for (k = 0; k < n; k++) {
+			uint32_t v = pl->walk_heads[k], vi = rm->node_pos[v];
+			hylo_real hv = pl->h_pos[vi];
+			int sw = ui < rm->n_positions && rm->pos[ui].twin == vi;
+
+			if (!(hv < hu || (sw && !switched && hv <= hu)))
+				continue;
+			if (pl->walk_costs[k] + hv < best) {
+				best = pl->walk_costs[k] + hv;
+				best_c = pl->walk_costs[k];
+				best_v = v;
+				best_switch = sw;
+			}
+		}
+		if (best_v > goal)
+			return INFINITY;
+		total += best_c;
+		switched = best_switch;
+		u = best_v;
+	}
+	return INFINITY;
 }
 
 /* ---- plan extraction --------------------------------------------------- */
@@ -740,6 +807,11 @@ static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, do
 			return st;
 		pl->use_heuristic = 1;
 	}
+	pl->n_walk_evaluated = 0;
+	pl->n_pruned = 0;
+	pl->bound = INFINITY;
+	if (pl->use_heuristic)
+		pl->bound = greedy_bound(pl);
 	budget.max_expansions = g->max_expansions;
 	budget.time_budget_ms = g->time_budget_ms > 0 ? g->time_budget_ms - (now_ms(pl) - t0) : 0;
 	if (g->time_budget_ms > 0 && budget.time_budget_ms <= 0) {
@@ -755,7 +827,7 @@ static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, do
 	pl->n_infeasible = 0;
 	st = hylo_search_run(&pl->search, &graph, rm->n_nodes, rm->n_nodes + 1, &budget,
 			     &plan->outcome, &pl->reason);
-	plan->n_edges_evaluated = pl->search.stats.edges_evaluated;
+	plan->n_edges_evaluated = pl->search.stats.edges_evaluated + pl->n_walk_evaluated;
 	plan->n_expansions = pl->search.stats.expansions;
 	plan->n_clamped = pl->n_clamped;
 	plan->n_negative = pl->n_negative;

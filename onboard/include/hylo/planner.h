@@ -122,6 +122,11 @@ typedef struct {
 	uint64_t n_clamped, n_negative, n_infeasible;
 	int heuristic_pass;             /* 1 while computing h_pos */
 	int use_heuristic;
+	/* A*'s upper bound (a greedy walk's path cost) and its bookkeeping */
+	hylo_real bound;
+	uint64_t n_walk_evaluated, n_pruned;
+	uint32_t walk_heads[HYLO_MAX_SUCCESSORS];
+	hylo_real walk_costs[HYLO_MAX_SUCCESSORS];
 } hylo_planner;
 
 /**
