@@ -3,6 +3,7 @@
 #   make test       install missing Debian packages, build, run every test
 #   make demo       plan the default scenes with the committed models
 #   make bench      run the benchmarks, write build/bench/results.json
+#   make casestudies  the paper's case studies into docs/results.{md,json}
 #   make deps       install missing Debian packages only
 #   make clean      remove build/
 # Every output goes under build/. Pieces are described in mk/*.mk.
@@ -24,11 +25,12 @@ include mk/render.mk
 include mk/export.mk
 include mk/fuzz.mk
 include mk/cross.mk
+include mk/casestudies.mk
 
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test demo bench deps venv venv-bench check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps models update-goldens pictures
+.PHONY: all test demo bench deps venv venv-bench venv-report casestudies model-pictures check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps models update-goldens pictures
 
 all: check-deps $(ALL_TARGETS)
 

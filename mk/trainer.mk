@@ -48,6 +48,15 @@ models: deps $(TRAINER)
 		$(TRAINER) --robot $$r --mode $$m --jobs $(MODEL_JOBS) --out trainer/datasets/$$r \
 			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)) || exit 1; \
 	done
+	@$(MAKE) --no-print-directory model-pictures
+
+# Pictures of the committed models (tools/models/plot_models.py, matplotlib
+# from PyPI): training trajectories and the learned cost, into docs/models/.
+MODEL_PICTURES := ambot:ground ambot:marine
+model-pictures: venv-report $(TRAINER) $(BUILD)/bin/hylo-cost
+	@for rm in $(MODEL_PICTURES); do \
+		.venv/bin/python tools/models/plot_models.py $${rm%%:*} $${rm##*:} docs/models || exit 1; \
+	done
 
 # Trainer solve-time benchmark (tools/bench/bench_trainer.cpp).
 BENCH_TRAINER := $(BUILD)/bench/bin/bench_trainer

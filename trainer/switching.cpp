@@ -1,5 +1,6 @@
 #include "trainer/switching.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -111,6 +112,66 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 	} else {
 		throw std::invalid_argument("no mode switch " + pair + " (models.md section 6)");
 	}
+}
+
+PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,
+			const double *xs1, const double *guess0, const double *guess1, int segments)
+{
+	PhaseSpec p;
+	p.mode = mode;
+	p.segments = segments;
+	p.guess = {full_state(mode, robot, guess0), full_state(mode, robot, guess1)};
+	auto b = state_bounds(mode, robot);
+	p.first_lo = p.last_lo = b.first;
+	p.first_hi = p.last_hi = b.second;
+	if (xs0)
+		p.first_lo = p.first_hi = full_state(mode, robot, xs0);
+	if (xs1)
+		p.last_lo = p.last_hi = full_state(mode, robot, xs1);
+	return p;
+}
+
+namespace {
+const char *di_side(const double *x) { return x[0] > 0 ? "di_pos" : "di_neg"; }
+}  // namespace
+
+MultiPhaseSolution di_two_phase(const RobotParams &di, const double *a, const double *b, double v_guess)
+{
+	double s[2] = {0, v_guess};
+	MultiPhaseProblem p;
+	p.phases = {phase_between(di_side(a), di, a, nullptr, a, s, 20),
+		    phase_between(di_side(b), di, nullptr, b, s, b, 20)};
+	join_phases(p, 0, di, SwitchGuard{});
+	return solve_multiphase(di, p, SolveOptions());
+}
+
+std::pair<double, double> di_swept_optimum(const RobotParams &di, const double *a, const double *b)
+{
+	auto through = [&](double v) {
+		double s[2] = {0, v};
+		Solution x = solve_bvp(di_side(a), di, a, s, SolveOptions());
+		Solution y = solve_bvp(di_side(b), di, s, b, SolveOptions());
+		return x.converged && y.converged ? x.cost + y.cost : INFINITY;
+	};
+	double best_v = 0, best = INFINITY;
+	for (int i = 0; i <= 40; i++) {
+		double v = -1 + 2.0 * i / 40, c = through(v);
+		if (c < best) {
+			best = c;
+			best_v = v;
+		}
+	}
+	double lo = std::max(-1.0, best_v - 0.05), hi = std::min(1.0, best_v + 0.05);
+	const double gr = (std::sqrt(5.0) - 1) / 2;
+	for (int it = 0; it < 24; it++) {
+		double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
+		if (through(x1) < through(x2))
+			hi = x2;
+		else
+			lo = x1;
+	}
+	double v = 0.5 * (lo + hi), c = through(v);
+	return c < best ? std::make_pair(c, v) : std::make_pair(best, best_v);
 }
 
 }  // namespace hylo::trainer

@@ -11,6 +11,8 @@
 #define HYLO_TRAINER_SWITCHING_HPP
 
 #include <cstddef>
+#include <string>
+#include <utility>
 
 #include "trainer/collocation.hpp"
 #include "trainer/params.hpp"
@@ -37,6 +39,21 @@ TakeoffLanding takeoff_landing(const RobotParams &robot, const SolveOptions &opt
 // a pair of modes with no switch between them.
 void join_phases(MultiPhaseProblem &problem, size_t k, const RobotParams &robot, const SwitchGuard &guard,
 		 const TakeoffLanding &costs = {});
+
+// A phase of mode from sampled state xs0 to xs1 (either nullptr: left free
+// within the mode's bounds), its guess a straight line guess0 -> guess1.
+PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,
+			const double *xs1, const double *guess0, const double *guess1, int segments);
+
+// The hybrid double integrator a -> (0, v) -> b (a and b on opposite sides
+// of p = 0) as one two-phase problem, the switch free on p = 0, guessed
+// through (0, v_guess).
+MultiPhaseSolution di_two_phase(const RobotParams &di, const double *a, const double *b, double v_guess);
+
+// Its reference optimum (the paper's Fig. 10): the least cost of the two
+// single-phase problems through a fixed switch state (0, v), v swept over
+// [-1, 1] every 0.05 and refined by golden-section search. {cost, v}.
+std::pair<double, double> di_swept_optimum(const RobotParams &di, const double *a, const double *b);
 
 }  // namespace hylo::trainer
 

@@ -29,66 +29,10 @@ std::string fmt(double v)
 	return b;
 }
 
-// Phase from sampled start to sampled end (either may be left free by passing nullptr).
-PhaseSpec phase(const std::string &mode, const RobotParams &r, const double *xs0, const double *xs1,
-		const double *guess0, const double *guess1, int segments)
-{
-	PhaseSpec p;
-	p.mode = mode;
-	p.segments = segments;
-	p.guess = {full_state(mode, r, guess0), full_state(mode, r, guess1)};
-	auto b = state_bounds(mode, r);
-	p.first_lo = p.last_lo = b.first;
-	p.first_hi = p.last_hi = b.second;
-	if (xs0)
-		p.first_lo = p.first_hi = full_state(mode, r, xs0);
-	if (xs1)
-		p.last_lo = p.last_hi = full_state(mode, r, xs1);
-	return p;
-}
-
-// The two-phase DI problem a -> (0, v) -> b, v free.
-MultiPhaseSolution di_two_phase(const RobotParams &di, const double *a, const double *b, double v_guess)
-{
-	double s[2] = {0, v_guess};
-	MultiPhaseProblem p;
-	p.phases = {phase("di_pos", di, a, nullptr, a, s, 20), phase("di_neg", di, nullptr, b, s, b, 20)};
-	join_phases(p, 0, di, SwitchGuard{});
-	return solve_multiphase(di, p, SolveOptions());
-}
-
-// Cost of the two single-phase problems through the fixed switch state (0, v).
-double di_through(const RobotParams &di, const double *a, const double *b, double v)
-{
-	double s[2] = {0, v};
-	Solution x = solve_bvp("di_pos", di, a, s, SolveOptions());
-	Solution y = solve_bvp("di_neg", di, s, b, SolveOptions());
-	return x.converged && y.converged ? x.cost + y.cost : INFINITY;
-}
-
 void di_case(const RobotParams &di, double a0, double a1, double b0, double b1)
 {
 	double a[2] = {a0, a1}, b[2] = {b0, b1};
-	// Dense sweep of the switching velocity, then golden-section around the best.
-	double best_v = 0, best = INFINITY;
-	for (int i = 0; i <= 40; i++) {
-		double v = -1 + 2.0 * i / 40;
-		double c = di_through(di, a, b, v);
-		if (c < best) {
-			best = c;
-			best_v = v;
-		}
-	}
-	double lo = std::max(-1.0, best_v - 0.05), hi = std::min(1.0, best_v + 0.05);
-	const double gr = (std::sqrt(5.0) - 1) / 2;
-	for (int it = 0; it < 20; it++) {
-		double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-		if (di_through(di, a, b, x1) < di_through(di, a, b, x2))
-			hi = x2;
-		else
-			lo = x1;
-	}
-	double v_sweep = 0.5 * (lo + hi), sweep = std::min(best, di_through(di, a, b, v_sweep));
+	auto [sweep, v_sweep] = di_swept_optimum(di, a, b);
 	MultiPhaseSolution m = di_two_phase(di, a, b, 0.0);
 	std::string name = "double integrator (" + fmt(a0) + ", " + fmt(a1) + ") -> (" + fmt(b0) + ", " + fmt(b1) + ")";
 	std::printf("# %s: two-phase %.9g (switch v %.6f), swept %.9g (v %.6f)\n", name.c_str(), m.cost,
@@ -134,7 +78,8 @@ void derivative_tests(const RobotParams &ambot)
 	// in the inputs grows with T and swamps the finite differences.
 	double a[4] = {0.1, 0.2, 0.3, 0.4}, s[4] = {0.4, 0.5, 0.6, 0.45}, b[4] = {0.7, 0.8, 0.9, 0.5};
 	MultiPhaseProblem p;
-	p.phases = {phase("ground", ambot, a, nullptr, a, s, 3), phase("marine", ambot, nullptr, b, s, b, 3)};
+	p.phases = {phase_between("ground", ambot, a, nullptr, a, s, 3),
+		    phase_between("marine", ambot, nullptr, b, s, b, 3)};
 	join_phases(p, 0, ambot, SwitchGuard{0.4, -1.0, 0.4, 2.0, 0});
 	derivative_test(ambot, p, 1e-8, "ambot ground -> marine, joined");
 
@@ -146,8 +91,9 @@ void takeoff_landing_joins(const RobotParams &drivo)
 	double g0[4] = {0, 0, 0, 0}, g1[4] = {5, 0, 0, 0}, g3[4] = {20, 0, 0, 0};
 	double f1[6] = {5, 0, 7, 0, 0, 0}, f2[6] = {15, 0, 7, 0, 0, 0};
 	MultiPhaseProblem q;
-	q.phases = {phase("ground", drivo, g0, nullptr, g0, g1, 3), phase("flight", drivo, nullptr, nullptr, f1, f2, 3),
-		    phase("ground", drivo, nullptr, g3, g1, g3, 3)};
+	q.phases = {phase_between("ground", drivo, g0, nullptr, g0, g1, 3),
+		    phase_between("flight", drivo, nullptr, nullptr, f1, f2, 3),
+		    phase_between("ground", drivo, nullptr, g3, g1, g3, 3)};
 	join_phases(q, 0, drivo, SwitchGuard{2, 0, 8, 0, 6}, TakeoffLanding{100, 40});
 	join_phases(q, 1, drivo, SwitchGuard{12, 0, 18, 0, 6}, TakeoffLanding{100, 40});
 	double hover_xs[6] = {0, 0, 7, 0, 0, 0};
@@ -174,7 +120,8 @@ void shore_crossing(const RobotParams &ambot)
 	double a[4] = {0, 0, 0, 0}, b[4] = {8, 3, 0, 0};
 	double th = std::atan2(3.0, 8.0), s[4] = {4, 1.5, 0.4, th};
 	MultiPhaseProblem p;
-	p.phases = {phase("ground", ambot, a, nullptr, a, s, 20), phase("marine", ambot, nullptr, b, s, b, 20)};
+	p.phases = {phase_between("ground", ambot, a, nullptr, a, s, 20),
+		    phase_between("marine", ambot, nullptr, b, s, b, 20)};
 	join_phases(p, 0, ambot, SwitchGuard{4, -4, 4, 6, 0});
 	MultiPhaseSolution m = solve_multiphase(ambot, p, SolveOptions());
 	Solution g = solve_bvp("ground", ambot, a, s, SolveOptions());
@@ -204,7 +151,8 @@ void bad_problems(const RobotParams &di)
 {
 	double a[2] = {0.5, 0}, b[2] = {-0.5, 0};
 	MultiPhaseProblem p;
-	p.phases = {phase("di_pos", di, a, nullptr, a, a, 5), phase("di_pos", di, nullptr, b, a, a, 5)};
+	p.phases = {phase_between("di_pos", di, a, nullptr, a, a, 5),
+		    phase_between("di_pos", di, nullptr, b, a, a, 5)};
 	try {
 		join_phases(p, 0, di, SwitchGuard{});
 		check(false, "a switch between two phases of one mode is refused");
@@ -213,7 +161,7 @@ void bad_problems(const RobotParams &di)
 		      "a switch between two phases of one mode is refused", e.what());
 	}
 	MultiPhaseProblem q;
-	q.phases = {phase("di_pos", di, a, nullptr, a, a, 5)};
+	q.phases = {phase_between("di_pos", di, a, nullptr, a, a, 5)};
 	LinearRow r;
 	r.terms = {{KnotRef{3, true, 0}, 1.0}};
 	q.rows = {r};

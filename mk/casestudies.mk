@@ -1,0 +1,28 @@
+# The paper's case studies (tools/casestudies/): build/bin/hylo-casestudies
+# runs them and writes docs/results.{md,json}; plot.py draws the figures.
+#   make casestudies         every study (see the README for how long)
+#   make casestudies QUICK=1 the DI convergence on 3 spacings (a check)
+HYLO_CASESTUDIES := $(BUILD)/bin/hylo-casestudies
+
+$(HYLO_CASESTUDIES): tools/casestudies/casestudies.cpp $(BUILD)/obj/tools/scene/scene.o \
+		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
+
+ALL_TARGETS += $(HYLO_CASESTUDIES)
+
+# Figures need matplotlib (PyPI, into .venv).
+venv-report: .venv/.report-stamp
+.venv/.report-stamp: .venv/.stamp tools/requirements-report.txt
+	.venv/bin/pip install -q -r tools/requirements-report.txt
+	@touch $@
+
+casestudies: deps
+	@$(MAKE) --no-print-directory all venv-report
+	@mkdir -p docs/results
+	$(HYLO_CASESTUDIES) --out docs $(if $(QUICK),--quick)
+	.venv/bin/python tools/casestudies/plot.py docs/results.json docs/results
+
+# Test: the command line and the quick Ambot study (tests/casestudies/).
+tests/casestudies/test_casestudies.sh: $(HYLO_CASESTUDIES)
+TESTS += tests/casestudies/test_casestudies.sh

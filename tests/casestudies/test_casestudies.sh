@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# hylo-casestudies (tools/casestudies/): its command line, and the Ambot study
+# on the committed models in its quick form (plans only): on the same graph,
+# the energy-optimal plan must swim less than the shortest-distance plan and
+# cost less, and the shortest plan must be no longer (within the 1% of its
+# heading tie-break; else the two plans did not share their graph). Prints TAP.
+set -u
+cd "$(dirname "$0")/../.."
+. tests/tap.sh
+B=${BUILD:-build}
+CS=$B/bin/hylo-casestudies
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+
+"$CS" --help > "$T/help" 2>&1
+tap_check "--help lists every option" grep -q -- "--study.*--out.*--jobs.*--quick" <(tr '\n' ' ' < "$T/help")
+
+"$CS" --study nope > "$T/out" 2>&1; rc=$?
+tap_check "an unknown study: exit 2 and says which" test "$rc" = 2 -a -n "$(grep "unknown study 'nope'" "$T/out")"
+
+"$CS" --jobs 0 > "$T/out" 2>&1; rc=$?
+tap_check "--jobs 0: exit 2 with a reason" test "$rc" = 2 -a -n "$(grep -- "--jobs" "$T/out")"
+
+start=$(date +%s)
+"$CS" --study ambot --out /nonexistent/dir > "$T/out" 2>&1; rc=$?
+took=$(( $(date +%s) - start ))
+tap_check "an unwritable --out fails at once (exit 1, before any study)" \
+  test "$rc" = 1 -a "$took" -lt 5 -a -n "$(grep "/nonexistent/dir: cannot write" "$T/out")"
+
+"$CS" --study ambot --quick --out "$T" > "$T/log" 2>&1; rc=$?
+tap_check "the quick Ambot study runs and writes results.json and results.md" \
+  test "$rc" = 0 -a -s "$T/results.json" -a -s "$T/results.md"
+
+if [ "$rc" = 0 ]; then
+  python3 - "$T/results.json" > "$T/checks" <<'PY'
+import json, sys
+res = json.load(open(sys.argv[1]))["ambot"]
+for s in res:
+    e, d = s["energy_plan"], s["shortest_plan"]
+    n = s["scene"]
+    print("PASS" if e["water_m"] < d["water_m"] else "FAIL",
+          f"{n}: the energy plan swims less ({e['water_m']:.1f} m vs {d['water_m']:.1f} m)")
+    print("PASS" if e["predicted_j"] < d["predicted_j"] else "FAIL",
+          f"{n}: the energy plan costs less ({e['predicted_j']:.1f} J vs {d['predicted_j']:.1f} J predicted)")
+    print("PASS" if d["length_m"] <= 1.01 * e["length_m"] else "FAIL",
+          f"{n}: the shortest plan is no longer, within its 1% tie-break ({d['length_m']:.1f} m vs {e['length_m']:.1f} m)")
+PY
+  while read -r verdict rest; do
+    tap_check "$rest" test "$verdict" = PASS
+  done < "$T/checks"
+fi
+tap_finish
