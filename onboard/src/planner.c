@@ -386,10 +386,8 @@ static hylo_status add_heads(hylo_planner *pl, const hylo_search *s, uint32_t j,
 	dist = hylo_roadmap_distance(tail_p, q->p);
 	/* No path through this edge can beat the bound's path (A* only). */
 	if (pl->use_heuristic &&
-	    g_tail + floor_j_tail + floor_m_tail * dist + pl->h_pos[j] > pl->bound * (1 + 1e-9)) {
-		pl->n_pruned += q->n_combos;
+	    g_tail + floor_j_tail + floor_m_tail * dist + pl->h_pos[j] > pl->bound * (1 + 1e-9))
 		return HYLO_OK;
-	}
 	for (c = 0; c < q->n_combos; c++) {
 		uint32_t v = q->node_base + c;
 
@@ -647,10 +645,10 @@ static hylo_status compute_heuristic(hylo_planner *pl, const hylo_budget *budget
  * the edges u -> v with g(u) + lower_bound(u, v) + h(v) above it: no path
  * through them can do better (g(u) is final when u is expanded, the
  * heuristic being consistent). Infinity, and no pruning, when the walk gets
- * stuck or runs past HYLO_MAX_WAYPOINTS steps. Its evaluations are counted
- * with the search's.
+ * stuck, runs past HYLO_MAX_WAYPOINTS steps or past the deadline [ms, on the
+ * planner's clock]. Its evaluations are counted with the search's.
  */
-static hylo_real greedy_bound(hylo_planner *pl)
+static hylo_real greedy_bound(hylo_planner *pl, double deadline)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	uint32_t u = rm->n_nodes, goal = rm->n_nodes + 1, step, k, n;
@@ -666,6 +664,8 @@ static hylo_real greedy_bound(hylo_planner *pl)
 
 		if (u == goal)
 			return total;
+		if (now_ms(pl) > deadline)
+			return INFINITY;
 		if (expand_node(pl, NULL, u, pl->walk_heads, pl->walk_costs, HYLO_MAX_SUCCESSORS, &n, &r) !=
 		    HYLO_OK)
 			return INFINITY;
@@ -807,11 +807,13 @@ static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, do
 			return st;
 		pl->use_heuristic = 1;
 	}
+	pl->n_clamped = 0;
+	pl->n_negative = 0;
+	pl->n_infeasible = 0;
 	pl->n_walk_evaluated = 0;
-	pl->n_pruned = 0;
 	pl->bound = INFINITY;
 	if (pl->use_heuristic)
-		pl->bound = greedy_bound(pl);
+		pl->bound = greedy_bound(pl, g->time_budget_ms > 0 ? t0 + g->time_budget_ms : INFINITY);
 	budget.max_expansions = g->max_expansions;
 	budget.time_budget_ms = g->time_budget_ms > 0 ? g->time_budget_ms - (now_ms(pl) - t0) : 0;
 	if (g->time_budget_ms > 0 && budget.time_budget_ms <= 0) {
@@ -822,9 +824,6 @@ static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, do
 	graph.expand = expand_node;
 	graph.heuristic = pl->use_heuristic ? node_heuristic : NULL;
 	graph.ctx = pl;
-	pl->n_clamped = 0;
-	pl->n_negative = 0;
-	pl->n_infeasible = 0;
 	st = hylo_search_run(&pl->search, &graph, rm->n_nodes, rm->n_nodes + 1, &budget,
 			     &plan->outcome, &pl->reason);
 	plan->n_edges_evaluated = pl->search.stats.edges_evaluated + pl->n_walk_evaluated;

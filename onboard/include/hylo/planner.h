@@ -124,7 +124,7 @@ typedef struct {
 	int use_heuristic;
 	/* A*'s upper bound (a greedy walk's path cost) and its bookkeeping */
 	hylo_real bound;
-	uint64_t n_walk_evaluated, n_pruned;
+	uint64_t n_walk_evaluated;
 	uint32_t walk_heads[HYLO_MAX_SUCCESSORS];
 	hylo_real walk_costs[HYLO_MAX_SUCCESSORS];
 } hylo_planner;
