@@ -162,13 +162,23 @@ std::pair<double, double> di_swept_optimum(const RobotParams &di, const double *
 		}
 	}
 	double lo = std::max(-1.0, best_v - 0.05), hi = std::min(1.0, best_v + 0.05);
+	// Golden-section search: each step keeps one interior point and its cost.
 	const double gr = (std::sqrt(5.0) - 1) / 2;
+	double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo), f1 = through(x1), f2 = through(x2);
 	for (int it = 0; it < 24; it++) {
-		double x1 = hi - gr * (hi - lo), x2 = lo + gr * (hi - lo);
-		if (through(x1) < through(x2))
+		if (f1 < f2) {
 			hi = x2;
-		else
+			x2 = x1;
+			f2 = f1;
+			x1 = hi - gr * (hi - lo);
+			f1 = through(x1);
+		} else {
 			lo = x1;
+			x1 = x2;
+			f1 = f2;
+			x2 = lo + gr * (hi - lo);
+			f2 = through(x2);
+		}
 	}
 	double v = 0.5 * (lo + hi), c = through(v);
 	return c < best ? std::make_pair(c, v) : std::make_pair(best, best_v);

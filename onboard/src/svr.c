@@ -100,6 +100,11 @@ static void standardize(const hylo_svr_model *m, const double *x, double *z)
 		z[k] = (x[k] - m->feature_offset[k]) / m->feature_scale[k];
 }
 
+double hylo_svr_cost_floor(const hylo_svr_model *m, double distance_m)
+{
+	return m->cost_floor_j + m->cost_floor_per_m * distance_m;
+}
+
 double hylo_svr_predict(const hylo_svr_model *m, const double *x)
 {
 	double z[HYLO_MAX_FEATURES];

@@ -480,7 +480,7 @@ double predicted_cost(const hylo_robot &r, const hylo_plan &p)
 		hylo_features(mode, p.state[i - 1], p.state[i], f);
 		double c = hylo_svr_predict(mm->model, f);
 		double d = std::hypot(p.state[i][0] - p.state[i - 1][0], p.state[i][1] - p.state[i - 1][1]);
-		total += std::max(c, mm->model->cost_floor_j + mm->model->cost_floor_per_m * d);
+		total += std::max(c, hylo_svr_cost_floor(mm->model, d));
 	}
 	return total;
 }

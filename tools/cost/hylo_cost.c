@@ -112,7 +112,7 @@ int main(int argc, char **argv)
 		       ? sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]) +
 			      (x2[2] - x1[2]) * (x2[2] - x1[2]))
 		       : sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]));
-	floor_cost = mm->model->cost_floor_j + mm->model->cost_floor_per_m * dist;
+	floor_cost = hylo_svr_cost_floor(mm->model, dist);
 	if (mm->feasibility)
 		feas = hylo_svr_predict(mm->feasibility, f);
 	if (json) {

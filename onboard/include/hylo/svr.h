@@ -59,6 +59,10 @@ double hylo_svr_decision(const hylo_svr_model *m, const double *z);
  */
 double hylo_svr_predict(const hylo_svr_model *m, const double *x);
 
+/** The floor the planner raises m's prediction for an edge of length
+ * distance_m to: cost_floor_j + cost_floor_per_m * distance_m [J]. */
+double hylo_svr_cost_floor(const hylo_svr_model *m, double distance_m);
+
 /*
  * Batch evaluation for a search expansion: the planner evaluates many edges
  * from one tail, whose features repeat values (the tail's speed, the grid of
