@@ -1,6 +1,65 @@
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 #include "hylo/svr.h"
+
+/*
+ * Two doubles per operation (GCC/Clang vector extension): SSE2 on x86-64,
+ * NEON on aarch64, plain scalar code where neither exists. The batch path
+ * spends most of its time in the kernel's exponentials and the running
+ * products; this halves both (bench_plan). Same bits on every target: no
+ * fused multiply-add (-std=c99 keeps contraction off), one rounding per op.
+ */
+typedef double hylo_v2 __attribute__((vector_size(16)));
+typedef int64_t hylo_v2i __attribute__((vector_size(16)));
+
+static hylo_v2 load2(const double *p)
+{
+	hylo_v2 v;
+
+	memcpy(&v, p, sizeof v);
+	return v;
+}
+
+static void store2(double *p, hylo_v2 v)
+{
+	memcpy(p, &v, sizeof v);
+}
+
+/*
+ * exp(x) for x <= 0, to about 4e-16 relative (within two ulp of libm's): x =
+ * k ln2 + r with |r| <= ln2/2, exp(r) by its degree-13 Taylor polynomial in
+ * Estrin's form (short dependency chains), times 2^k put into the exponent
+ * bits. Below -700 the result is 0 (libm's is < 1e-304, and it only ever
+ * multiplies a support vector's coefficient).
+ */
+static hylo_v2 exp_nonpositive2(hylo_v2 x)
+{
+	const hylo_v2 shift = { 0x1.8p52, 0x1.8p52 }, lowest = { -700.0, -700.0 };
+	const double ln2_hi = 0x1.62e42feep-1, ln2_lo = 0x1.a39ef35793c76p-33;
+	hylo_v2i keep = x >= lowest, xb, lb, tb, pb;
+	hylo_v2 t, k, r, r2, r4, r8, p;
+
+	memcpy(&xb, &x, sizeof xb);
+	memcpy(&lb, &lowest, sizeof lb);
+	xb = (xb & keep) | (lb & ~keep);
+	memcpy(&x, &xb, sizeof x);
+	t = x * 0x1.71547652b82fep0 + shift;  /* k, rounded, in the low mantissa bits */
+	k = t - shift;
+	r = (x - k * ln2_hi) - k * ln2_lo;
+	r2 = r * r;
+	r4 = r2 * r2;
+	r8 = r4 * r4;
+	p = ((1.0 + r) + (0.5 + r * (1.0 / 6)) * r2) +
+	    ((1.0 / 24 + r * (1.0 / 120)) + (1.0 / 720 + r * (1.0 / 5040)) * r2) * r4 +
+	    (((1.0 / 40320 + r * (1.0 / 362880)) + (1.0 / 3628800 + r * (1.0 / 39916800)) * r2) +
+	     (1.0 / 479001600 + r * (1.0 / 6227020800.0)) * r4) * r8;
+	memcpy(&tb, &t, sizeof tb);
+	memcpy(&pb, &p, sizeof pb);
+	pb = (pb + (tb << 52)) & keep;
+	memcpy(&p, &pb, sizeof p);
+	return p;
+}
 
 static int finite_array(const double *a, uint32_t n)
 {
@@ -120,6 +179,7 @@ void hylo_svr_cache_reset(hylo_svr_cache *c)
 	if (!c)
 		return;
 	c->model = NULL;
+	c->n_groups = 0;
 	c->clock = 0;
 	c->hits = c->misses = 0;
 	c->n_prefix = 0;
@@ -127,98 +187,127 @@ void hylo_svr_cache_reset(hylo_svr_cache *c)
 		c->n_used[k] = 0;
 }
 
-/* The factor row of feature k at standardized value v, computing it into the
- * least recently used slot when v is not cached. */
-static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint32_t k,
-				double v)
+/* The groups of svr.h for nf features (planar (dx', dy', dtheta, vx1, vx2),
+ * flight (dp, v1, v2), the double integrator's (p1, v1, p2, v2)); any other
+ * count: one group per feature. */
+static void feature_groups(hylo_svr_cache *c, uint32_t nf)
 {
-	uint32_t j, slot = 0, i;
-	const double *col;
-	double *row;
-
-	for (j = 0; j < c->n_used[k]; j++)
-		if (c->value[k][j] == v) {
-			c->last_use[k][j] = ++c->clock;
-			c->hits++;
-			return c->factor[k][j];
-		}
-	if (c->n_used[k] < HYLO_SVR_CACHE_VALUES) {
-		slot = c->n_used[k]++;
-	} else {
-		for (j = 1; j < HYLO_SVR_CACHE_VALUES; j++)
-			if (c->last_use[k][j] < c->last_use[k][slot])
-				slot = j;
-	}
-	c->misses++;
-	c->value[k][slot] = v;
-	c->last_use[k][slot] = ++c->clock;
-	row = c->factor[k][slot];
-	col = c->sv_col[k];
-	for (i = 0; i < m->n_sv; i++) {
-		double d = v - col[i];
-
-		row[i] = exp(-m->gamma * d * d);
-	}
-	return row;
-}
-
-/* The running-product order (see svr.h): planar (dx', dy', dtheta, vx1, vx2)
- * as vx1, dx', dy', vx2, dtheta; flight (dp, v1, v2) as v1, dp, v2; the
- * double integrator's (p1, v1, p2, v2) as is. */
-static void feature_order(uint32_t nf, uint32_t *order)
-{
-	static const uint32_t planar[5] = { 3, 0, 1, 4, 2 };
-	static const uint32_t flight[9] = { 3, 4, 5, 0, 1, 2, 6, 7, 8 };
+	static const uint32_t planar[5] = { 3, 0, 1, 4, 2 }, planar_begin[5] = { 0, 1, 3, 4, 5 };
+	static const uint32_t flight[9] = { 3, 4, 5, 0, 1, 2, 6, 7, 8 }, flight_begin[4] = { 0, 3, 6, 9 };
+	static const uint32_t di_begin[3] = { 0, 2, 4 };
 	uint32_t k;
 
 	for (k = 0; k < nf; k++)
-		order[k] = nf == 5 ? planar[k] : nf == 9 ? flight[k] : k;
+		c->order[k] = nf == 5 ? planar[k] : nf == 9 ? flight[k] : k;
+	c->n_groups = nf == 5 ? 4 : nf == 9 ? 3 : nf == 4 ? 2 : nf;
+	for (k = 0; k <= c->n_groups; k++)
+		c->group_begin[k] = nf == 5 ? planar_begin[k] : nf == 9 ? flight_begin[k] :
+				    nf == 4 ? di_begin[k] : k;
+}
+
+/* The factor row exp(-gamma |z_G - s_G|^2) of group g at the standardized
+ * values v[] (its features in order), computing it into the least recently
+ * used slot when v is not cached. */
+static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint32_t g,
+				const double *v)
+{
+	uint32_t b = c->group_begin[g], w = c->group_begin[g + 1] - b, j, k, slot = 0, i;
+	double *row;
+
+	for (j = 0; j < c->n_used[g]; j++) {
+		for (k = 0; k < w && c->value[g][j][k] == v[k]; k++)
+			;
+		if (k == w) {
+			c->last_use[g][j] = ++c->clock;
+			c->hits++;
+			return c->factor[g][j];
+		}
+	}
+	if (c->n_used[g] < HYLO_SVR_CACHE_VALUES) {
+		slot = c->n_used[g]++;
+	} else {
+		for (j = 1; j < HYLO_SVR_CACHE_VALUES; j++)
+			if (c->last_use[g][j] < c->last_use[g][slot])
+				slot = j;
+	}
+	c->misses++;
+	for (k = 0; k < w; k++)
+		c->value[g][slot][k] = v[k];
+	c->last_use[g][slot] = ++c->clock;
+	row = c->factor[g][slot];
+	for (i = 0; i < m->n_sv; i += 2) {  /* an odd last one is paired with itself */
+		uint32_t i1 = i + 1 < m->n_sv ? i + 1 : i;
+		hylo_v2 d2 = { 0, 0 }, e;
+
+		for (k = 0; k < w; k++) {
+			const double *col = c->sv_col[c->order[b + k]];
+			hylo_v2 d = { v[k] - col[i], v[k] - col[i1] };
+
+			d2 += d * d;
+		}
+		e = exp_nonpositive2(-m->gamma * d2);
+		row[i] = e[0];
+		row[i1] = e[1];
+	}
+	return row;
 }
 
 /* sum_i a[i] * b[i] with four partial sums in a fixed pattern: a quarter of
  * the dependent-add latency of one running sum, and the same bits every time. */
 static double dot(const double *a, const double *b, uint32_t n)
 {
-	double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+	hylo_v2 s01 = { 0, 0 }, s23 = { 0, 0 };
+	double s[4];
 	uint32_t i;
 
 	for (i = 0; i + 4 <= n; i += 4) {
-		s0 += a[i] * b[i];
-		s1 += a[i + 1] * b[i + 1];
-		s2 += a[i + 2] * b[i + 2];
-		s3 += a[i + 3] * b[i + 3];
+		s01 += load2(&a[i]) * load2(&b[i]);
+		s23 += load2(&a[i + 2]) * load2(&b[i + 2]);
 	}
+	store2(&s[0], s01);
+	store2(&s[2], s23);
 	for (; i < n; i++)
-		s0 += a[i] * b[i];
-	return (s0 + s1) + (s2 + s3);
+		s[0] += a[i] * b[i];
+	return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+/* out[i] = a[i] * b[i], i < n. */
+static void multiply(double *out, const double *a, const double *b, uint32_t n)
+{
+	uint32_t i;
+
+	for (i = 0; i + 2 <= n; i += 2)
+		store2(&out[i], load2(&a[i]) * load2(&b[i]));
+	if (i < n)
+		out[i] = a[i] * b[i];
 }
 
 /* Decision value of standardized z, reusing the running products of the
- * previous prediction up to the first feature (in order) that changed. */
+ * previous prediction up to the first group (in order) that changed. */
 static double cached_decision(const hylo_svr_model *m, hylo_svr_cache *c, const double *z)
 {
-	uint32_t order[HYLO_MAX_FEATURES], nf = m->n_features, n = m->n_sv, level, i;
+	uint32_t ng = c->n_groups, n = m->n_sv, level, k;
+	double v[HYLO_MAX_FEATURES];  /* z in group order */
 	const double *row;
 
-	feature_order(nf, order);
-	for (level = 0; level < c->n_prefix && level + 1 < nf; level++)
-		if (c->prefix_value[level] != z[order[level]])
+	for (k = 0; k < m->n_features; k++)
+		v[k] = z[c->order[k]];
+	for (level = 0; level < c->n_prefix && level + 1 < ng; level++) {
+		for (k = c->group_begin[level];
+		     k < c->group_begin[level + 1] && c->prefix_value[k] == v[k]; k++)
+			;
+		if (k < c->group_begin[level + 1])
 			break;
-	for (; level + 1 < nf; level++) {
-		double *out = c->prefix[level];
-
-		row = factor_row(m, c, order[level], z[order[level]]);
-		if (level == 0)
-			for (i = 0; i < n; i++)
-				out[i] = m->coef[i] * row[i];
-		else
-			for (i = 0; i < n; i++)
-				out[i] = c->prefix[level - 1][i] * row[i];
-		c->prefix_value[level] = z[order[level]];
 	}
-	c->n_prefix = nf - 1;
-	row = factor_row(m, c, order[nf - 1], z[order[nf - 1]]);
-	return dot(nf == 1 ? m->coef : c->prefix[nf - 2], row, n) - m->rho;
+	for (; level + 1 < ng; level++) {
+		row = factor_row(m, c, level, &v[c->group_begin[level]]);
+		multiply(c->prefix[level], level == 0 ? m->coef : c->prefix[level - 1], row, n);
+		for (k = c->group_begin[level]; k < c->group_begin[level + 1]; k++)
+			c->prefix_value[k] = v[k];
+	}
+	c->n_prefix = ng - 1;
+	row = factor_row(m, c, ng - 1, &v[c->group_begin[ng - 1]]);
+	return dot(ng == 1 ? m->coef : c->prefix[ng - 2], row, n) - m->rho;
 }
 
 hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
@@ -235,6 +324,7 @@ hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
 
 		hylo_svr_cache_reset(c);
 		c->model = m;
+		feature_groups(c, m->n_features);
 		for (k = 0; k < m->n_features; k++)
 			for (i = 0; i < m->n_sv; i++)
 				c->sv_col[k][i] = m->sv[(size_t)i * m->n_features + k];

@@ -177,7 +177,7 @@ int main(int argc, char **argv)
 {
 	if (argc == 4 && std::strcmp(argv[1], "--udp-client") == 0)
 		return udp_client(argv[2], argv[3]);
-	if (argc != 2) {
+	if (argc != 2 || argv[1][0] == '-') {  // --help is not a file name
 		std::fprintf(stderr, "usage: %s RESULTS.json\n", argv[0]);
 		return 2;
 	}

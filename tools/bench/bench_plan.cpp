@@ -281,7 +281,7 @@ Reference run_reference(const hylo_planner *pl, const hylo_svr_model *models[2])
 
 int main(int argc, char **argv)
 {
-	if (argc != 2) {
+	if (argc != 2 || argv[1][0] == '-') {  // --help is not a file name
 		std::fprintf(stderr, "usage: bench_plan RESULTS.json\n");
 		return 2;
 	}

@@ -172,7 +172,7 @@ int main(int argc, char **argv)
 	FILE *f;
 	int i;
 
-	if (argc != 2) {
+	if (argc != 2 || argv[1][0] == '-') {  /* --help is not a file name */
 		fprintf(stderr, "usage: %s RESULTS.json\n", argv[0]);
 		return 2;
 	}

@@ -47,7 +47,7 @@ double true_cost(const double *f)
 
 int main(int argc, char **argv)
 {
-	if (argc != 2) {
+	if (argc != 2 || argv[1][0] == '-') {  // --help is not a file name
 		std::fprintf(stderr, "usage: %s OUT.h\n", argv[0]);
 		return 2;
 	}

@@ -60,7 +60,7 @@
 #define HYLO_MAX_FEATURES 9
 #endif
 
-/* Distinct values per feature kept by the SVR batch evaluator's kernel-factor
+/* Distinct values per feature group kept by the SVR batch evaluator's kernel-factor
  * cache (see svr.h). Memory: HYLO_MAX_FEATURES * this * HYLO_MAX_SV doubles. */
 #ifndef HYLO_SVR_CACHE_VALUES
 #define HYLO_SVR_CACHE_VALUES 18

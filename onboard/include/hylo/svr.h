@@ -67,27 +67,33 @@ double hylo_svr_cost_floor(const hylo_svr_model *m, double distance_m);
  * Batch evaluation for a search expansion: the planner evaluates many edges
  * from one tail, whose features repeat values (the tail's speed, the grid of
  * head headings and speeds, a head position's displacement shared by all its
- * combinations). The RBF kernel factorizes per feature,
- *   exp(-gamma*|z - s|^2) = prod_k exp(-gamma*(z_k - s_k)^2),
- * so the cache keeps, per feature, the factor vectors (one value per SV) of
- * the last HYLO_SVR_CACHE_VALUES distinct values seen. It also keeps the
- * running products coef_i * f_o0 * f_o1 * ... of the previous prediction in
- * a fixed feature order o (tail features first, then the displacement, then
- * the head's speed, then the head's heading: the order in which the planner's
- * edges vary least to most), so that an edge differing from the previous one
- * only in its head heading costs one multiplication per SV. The product
- * order is fixed, so results do not depend on what was evaluated before.
+ * combinations). The RBF kernel factorizes over groups G of features,
+ *   exp(-gamma*|z - s|^2) = prod_G exp(-gamma*|z_G - s_G|^2),
+ * the groups being what changes together: planar (vx1), (dx', dy'), (vx2),
+ * (dtheta); flight (v1), (dp), (v2); the double integrator (p1, v1),
+ * (p2, v2). The cache keeps, per group, the factor vectors (one value per SV)
+ * of the last HYLO_SVR_CACHE_VALUES distinct values seen. It also keeps the
+ * running products coef_i * f_G0 * f_G1 * ... of the previous prediction in
+ * that group order (tail first, then the displacement, then the head's speed,
+ * then its heading: the order in which the planner's edges vary least to
+ * most), so that an edge differing from the previous one only in its head
+ * heading costs one multiplication per SV, and a new head position one
+ * exponential per SV. The product order is fixed, so results do not depend on
+ * what was evaluated before.
  */
 typedef struct {
 	const hylo_svr_model *model;   /* the cache is valid for this model only */
-	uint32_t n_used[HYLO_MAX_FEATURES];
+	uint32_t n_groups;
+	uint32_t order[HYLO_MAX_FEATURES];            /* features, grouped */
+	uint32_t group_begin[HYLO_MAX_FEATURES + 1];  /* group g: order[begin[g] .. begin[g+1]) */
+	uint32_t n_used[HYLO_MAX_FEATURES];           /* per group */
 	uint32_t clock;                /* for least-recently-used replacement */
 	uint32_t last_use[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
-	double value[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
+	double value[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES][HYLO_MAX_FEATURES];
 	double factor[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES][HYLO_MAX_SV];
 	double sv_col[HYLO_MAX_FEATURES][HYLO_MAX_SV];  /* the model's SVs, feature-major */
-	uint32_t n_prefix;             /* valid running-product levels */
-	double prefix_value[HYLO_MAX_FEATURES];      /* feature value of each level */
+	uint32_t n_prefix;             /* valid running-product levels (groups) */
+	double prefix_value[HYLO_MAX_FEATURES];  /* the features of those levels, in order */
 	double prefix[HYLO_MAX_FEATURES][HYLO_MAX_SV];
 	uint64_t hits, misses;         /* statistics */
 } hylo_svr_cache;
