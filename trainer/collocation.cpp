@@ -392,6 +392,12 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	bool smoothed = false;
 	for (const ModeInfo &i : base.info)
 		smoothed = smoothed || i.smoothed;
+	int refinements = opt.refinements;  // a stiff mode's parameter file may ask for more
+	for (const std::string &m : base.modes) {
+		auto it = robot.modes.find(m);
+		if (it != robot.modes.end())
+			refinements = std::max(refinements, it->second.refinements);
+	}
 	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
 		       Ipopt::SmartPtr<CollocationNlp> &nlp, bool warm) {
 		nlp = build(p, relax);
@@ -469,7 +475,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 				}
 				break;
 			}
-			if (refine >= opt.refinements)
+			if (refine >= refinements)
 				break;
 			std::vector<double> fine = nlp->refined();
 			for (PhaseSetup &st : p.setups)

@@ -133,7 +133,7 @@ RobotParams load_robot(const std::string &path)
 		if (req == kRequired.end())
 			rd.fail(kv.first, "unknown mode '" + name + "' (ground, marine, flight, di_neg, di_pos)");
 		const YAML::Node &m = kv.second;
-		rd.only(m, "mode " + name, {"params", "sampling"});
+		rd.only(m, "mode " + name, {"params", "sampling", "solver"});
 		ModeParams mp;
 		mp.mode = name;
 		YAML::Node p = rd.need(m, "params", "mode " + name);
@@ -155,6 +155,14 @@ RobotParams load_robot(const std::string &path)
 			rd.fail(s["max_distance_m"], "max_distance_m must be > 0");
 		if (!(mp.sampling.speed_min_mps <= mp.sampling.speed_max_mps))
 			rd.fail(s["speed_max_mps"], "speed_max_mps must be >= speed_min_mps");
+		if (YAML::Node sv = m["solver"]) {
+			rd.only(sv, "the solver settings of mode " + name, {"refinements"});
+			YAML::Node r = rd.need(sv, "refinements", "solver");
+			double n = rd.number(r, "refinements");
+			if (!(n >= 0 && n <= 5 && n == static_cast<int>(n)))
+				rd.fail(r, "refinements must be an integer in [0, 5]");
+			mp.refinements = static_cast<int>(n);
+		}
 		rp.modes[name] = mp;
 	}
 	return rp;

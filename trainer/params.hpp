@@ -25,6 +25,8 @@ struct ModeParams {
 	std::string mode;              // "ground", "marine", "flight", "di_neg", "di_pos"
 	std::map<std::string, double> values;
 	Sampling sampling;
+	int refinements = 0;           // solver: {refinements: N}: at least N mesh doublings when a
+	                               // replay rejects a solution (stiff modes; 0 = the default)
 	// The value of key; throws ParamError if absent (a programming error:
 	// load() checks every required key).
 	double at(const std::string &key) const;

@@ -41,6 +41,10 @@ expect_fail "parameter file: missing key names file, key and line" 2 "missing.ya
   env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot missing --solve -0.5,0 -0.3,0
 expect_fail "parameter file: bad value names file, key and line" 2 "badvalue.yaml:6: di_neg.rho must be > 0" \
   env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot badvalue --solve -0.5,0 -0.3,0
+sed 's/^\(    params: {rho: 0.1}\)$/\1\n    solver: {refinements: 2.5}/' trainer/params/di.yaml > "$T/params/badsolver.yaml"
+expect_fail "parameter file: bad solver setting names file, key and line" 2 \
+  "badsolver.yaml:7: refinements must be an integer in .0, 5." \
+  env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot badsolver --solve -0.5,0 -0.3,0
 
 "$TR" --mode di_neg --robot di --solve -0.5,0 -0.3,0 --json --trajectory > "$T/solve.json"
 if python3 - "$T/solve.json" <<'PY'
