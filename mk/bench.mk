@@ -14,11 +14,13 @@ $(SYNTH_HEADER): $(SYNTH_GEN)
 	@mkdir -p $(@D)
 	$(SYNTH_GEN) $@
 
-# SVR evaluations per second: hylo (single and batch) against svm_predict.
+# SVR evaluations per second: hylo (single and batch) against svm_predict, on
+# the synthetic model and every committed one (the node's model registry).
 BENCH_SVR := $(BUILD)/bench/bin/bench_svr
 
-$(BENCH_SVR): tools/bench/bench_svr.c $(ONBOARD_LIB) $(SYNTH_HEADER)
+$(BENCH_SVR): tools/bench/bench_svr.c $(ONBOARD_LIB) $(SYNTH_HEADER) $(BUILD)/obj/node/registry_models.o
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) -D_POSIX_C_SOURCE=199309L $(ONBOARD_INC) -I$(BUILD)/gen $< $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
+	$(CC) $(C99_FLAGS) -D_POSIX_C_SOURCE=199309L $(ONBOARD_INC) -I$(BUILD)/gen $< \
+		$(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_SVR)
