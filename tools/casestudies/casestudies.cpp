@@ -650,9 +650,9 @@ int run(int argc, char **argv)
 	if (opt.study == "ambot" || opt.study == "all")
 		js += std::string(js.size() > 1 ? "," : "") + "\n\"ambot\": " + ambot_study(opt, md);
 	md += "\n## 3. Drivocopter: fixed mode sequences against hylo (the paper's Table I)\n\n"
-	      "Not measured yet: it needs the Drivocopter ground and flight models, which are not "
-	      "trained (flight pairs are still rejected by the CVODE replay; see the README's Models "
-	      "section). The chasm scenes (`scenes/chasm_*.yaml`) and the multi-phase takeoff/landing "
+	      "Not measured yet: it needs the Drivocopter flight model, which is not trained "
+	      "(flight pairs are still rejected by the CVODE replay or run out of Ipopt iterations; "
+	      "the ground model is committed; see the README's Models section). The chasm scenes (`scenes/chasm_*.yaml`) and the multi-phase takeoff/landing "
 	      "problems it uses are in place.\n";
 	js += ",\n\"seconds\": " + num(seconds_since(t0)) + "\n}\n";
 	write_atomically(opt.out + "/results.json", js);
