@@ -37,7 +37,7 @@ void usage(FILE *f)
 		"\n"
 		"  --mode M          di_neg, di_pos, ground, marine or flight (required); switch:\n"
 		"                    print the robot's mode switches and their costs (models.md\n"
-		"                    section 6; Drivocopter takeoff and landing are solved, ~2 min)\n"
+		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required)\n"
 		"  --stage S         gen, fit, export or all (default: all)\n"
 		"  --samples N       training pairs (default: 11520; flight 17016; di 2000)\n"
