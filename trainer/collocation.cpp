@@ -307,6 +307,7 @@ struct ModeInfo {
 	std::function<double(const double *a, const double *b)> distance;   // between full states
 	double typical_speed = 1;
 	std::vector<double> continuation = {100.0, 10.0, 3.0, 1.0};  // smoothing multipliers, to 1
+	int refinements = 0;          // the parameter file's solver: {refinements: N}
 };
 
 template <class M>
@@ -336,20 +337,19 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 	if (!known_mode(mode))
 		throw std::invalid_argument("unknown mode '" + mode + "' (ground, marine, flight, di_neg, di_pos)");
 	const ModeParams &p = robot.mode(mode);
-	if (mode == "ground")
-		return info_of(GroundModel(p, robot.g));
-	if (mode == "marine")
-		return info_of(MarineModel(p, robot.g));
-	if (mode == "flight") {
-		// Rotor power's smoothed positive part (delta 0.1 W) is hard to reach:
-		// from relax 100, the steps 10, 3, 1 took 486-1,000 Ipopt iterations
-		// each on a 3 m hover edge at 80 segments; these finer steps take 6-22
-		// each after relax 30, and all three starts converge (80 s, not 235 s).
-		ModeInfo i = info_of(FlightModel(p, robot.g));
+	ModeInfo i = mode == "ground"   ? info_of(GroundModel(p, robot.g))
+		     : mode == "marine" ? info_of(MarineModel(p, robot.g))
+		     : mode == "flight" ? info_of(FlightModel(p, robot.g))
+					: info_of(DiModel(p, mode == "di_pos"));
+	i.refinements = p.refinements;
+	// Flight: rotor power's smoothed positive part (delta 0.1 W) is hard to
+	// reach. From relax 100, the steps 10, 3, 1 took 486-1,000 Ipopt
+	// iterations each on a 3 m hover edge at 80 segments; these finer steps
+	// take 6-22 each after relax 30, and all three starts converge (80 s, not
+	// 235 s).
+	if (mode == "flight")
 		i.continuation = {100.0, 30.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
-		return i;
-	}
-	return info_of(DiModel(p, mode == "di_pos"));
+	return i;
 }
 
 // One stacked problem as the engine sees it: modes, their setups and the
@@ -400,16 +400,14 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	bool smoothed = false;
 	for (const ModeInfo &i : base.info)
 		smoothed = smoothed || i.smoothed;
-	int refinements = opt.refinements;  // a stiff mode's parameter file may ask for more
-	for (const std::string &m : base.modes) {
-		auto it = robot.modes.find(m);
-		if (it != robot.modes.end())
-			refinements = std::max(refinements, it->second.refinements);
-	}
-	// The continuation's steps: the union of the phases' modes' own.
+	// Per-mode solver settings: the most mesh doublings any phase's mode asks
+	// for, and the union of their continuation steps.
+	int refinements = opt.refinements;
 	std::vector<double> levels;
-	for (const ModeInfo &i : base.info)
+	for (const ModeInfo &i : base.info) {
+		refinements = std::max(refinements, i.refinements);
 		levels.insert(levels.end(), i.continuation.begin(), i.continuation.end());
+	}
 	std::sort(levels.begin(), levels.end(), std::greater<double>());
 	levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
 	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
