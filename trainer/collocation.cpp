@@ -308,6 +308,16 @@ struct ModeInfo {
 	double typical_speed = 1;
 	std::vector<double> continuation = {100.0, 10.0, 3.0, 1.0};  // smoothing multipliers, to 1
 	int refinements = 0;          // the parameter file's solver: {refinements: N}
+	int min_segments = 0;         // a start's mesh has at least these segments
+	double max_step_s = 0;        // > 0: and segments of at most this guessed duration [s]
+	double replay_state_tol = 0;  // > 0: the replay's end-state tolerance if looser than asked
+	bool first_accepted = false;  // keep the first start that passes, try no more
+	int step_max_iter = 0;        // > 0: a continuation step's iteration limit; a start
+				      // whose step fails is given up
+	// Set: the initial guess of a phase guessed as a straight line a -> b,
+	// given its duration T (the start's).
+	std::function<std::vector<std::vector<double>>(const std::vector<double> &a,
+						       const std::vector<double> &b, double T)> path_guess;
 };
 
 template <class M>
@@ -342,13 +352,31 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 		     : mode == "flight" ? info_of(FlightModel(p, robot.g))
 					: info_of(DiModel(p, mode == "di_pos"));
 	i.refinements = p.refinements;
-	// Flight: rotor power's smoothed positive part (delta 0.1 W) is hard to
-	// reach. From relax 100, the steps 10, 3, 1 took 486-1,000 Ipopt
-	// iterations each on a 3 m hover edge at 80 segments; these finer steps
-	// take 6-22 each after relax 30, and all three starts converge (80 s, not
-	// 235 s).
-	if (mode == "flight")
-		i.continuation = {100.0, 30.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
+	// Flight. Its open-loop replay is a chain of four integrators (rotor
+	// speed, body rate, attitude, velocity, position), so mesh differences
+	// grow like t^4 into the end position: with 0.02 m/m/s/rad a 2.6 s edge
+	// needed a 15 ms step (173 segments, minutes per pair) while its cost
+	// agreed to 2e-5 already at 32 ms (end 0.087 off). Flight takes 0.1
+	// (10 cm, 0.1 m/s, 0.1 rad, 10% of hover rotor speed) and a step of at
+	// most 30 ms, at least 80 segments (rotor time constant 13 ms).
+	// From a straight-line guess the cold relax-100 solve took 120-320 Ipopt
+	// iterations and continuations not starting at 100 never converged; from
+	// the Hermite guess it takes 25-76, and these finer steps avoid the
+	// 500-1,000-iteration steps seen going 30 -> 10. Every start of a flight
+	// edge tried ended within 0.02% of the others (their meshes differ), so
+	// the first start whose replay passes is kept.
+	if (mode == "flight") {
+		i.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
+		i.min_segments = 80;
+		i.max_step_s = 0.03;
+		i.replay_state_tol = 0.1;
+		i.first_accepted = true;
+		i.step_max_iter = 400;
+		FlightModel fm(p, robot.g);
+		i.path_guess = [fm](const std::vector<double> &a, const std::vector<double> &b, double T) {
+			return fm.path_guess(a, b, T, 16);
+		};
+	}
 	return i;
 }
 
@@ -397,9 +425,11 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	best.modes = base.modes;
 	best.cost = std::numeric_limits<double>::infinity();
 	const bool debug = std::getenv("HYLO_TRAINER_DEBUG") != nullptr;
-	bool smoothed = false;
-	for (const ModeInfo &i : base.info)
+	bool smoothed = false, first_accepted = true;
+	for (const ModeInfo &i : base.info) {
 		smoothed = smoothed || i.smoothed;
+		first_accepted = first_accepted && i.first_accepted;
+	}
 	// Per-mode solver settings: the most mesh doublings any phase's mode asks
 	// for, and the union of their continuation steps.
 	int refinements = opt.refinements;
@@ -410,12 +440,18 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	}
 	std::sort(levels.begin(), levels.end(), std::greater<double>());
 	levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+	// A continuation step's options: the tightest iteration limit a phase's mode sets.
+	SolveOptions step_opt = opt;
+	for (const ModeInfo &i : base.info)
+		if (i.step_max_iter > 0)
+			step_opt.max_iter = std::min(step_opt.max_iter, i.step_max_iter);
+	const bool give_up = step_opt.max_iter < opt.max_iter;
 	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
-		       Ipopt::SmartPtr<CollocationNlp> &nlp, bool warm) {
+		       Ipopt::SmartPtr<CollocationNlp> &nlp, bool warm, const SolveOptions &o) {
 		nlp = build(p, relax);
 		if (!start.empty())
 			nlp->warm_start(start);
-		auto app = make_app(opt, warm);
+		auto app = make_app(o, warm);
 		Ipopt::ApplicationReturnStatus st = app->OptimizeTNLP(nlp);
 		int it = Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : 0;
 		if (debug)
@@ -424,9 +460,18 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		return std::make_pair(st, it);
 	};
 	for (const std::vector<double> &Ts : starts_T) {
+		if (best.converged && first_accepted)
+			break;
 		Stacked p = base;
-		for (size_t k = 0; k < p.setups.size(); k++)
+		for (size_t k = 0; k < p.setups.size(); k++) {
 			p.setups[k].T_guess = Ts[k];
+			const ModeInfo &i = p.info[k];
+			int by_step = i.max_step_s > 0 ? static_cast<int>(std::ceil(Ts[k] / i.max_step_s)) : 0;
+			if (opt.derivative_test_file.empty())   // the checker needs no fine mesh, only exact derivatives
+				p.setups[k].segments = std::max({p.setups[k].segments, i.min_segments, by_step});
+			if (i.path_guess && p.setups[k].guess.size() == 2)
+				p.setups[k].guess = i.path_guess(p.setups[k].guess[0], p.setups[k].guess[1], Ts[k]);
+		}
 		best.starts++;
 		// Continuation on the coarse mesh: smoother problems first, each
 		// starting the next; the last (1) has models.md's exact constants.
@@ -436,9 +481,11 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		for (double relax : levels) {
 			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
-			res = run(p, relax, start, nlp, !start.empty());
+			res = run(p, relax, start, nlp, !start.empty(), step_opt);
 			if (succeeded(res.first))
 				start = nlp->solution();
+			else if (give_up)
+				break;
 		}
 		if (!opt.derivative_test_file.empty())
 			return best;
@@ -462,7 +509,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 				ph.status_text = s.status_text;
 				ph.iterations = iterations;
 				if (opt.replay) {
-					replay(p.modes[k], robot, ph, opt.replay_state_tol);
+					replay(p.modes[k], robot, ph,
+					       std::max(opt.replay_state_tol, p.info[k].replay_state_tol));
 					if (debug)
 						std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g\n",
 							     p.modes[k].c_str(), ph.replay_error, ph.replay_cost, ph.cost);
@@ -491,7 +539,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 			std::vector<double> fine = nlp->refined();
 			for (PhaseSetup &st : p.setups)
 				st.segments *= 2;
-			res = run(p, 1.0, fine, nlp, true);
+			res = run(p, 1.0, fine, nlp, true, opt);
 			iterations += res.second;
 			if (!succeeded(res.first))
 				break;

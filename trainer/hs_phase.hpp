@@ -2,8 +2,8 @@
 // A phase owns its variable layout (states and inputs at N+1 knots and N
 // midpoints, then its duration T) and its constraints; CollocationNlp
 // (collocation.cpp) stacks phases and the linear rows that join them into
-// one Ipopt problem. Derivatives are exact: Eigen's forward-mode AutoDiff,
-// first order for the Jacobian, nested for the Hessian.
+// one Ipopt problem. Derivatives are exact, in forward mode: Eigen's AutoDiff
+// for the Jacobian, a second-order type (hyperdual.hpp) for the Hessian.
 //
 // Transcription (separated form), per segment k, h = T/N, f_j = f(x_j, u_j):
 //   x_m - (x_k + x_k+1)/2 - h/8 (f_k - f_k+1) = 0
@@ -28,6 +28,7 @@
 #include <IpTNLP.hpp>
 
 #include "trainer/collocation.hpp"
+#include "trainer/hyperdual.hpp"
 #include "trainer/models.hpp"
 
 namespace hylo::trainer::internal {
@@ -82,7 +83,6 @@ public:
 	static constexpr int NX = M::NX, NU = M::NU, NP = M::NP, NZ = NX + NU;
 	static constexpr int NPO = NP > 0 ? NP : 1;   // array size for path outputs
 	using AD1 = Eigen::AutoDiffScalar<Eigen::Matrix<double, NZ, 1>>;
-	using AD2 = Eigen::AutoDiffScalar<Eigen::Matrix<AD1, NZ, 1>>;
 
 	HsPhase(const M &model, const PhaseSetup &setup)
 		: m_(model), s_(setup), N_(setup.segments), b_(model.bounds())
@@ -327,23 +327,16 @@ public:
 		double T = z[Ti()];
 		for (int p = 0; p < npts_; p++) {
 			// The point's share of the Lagrangian: T * (Lambda . f + beta L) + mu . path.
-			double w[NX + 1 + NPO] = {};
+			double w[NX + 1] = {}, wp[NPO] = {};
 			for (int r = 0; r < NX; r++)
 				w[r] = dyn_weight(p, r, lambda);
 			w[NX] = sigma * weight(p) / (6.0 * N_);
-			double grad[NZ], hess[NZ * NZ];
-			hessian(z + zi(p), w, false, grad, hess);
-			double hp[NZ * NZ] = {};
-			if (NP > 0) {
-				double wp[NX + 1 + NPO] = {};
-				for (int r = 0; r < NP; r++)
-					wp[NX + 1 + r] = lambda[2 * N_ * NX + p * NP + r];
-				double gp[NZ];
-				hessian(z + zi(p), wp, true, gp, hp);
-			}
-			for (int i = 0; i < NZ; i++)
-				for (int j = 0; j <= i; j++)
-					v[e++] = T * hess[i * NZ + j] + hp[i * NZ + j];
+			for (int r = 0; r < NP; r++)
+				wp[r] = lambda[2 * N_ * NX + p * NP + r];
+			double grad[NZ];
+			Hyper<NZ> h = hessian(z + zi(p), w, wp, T, grad);
+			for (int k = 0; k < Hyper<NZ>::NH; k++)
+				v[e++] = h.h[k];
 			for (int j = 0; j < NZ; j++)
 				v[e++] = grad[j];
 		}
@@ -450,30 +443,24 @@ private:
 		}
 	}
 
-	// Gradient and Hessian of w . (f, L, path) at point variables zp (second-order AutoDiff).
-	void hessian(const Number *zp, const double *w, bool path_only, double *grad, double *hess) const
+	// At point variables zp, with s = w . (f, L): the gradient of s (the
+	// T column of the Hessian) and T s + wp . path with its Hessian.
+	Hyper<NZ> hessian(const Number *zp, const double *w, const double *wp, double T, double *grad) const
 	{
-		AD2 in[NZ], out[NX], L, path[NPO];
-		for (int j = 0; j < NZ; j++) {
-			in[j].value() = AD1(zp[j], NZ, j);
-			in[j].derivatives() = Eigen::Matrix<AD1, NZ, 1>::Constant(AD1(0.0, Eigen::Matrix<double, NZ, 1>::Zero()));
-			in[j].derivatives()(j) = AD1(1.0, Eigen::Matrix<double, NZ, 1>::Zero());
-		}
-		m_.template eval<AD2>(in, in + NX, out, L, path);
-		AD2 s = AD2(0.0);
-		if (!path_only) {
-			for (int r = 0; r < NX; r++)
-				s = s + w[r] * out[r];
-			s = s + w[NX] * L;
-		}
+		using H = Hyper<NZ>;
+		H in[NZ], out[NX], L, path[NPO];
+		for (int j = 0; j < NZ; j++)
+			in[j] = H::variable(zp[j], j);
+		m_.template eval<H>(in, in + NX, out, L, path);
+		H s = w[NX] * L;
+		for (int r = 0; r < NX; r++)
+			s = s + w[r] * out[r];
+		for (int j = 0; j < NZ; j++)
+			grad[j] = s.g[j];
+		s = T * s;
 		for (int r = 0; r < NP; r++)
-			s = s + w[NX + 1 + r] * path[r];
-		for (int i = 0; i < NZ; i++) {
-			const AD1 &d = s.derivatives().size() ? s.derivatives()(i) : AD1(0.0);
-			grad[i] = d.value();
-			for (int j = 0; j < NZ; j++)
-				hess[i * NZ + j] = d.derivatives().size() ? d.derivatives()(j) : 0.0;
-		}
+			s = s + wp[r] * path[r];
+		return s;
 	}
 
 	M m_;

@@ -1,6 +1,6 @@
 // The dynamics and running cost of every mode (models.md sections 1-5),
 // written once and templated on the scalar so that plain doubles and Eigen's
-// forward-mode AutoDiff (first and second order) share the same code.
+// forward-mode AutoDiff and the Hessian's second-order type share the same code.
 //
 // Each model has, for state x (NX), input u (NU):
 //   eval(x, u, f, L, path): f = x' (NX), L = running cost [W], path (NP)
@@ -333,6 +333,47 @@ struct FlightModel {
 				 (b[2] - a[2]) * (b[2] - a[2]));
 	}
 	double typical_speed() const { return 3.0; }
+	// An initial guess from a to b over T that the dynamics can nearly fly:
+	// positions on the cubic Hermite curve through both ends' velocities
+	// (hover attitude, so body = world there), at every point the attitude
+	// and rotor speed whose thrust gives that curve's acceleration against
+	// gravity and drag (yaw 0). K + 1 states, uniform in time.
+	std::vector<std::vector<double>> path_guess(const std::vector<double> &a,
+						    const std::vector<double> &b, double T, int K) const
+	{
+		std::vector<std::vector<double>> out;
+		for (int s = 0; s <= K; s++) {
+			double t = static_cast<double>(s) / K, t2 = t * t, t3 = t2 * t;
+			double hp[4] = {2 * t3 - 3 * t2 + 1, t3 - 2 * t2 + t, -2 * t3 + 3 * t2, t3 - t2};
+			double hv[4] = {6 * t2 - 6 * t, 3 * t2 - 4 * t + 1, -6 * t2 + 6 * t, 3 * t2 - 2 * t};
+			double ha[4] = {12 * t - 6, 6 * t - 4, -12 * t + 6, 6 * t - 2};
+			std::vector<double> x(NX, 0.0);
+			double vw[3], F[3];
+			for (int k = 0; k < 3; k++) {
+				double c[4] = {a[k], T * a[3 + k], b[k], T * b[3 + k]};
+				x[k] = hp[0] * c[0] + hp[1] * c[1] + hp[2] * c[2] + hp[3] * c[3];
+				vw[k] = (hv[0] * c[0] + hv[1] * c[1] + hv[2] * c[2] + hv[3] * c[3]) / T;
+				F[k] = (ha[0] * c[0] + ha[1] * c[1] + ha[2] * c[2] + ha[3] * c[3]) / (T * T) +
+				       (cd / m) * vw[k];
+			}
+			F[2] += g;
+			double n = std::sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
+			double roll = std::min(0.9, std::max(-0.9, -std::asin(F[1] / n)));
+			double pitch = std::min(0.9, std::max(-0.9, std::atan2(F[0], F[2])));
+			double cr = std::cos(roll), sr = std::sin(roll), cp = std::cos(pitch), sp = std::sin(pitch);
+			// v_body = Rwb^T v_world with Rwb = Ry(pitch) Rx(roll)
+			x[3] = cp * vw[0] - sp * vw[2];
+			x[4] = sr * sp * vw[0] + cr * vw[1] + sr * cp * vw[2];
+			x[5] = cr * sp * vw[0] - sr * vw[1] + cr * cp * vw[2];
+			x[6] = roll;
+			x[7] = pitch;
+			double ph = std::min(phi_max, std::sqrt(m * n / (4 * kf)));
+			for (int k = 12; k < 16; k++)
+				x[static_cast<size_t>(k)] = ph;
+			out.push_back(s == 0 ? a : s == K ? b : x);
+		}
+		return out;
+	}
 };
 
 }  // namespace hylo::trainer

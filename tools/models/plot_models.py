@@ -7,7 +7,9 @@
                                evaluator and the committed header) from
                                (0, 0, vx, theta) to every (x, y, vx, theta),
                                vx = 1.0 m/s (marine: 0.5), theta = pi/2;
-                               edges the feasibility classifier rejects blank
+                               flight: hover at the origin to hover at every
+                               (x, 0, z), the paper's xz slice; edges the
+                               feasibility classifier rejects blank
 
 usage: plot_models.py ROBOT MODE OUT_DIR [--trajectories N]
 Run from the repository root after `make` (uses build/bin/trainer and
@@ -57,20 +59,22 @@ def training_picture(robot, mode, n, out):
     sols = [s for s in (solve(robot, mode, r) for r in training_rows(robot, mode, n)) if s]
     if not sols:
         sys.exit(f"{robot} {mode}: no training trajectory re-solved")
+    flight = mode == "flight"
+    up = 2 if flight else 1   # flight: the xz projection, like the paper's Fig. 6
     costs = [s["cost_j"] for s in sols]
     norm = colors.Normalize(min(costs), max(costs))
     fig, ax = plt.subplots(figsize=(6, 5.5), dpi=120)
     for s in sorted(sols, key=lambda s: -s["cost_j"]):
         xs = [p[0] for p in s["trajectory"]["x"]]
-        ys = [p[1] for p in s["trajectory"]["x"]]
+        ys = [p[up] for p in s["trajectory"]["x"]]
         c = cm.viridis(norm(s["cost_j"]))
         ax.plot(xs, ys, color=c, lw=1.2)
         ax.plot(xs[-1], ys[-1], "o", color=c, ms=3)
     ax.plot(0, 0, "k^", ms=7, label="start (0, 0)")
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.set_title(f"{robot} {mode}: {len(sols)} training trajectories")
+    ax.set_ylabel("z [m]" if flight else "y [m]")
+    ax.set_title(f"{robot} {mode}: {len(sols)} training trajectories" + (" (xz)" if flight else ""))
     ax.grid(alpha=0.3)
     ax.legend(loc="upper left")
     fig.colorbar(cm.ScalarMappable(norm=norm, cmap=cm.viridis), ax=ax, label="energy [J]")
@@ -89,9 +93,17 @@ def predicted(robot, mode, a, b):
     return json.loads(out.stdout)
 
 
-def contour_picture(robot, mode, out, reach=4.5, n=41):
+def ends(mode, x, y):
+    """The contour's start and end sampled states for grid point (x, y)."""
+    if mode == "flight":
+        return (0, 0, 0, 0, 0, 0), (x, 0, y, 0, 0, 0)
     v = 1.0 if mode == "ground" else 0.5
-    th = math.pi / 2
+    return (0, 0, v, math.pi / 2), (x, y, v, math.pi / 2)
+
+
+def contour_picture(robot, mode, out, n=41):
+    flight = mode == "flight"
+    reach = 9.0 if flight else 4.5
     grid = [-reach + 2 * reach * i / (n - 1) for i in range(n)]
     z = []
     for y in grid:
@@ -100,18 +112,25 @@ def contour_picture(robot, mode, out, reach=4.5, n=41):
             if math.hypot(x, y) > reach or (x == 0 and y == 0):
                 row.append(float("nan"))
                 continue
-            j = predicted(robot, mode, (0, 0, v, th), (x, y, v, th))
+            j = predicted(robot, mode, *ends(mode, x, y))
             feasible = (j.get("feasibility") or {}).get("feasible", True)
             row.append(j["planner_cost_j"] if feasible else float("nan"))
         z.append(row)
     fig, ax = plt.subplots(figsize=(6, 5.5), dpi=120)
     cs = ax.contourf(grid, grid, z, levels=20, cmap="viridis")
     ax.contour(grid, grid, z, levels=10, colors="k", linewidths=0.4)
-    ax.annotate("", xy=(0, 0.8), xytext=(0, 0), arrowprops={"arrowstyle": "->", "color": "red", "lw": 2})
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.set_title(f"{robot} {mode}: learned energy from (0, 0)\nv = {v} m/s, heading pi/2 at both ends", fontsize=10)
+    if flight:
+        ax.plot(0, 0, "r^", ms=7)
+        ax.set_ylabel("z [m]")
+        ax.set_title(f"{robot} {mode}: learned energy, hover at (0, 0, 0)\nto hover at (x, 0, z)", fontsize=10)
+    else:
+        v = ends(mode, 0, 0)[0][2]
+        ax.annotate("", xy=(0, 0.8), xytext=(0, 0), arrowprops={"arrowstyle": "->", "color": "red", "lw": 2})
+        ax.set_ylabel("y [m]")
+        ax.set_title(f"{robot} {mode}: learned energy from (0, 0)\nv = {v} m/s, heading pi/2 at both ends",
+                     fontsize=10)
     fig.colorbar(cs, ax=ax, label="predicted energy [J]")
     fig.tight_layout()
     path = os.path.join(out, f"{robot}_{mode}_contour.png")
