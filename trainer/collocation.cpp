@@ -310,7 +310,6 @@ struct ModeInfo {
 	int refinements = 0;          // the parameter file's solver: {refinements: N}
 	int min_segments = 0;         // a start's mesh has at least these segments
 	double max_step_s = 0;        // > 0: and segments of at most this guessed duration [s]
-	double replay_state_tol = 0;  // > 0: the replay's end-state tolerance if looser than asked
 	bool first_accepted = false;  // keep the first start that passes, try no more
 	int step_max_iter = 0;        // > 0: a continuation step's iteration limit; a start
 				      // whose step fails is given up
@@ -352,24 +351,18 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 		     : mode == "flight" ? info_of(FlightModel(p, robot.g))
 					: info_of(DiModel(p, mode == "di_pos"));
 	i.refinements = p.refinements;
-	// Flight. Its open-loop replay is a chain of four integrators (rotor
-	// speed, body rate, attitude, velocity, position), so mesh differences
-	// grow like t^4 into the end position: with 0.02 m/m/s/rad a 2.6 s edge
-	// needed a 15 ms step (173 segments, minutes per pair) while its cost
-	// agreed to 2e-5 already at 32 ms (end 0.087 off). Flight takes 0.1
-	// (10 cm, 0.1 m/s, 0.1 rad, 10% of hover rotor speed) and a step of at
-	// most 30 ms, at least 80 segments (rotor time constant 13 ms).
-	// From a straight-line guess the cold relax-100 solve took 120-320 Ipopt
-	// iterations and continuations not starting at 100 never converged; from
-	// the Hermite guess it takes 25-76, and these finer steps avoid the
-	// 500-1,000-iteration steps seen going 30 -> 10. Every start of a flight
-	// edge tried ended within 0.02% of the others (their meshes differ), so
-	// the first start whose replay passes is kept.
+	// Flight. The rotors' time constant is 13 ms: at least 80 segments and
+	// at most 30 ms per segment before a solve counts. From a straight-line
+	// guess the cold relax-100 solve took 120-320 Ipopt iterations and
+	// continuations not starting at 100 never converged; from the Hermite
+	// guess it takes 25-76, and these finer steps avoid the 500-1,000-
+	// iteration steps seen going 30 -> 10. Every start of a flight edge
+	// tried ended within 0.02% of the others (their meshes differ), so the
+	// first start whose replay passes is kept.
 	if (mode == "flight") {
 		i.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
 		i.min_segments = 80;
 		i.max_step_s = 0.03;
-		i.replay_state_tol = 0.1;
 		i.first_accepted = true;
 		i.step_max_iter = 400;
 		FlightModel fm(p, robot.g);
@@ -509,8 +502,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 				ph.status_text = s.status_text;
 				ph.iterations = iterations;
 				if (opt.replay) {
-					replay(p.modes[k], robot, ph,
-					       std::max(opt.replay_state_tol, p.info[k].replay_state_tol));
+					replay(p.modes[k], robot, ph, opt.replay_state_tol);
 					if (debug)
 						std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g\n",
 							     p.modes[k].c_str(), ph.replay_error, ph.replay_cost, ph.cost);

@@ -196,10 +196,20 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 			} while (x * x + y * y + z * z > 1);
 			v[0] = radius * x, v[1] = radius * y, v[2] = radius * z;
 		};
+		// Velocities level, as the planner's roadmap makes them (one
+		// horizontal velocity per heading, roadmap.c): samples spent on
+		// vertical velocities would teach the model edges never asked for.
+		auto level = [&](double *v) {
+			double x, y;
+			do {
+				x = r.uniform(-1, 1), y = r.uniform(-1, 1);
+			} while (x * x + y * y > 1);
+			v[0] = s.speed_max_mps * x, v[1] = s.speed_max_mps * y, v[2] = 0;
+		};
 		a[0] = a[1] = a[2] = 0;
-		ball(s.speed_max_mps, a + 3);
+		level(a + 3);
 		ball(s.max_distance_m, b);
-		ball(s.speed_max_mps, b + 3);
+		level(b + 3);
 	} else {
 		bool pos = m == "di_pos";
 		a[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);

@@ -58,6 +58,7 @@ struct DiModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 2, NU = 1, NP = 0, NS = 2;
 	static constexpr bool kSmoothed = false;   // nothing to relax: no continuation
+	static constexpr bool kReplayFromKnots = false;
 	double rho = 0.1;
 	bool positive = false;   // di_pos: p >= 0, v' = u - v
 
@@ -96,6 +97,7 @@ struct GroundModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 6, NU = 2, NP = 0, NS = 4;
 	static constexpr bool kSmoothed = true;
+	static constexpr bool kReplayFromKnots = false;
 	double m, Iz, B, Lc, r, G, kt, R, Vcc, crr, mut, Cy, Pd, vmax, g;
 
 	GroundModel(const ModeParams &p, double grav)
@@ -159,6 +161,7 @@ struct MarineModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 8, NU = 2, NP = 0, NS = 4;
 	static constexpr bool kSmoothed = true;
+	static constexpr bool kReplayFromKnots = false;
 	double m, Iz, B, Jm, kt, R, Vcc, kT, kq, dx, dy, Cy_w, dw, Pd, vmax_w;
 
 	MarineModel(const ModeParams &p, double)
@@ -229,6 +232,11 @@ struct FlightModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 16, NU = 4, NP = 1, NS = 6;
 	static constexpr bool kSmoothed = true;
+	// Open loop a quadrotor is unstable (rotor speed, body rate, attitude,
+	// velocity and position integrate one another), so an end state
+	// replayed over seconds measures that instability, not the
+	// transcription: the replay restarts at every knot (see replay.cpp).
+	static constexpr bool kReplayFromKnots = true;
 	double m, l, Jx, Jy, Jz, kf, km, Jr, Vcc, kt, R, cd, Pd, vmax_f, phi_max, g;
 
 	FlightModel(const ModeParams &p, double grav)

@@ -103,6 +103,23 @@ int main()
 	replay("ground", ambot, gbad);
 	check(!gbad.replay_ok, "Ambot ground: a corrupted control is detected", std::to_string(gbad.replay_error));
 
+	// Flight replays segment by segment (unstable open loop): a solution
+	// passes, and one rotor's input off by 5% fails within a segment.
+	RobotParams drivo = load_robot("trainer/params/drivocopter.yaml");
+	double f1[6] = {0, 0, 1, 0, 0, 0}, f2[6] = {3, 1, 1.5, 0, 0, 0};
+	Solution fs = solve_bvp("flight", drivo, f1, f2, SolveOptions());
+	check(fs.converged && fs.replay_ok && fs.segments >= 80 && fs.replay_error < kReplayStateTol,
+	      "Drivocopter flight: a 3 m hover edge converges on >= 80 segments and replays knot to knot",
+	      fs.status_text + ", error " + std::to_string(fs.replay_error));
+	std::printf("# drivocopter flight 3 m hover to hover: %.4f J in %.3f s, %d segments, %.2f s\n", fs.cost,
+		    fs.T, fs.segments, fs.solve_seconds);
+	Solution fbad = fs;
+	for (size_t k = 0; k < fbad.traj.u.size(); k += 4)
+		fbad.traj.u[k] += 0.05;
+	replay("flight", drivo, fbad);
+	check(!fbad.replay_ok && fbad.replay_error > kReplayStateTol,
+	      "Drivocopter flight: a corrupted control is detected", std::to_string(fbad.replay_error));
+
 	try {
 		double out[2] = {0.5, 0};   // p > 0 is outside di_neg
 		solve_bvp("di_neg", di, out, b, SolveOptions());
