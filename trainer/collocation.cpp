@@ -352,7 +352,9 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 					: info_of(DiModel(p, mode == "di_pos"));
 	i.refinements = p.refinements;
 	// Flight. The rotors' time constant is 13 ms: at least 80 segments and
-	// at most 30 ms per segment before a solve counts. From a straight-line
+	// at most 20 ms per segment (at 30 ms knot-to-knot replays were up to
+	// 0.045 off, and the refinements warm-started from there hit 1,000
+	// iterations). From a straight-line
 	// guess the cold relax-100 solve took 120-320 Ipopt iterations and
 	// continuations not starting at 100 never converged; from the Hermite
 	// guess it takes 25-76, and these finer steps avoid the 500-1,000-
@@ -362,7 +364,7 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 	if (mode == "flight") {
 		i.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
 		i.min_segments = 80;
-		i.max_step_s = 0.03;
+		i.max_step_s = 0.02;
 		i.first_accepted = true;
 		i.step_max_iter = 400;
 		FlightModel fm(p, robot.g);
@@ -433,7 +435,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	}
 	std::sort(levels.begin(), levels.end(), std::greater<double>());
 	levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
-	// A continuation step's options: the tightest iteration limit a phase's mode sets.
+	// A continuation or refinement step's options: the tightest iteration
+	// limit a phase's mode sets.
 	SolveOptions step_opt = opt;
 	for (const ModeInfo &i : base.info)
 		if (i.step_max_iter > 0)
@@ -531,7 +534,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 			std::vector<double> fine = nlp->refined();
 			for (PhaseSetup &st : p.setups)
 				st.segments *= 2;
-			res = run(p, 1.0, fine, nlp, true, opt);
+			res = run(p, 1.0, fine, nlp, true, step_opt);
 			iterations += res.second;
 			if (!succeeded(res.first))
 				break;
