@@ -52,7 +52,7 @@ models: deps $(TRAINER)
 
 # Pictures of the committed models (tools/models/plot_models.py, matplotlib
 # from PyPI): training trajectories and the learned cost, into docs/models/.
-MODEL_PICTURES := ambot:ground ambot:marine drivocopter:ground
+MODEL_PICTURES := ambot:ground ambot:marine drivocopter:ground drivocopter:flight
 model-pictures: venv-report $(TRAINER) $(BUILD)/bin/hylo-cost
 	@for rm in $(MODEL_PICTURES); do \
 		.venv/bin/python tools/models/plot_models.py $${rm%%:*} $${rm##*:} docs/models || exit 1; \
