@@ -186,12 +186,14 @@ public:
 
 	// Phase k of the solution.
 	void fill(size_t k, Solution &s) { ph_[k]->fill(z_.data() + vo_[k], s); }
-	// The solution on meshes of twice the segments, phase by phase.
-	std::vector<double> refined() const
+	// The solution with the phases marked in `which` on meshes of twice the
+	// segments, the others as they are.
+	std::vector<double> refined(const std::vector<bool> &which) const
 	{
 		std::vector<double> out;
 		for (size_t k = 0; k < ph_.size(); k++) {
-			std::vector<double> r = ph_[k]->refine(z_.data() + vo_[k]);
+			const Number *z = z_.data() + vo_[k];
+			std::vector<double> r = which[k] ? ph_[k]->refine(z) : std::vector<double>(z, z + ph_[k]->nvar());
 			out.insert(out.end(), r.begin(), r.end());
 		}
 		return out;
@@ -462,7 +464,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		for (size_t k = 0; k < p.setups.size(); k++) {
 			p.setups[k].T_guess = Ts[k];
 			const ModeInfo &i = p.info[k];
-			int by_step = i.max_step_s > 0 ? static_cast<int>(std::ceil(Ts[k] / i.max_step_s)) : 0;
+			double step = i.max_step_s > 0 && opt.max_step_s > 0 ? opt.max_step_s : i.max_step_s;
+			int by_step = step > 0 ? static_cast<int>(std::ceil(Ts[k] / step)) : 0;
 			if (opt.derivative_test_file.empty())   // the checker needs no fine mesh, only exact derivatives
 				p.setups[k].segments = std::max({p.setups[k].segments, i.min_segments, by_step});
 			if (i.path_guess && p.setups[k].guess.size() == 2)
@@ -477,7 +480,10 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		for (double relax : levels) {
 			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
-			res = run(p, relax, start, nlp, !start.empty(), step_opt);
+			SolveOptions o = step_opt;
+			if (start.empty() && opt.first_step_max_iter > 0)
+				o.max_iter = opt.first_step_max_iter;
+			res = run(p, relax, start, nlp, !start.empty(), o);
 			if (succeeded(res.first))
 				start = nlp->solution();
 			else if (give_up)
@@ -498,6 +504,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 			s.status_text = status_text(res.first);
 			s.iterations = iterations;
 			bool all_ok = true;
+			std::vector<bool> failed(p.setups.size(), false);
 			for (size_t k = 0; k < p.setups.size(); k++) {
 				Solution ph;
 				nlp->fill(k, ph);
@@ -510,6 +517,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 						std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g\n",
 							     p.modes[k].c_str(), ph.replay_error, ph.replay_cost, ph.cost);
 					all_ok = all_ok && ph.replay_ok;
+					failed[k] = !ph.replay_ok;
 				}
 				ph.converged = !opt.replay || ph.replay_ok;
 				s.cost += ph.cost;
@@ -531,9 +539,11 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 			}
 			if (refine >= refinements)
 				break;
-			std::vector<double> fine = nlp->refined();
-			for (PhaseSetup &st : p.setups)
-				st.segments *= 2;
+			// Only the phases whose replay failed get the finer mesh.
+			std::vector<double> fine = nlp->refined(failed);
+			for (size_t k = 0; k < p.setups.size(); k++)
+				if (failed[k])
+					p.setups[k].segments *= 2;
 			res = run(p, 1.0, fine, nlp, true, step_opt);
 			iterations += res.second;
 			if (!succeeded(res.first))

@@ -22,8 +22,12 @@ struct SolveOptions {
 	int max_iter = 1000;
 	double T_fixed = 0;               // > 0: T is fixed to this value
 	std::vector<double> T_guesses;    // empty: derived from distance and speed
-	int refinements = 2;              // mesh doublings when the replay rejects a solution
+	int refinements = 2;              // mesh doublings of the phases whose replay fails
 	double replay_state_tol = kReplayStateTol;  // largest scaled end-state error a replay may show
+	double max_step_s = 0;            // > 0: replaces the longest segment of modes that set one
+					  // (flight's 20 ms; see smoothing_solve_options)
+	int first_step_max_iter = 0;      // > 0: the iteration limit of a start's first (cold) solve,
+					  // instead of its mode's continuation-step limit
 	bool replay = true;               // check every solution with CVODE
 	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here

@@ -82,6 +82,7 @@ public:
 		g.origin_y_m = m->origin_y_m;
 		g.terrain = m->terrain;
 		g.height_m = m->height_m;
+		g.max_step_m = m->max_step_m;
 		if (maps_.size() >= 8)   // a few recent maps: plans name theirs
 			maps_.erase(maps_.begin());
 		maps_[m->map_id] = {m->robot, std::move(g)};

@@ -152,6 +152,76 @@ int mode_number(const std::string &mode)
 	return 0;
 }
 
+namespace {
+
+double height_at(const TerrainGrid &m, double x, double y)
+{
+	Cell c = cell_at(m, x, y);
+	if (!c.inside)
+		throw std::invalid_argument("the point (" + std::to_string(x) + ", " + std::to_string(y) +
+					    ") is off the map");
+	return m.height_m[static_cast<size_t>(c.index)];
+}
+
+struct Crossing {
+	double t;        // along the segment, 0..1
+	WallGate gate;
+};
+
+// Where the straight flight a -> b (sampled flight states) crosses a wall:
+// a cell boundary across which the terrain height steps by more than the
+// map's max_step. The gate lies on that boundary, kAirClearanceM above the
+// higher side (the planner's flight clearance).
+std::vector<Crossing> wall_crossings(const TerrainGrid &m, const double *a, const double *b)
+{
+	std::vector<Crossing> out;
+	double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+	int steps = std::max(1, static_cast<int>(std::ceil(4 * len / m.resolution_m)));
+	Cell prev = cell_at(m, a[0], a[1]);
+	for (int i = 1; i <= steps && prev.inside; i++) {
+		double t = static_cast<double>(i) / steps;
+		Cell c = cell_at(m, a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+		if (!c.inside || c.index == prev.index) {
+			prev = c;
+			continue;
+		}
+		double h0 = m.height_m[static_cast<size_t>(prev.index)], h1 = m.height_m[static_cast<size_t>(c.index)];
+		if (std::fabs(h1 - h0) > m.max_step_m) {
+			int ix0 = prev.index % m.nx, ix1 = c.index % m.nx, iy0 = prev.index / m.nx, iy1 = c.index / m.nx;
+			WallGate g;
+			g.axis = ix0 != ix1 ? 0 : 1;
+			g.c = g.axis == 0 ? m.origin_x_m + std::max(ix0, ix1) * m.resolution_m
+					  : m.origin_y_m + std::max(iy0, iy1) * m.resolution_m;
+			g.z_min = std::max(h0, h1) + kAirClearanceM;
+			double d = b[g.axis] - a[g.axis];
+			out.push_back({std::fabs(d) > 1e-12 ? (g.c - a[g.axis]) / d : t, g});
+		}
+		prev = c;
+	}
+	return out;
+}
+
+// A duration guess for a phase through sampled states: ground and marine
+// leave it to the solver (path length / typical speed); flight edges take
+// their length over their mean speed, at least 1 m/s (flights of tens of
+// metres at 8 m/s would otherwise be guessed at 3 m/s, with a mesh twice as
+// fine as they need).
+double flight_time_guess(const std::vector<std::vector<double>> &xs)
+{
+	double T = 0;
+	for (size_t i = 1; i < xs.size(); i++) {
+		const double *a = xs[i - 1].data(), *b = xs[i].data();
+		double d = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
+				     (b[2] - a[2]) * (b[2] - a[2]));
+		double va = std::sqrt(a[3] * a[3] + a[4] * a[4] + a[5] * a[5]);
+		double vb = std::sqrt(b[3] * b[3] + b[4] * b[4] + b[5] * b[5]);
+		T += d / std::max(1.0, 0.5 * (va + vb));
+	}
+	return std::max(0.2, T);
+}
+
+}  // namespace
+
 MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<Waypoint> &plan,
 				    const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
 {
@@ -179,28 +249,71 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 						    " switch mode without a guard pair at one place");
 		runs.push_back({i, i});
 	}
+	auto run_mode = [&](size_t k) { return mode_name(plan[runs[k].first].mode); };
+	auto single = [&](size_t k) { return runs[k].first == runs[k].second; };
+	// A plan that takes off at its first waypoint (lands at its last) has no
+	// ground phase there: its flight starts (ends) hovering above that point.
+	const size_t R = runs.size();
+	const bool takeoff_first = R > 1 && single(0) && run_mode(0) == "ground" && run_mode(1) == "flight";
+	const bool landing_last = R > 1 && single(R - 1) && run_mode(R - 1) == "ground" && run_mode(R - 2) == "flight";
 	MultiPhaseProblem p;
-	for (size_t k = 0; k < runs.size(); k++) {
-		PhaseSpec s;
-		s.mode = mode_name(plan[runs[k].first].mode);
-		for (size_t i = runs[k].first; i <= runs[k].second; i++)
-			s.guess.push_back(full_state(s.mode, robot, plan[i].state));
-		if (s.guess.size() == 1)
-			s.guess.push_back(s.guess[0]);
-		int edges = static_cast<int>(runs[k].second - runs[k].first);
-		s.segments = std::min(opt.max_segments, std::max(opt.min_segments, opt.segments_per_edge * edges));
-		auto b = state_bounds(s.mode, robot);
-		s.first_lo = s.last_lo = b.first;
-		s.first_hi = s.last_hi = b.second;
-		if (k == 0)
-			s.first_lo = s.first_hi = s.guess.front();
-		if (k + 1 == runs.size())
-			s.last_lo = s.last_hi = s.guess.back();
-		p.phases.push_back(std::move(s));
+	std::vector<size_t> first_phase(R), last_phase(R);
+	std::vector<std::pair<size_t, WallGate>> gates;   // phase k and k + 1 meet at a wall
+	for (size_t k = 0; k < R; k++) {
+		if ((k == 0 && takeoff_first) || (k + 1 == R && landing_last))
+			continue;
+		const std::string mode = run_mode(k);
+		// The run's sampled states, a flight cut at every wall it crosses.
+		std::vector<std::vector<std::vector<double>>> pieces{{sampled(plan[runs[k].first])}};
+		for (size_t i = runs[k].first + 1; i <= runs[k].second; i++) {
+			std::vector<double> a = sampled(plan[i - 1]), b = sampled(plan[i]);
+			if (mode == "flight")
+				for (const Crossing &c : wall_crossings(map, a.data(), b.data())) {
+					std::vector<double> x(6);
+					for (int j = 0; j < 6; j++)
+						x[static_cast<size_t>(j)] = a[static_cast<size_t>(j)] + c.t * (b[static_cast<size_t>(j)] - a[static_cast<size_t>(j)]);
+					x[2] = std::max(x[2], c.gate.z_min + 0.5);
+					pieces.back().push_back(x);
+					pieces.push_back({x});
+					gates.push_back({p.phases.size() + pieces.size() - 2, c.gate});
+				}
+			pieces.back().push_back(b);
+		}
+		first_phase[k] = p.phases.size();
+		for (const auto &xs : pieces) {
+			PhaseSpec s;
+			s.mode = mode;
+			for (const auto &x : xs)
+				s.guess.push_back(full_state(mode, robot, x.data()));
+			if (s.guess.size() == 1)
+				s.guess.push_back(s.guess[0]);
+			int edges = static_cast<int>(xs.size()) - 1;
+			s.segments = std::min(opt.max_segments, std::max(opt.min_segments, opt.segments_per_edge * edges));
+			if (mode == "flight")
+				s.T_guess = flight_time_guess(xs);
+			auto b = state_bounds(mode, robot);
+			s.first_lo = s.last_lo = b.first;
+			s.first_hi = s.last_hi = b.second;
+			p.phases.push_back(std::move(s));
+		}
+		last_phase[k] = p.phases.size() - 1;
 	}
-	for (size_t k = 0; k + 1 < runs.size(); k++) {
+	// The plan's ends: fixed, or the hover above a takeoff (landing) point.
+	auto hover_above = [&](const Waypoint &w) {
+		double xs[6] = {w.state[0], w.state[1], height_at(map, w.state[0], w.state[1]) + 1, 0, 0, 0};
+		return full_state("flight", robot, xs);
+	};
+	PhaseSpec &head = p.phases.front(), &tail = p.phases.back();
+	head.first_lo = head.first_hi = takeoff_first ? hover_above(plan.front()) : head.guess.front();
+	tail.last_lo = tail.last_hi = landing_last ? hover_above(plan.back()) : tail.guess.back();
+	p.switch_cost += (takeoff_first ? costs.takeoff_j : 0) + (landing_last ? costs.landing_j : 0);
+	for (const auto &g : gates)
+		join_gate(p, g.first, robot, g.second);
+	for (size_t k = 0; k + 1 < R; k++) {
+		if ((k == 0 && takeoff_first) || (k + 2 == R && landing_last))
+			continue;
 		const Waypoint &g = plan[runs[k].second];
-		const std::string a = p.phases[k].mode, b = p.phases[k + 1].mode;
+		const std::string a = run_mode(k), b = run_mode(k + 1);
 		SwitchGuard guard;
 		if ((a == "ground" && b == "marine") || (a == "marine" && b == "ground")) {
 			guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
@@ -224,7 +337,10 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 			}
 			guard = platform_guard(map, land.state[0], land.state[1], dx, dy, opt.guard_half_length_m);
 		}
-		join_phases(p, k, robot, guard, costs);
+		// Phases joined at this switch: the last of run k, the first of run k + 1.
+		if (first_phase[k + 1] != last_phase[k] + 1)
+			throw std::logic_error("smoothing_problem: phases out of order");
+		join_phases(p, last_phase[k], robot, guard, costs);
 	}
 	return p;
 }
@@ -233,6 +349,8 @@ SolveOptions smoothing_solve_options()
 {
 	SolveOptions o;
 	o.replay_state_tol = 0.05;
+	o.max_step_s = 0.04;
+	o.first_step_max_iter = 1000;
 	return o;
 }
 

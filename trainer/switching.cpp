@@ -114,6 +114,20 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 	}
 }
 
+void join_gate(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const WallGate &g)
+{
+	if (k + 1 >= p.phases.size() || p.phases[k].mode != "flight" || p.phases[k + 1].mode != "flight")
+		throw std::invalid_argument("join_gate: phases " + std::to_string(k) + " and " + std::to_string(k + 1) +
+					    " are not two flight phases");
+	PhaseSpec &a = p.phases[k];
+	default_bounds(a, robot);
+	default_bounds(p.phases[k + 1], robot);
+	for (int i = 0; i < state_dim("flight"); i++)
+		p.rows.push_back(carry(k, i, i));
+	fix(a.last_lo, a.last_hi, g.axis == 0 ? 0 : 1, g.c);
+	a.last_lo[2] = std::max(a.last_lo[2], g.z_min);
+}
+
 PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,
 			const double *xs1, const double *guess0, const double *guess1, int segments)
 {

@@ -40,6 +40,15 @@ TakeoffLanding takeoff_landing(const RobotParams &robot, const SolveOptions &opt
 void join_phases(MultiPhaseProblem &problem, size_t k, const RobotParams &robot, const SwitchGuard &guard,
 		 const TakeoffLanding &costs = {});
 
+// A wall a flight crosses: phases k and k + 1 (both flight, one flight cut
+// in two) meet on the vertical plane x = c (axis 0) or y = c (axis 1) at
+// least z_min high. The state carries over unchanged; no cost.
+struct WallGate {
+	int axis = 0;
+	double c = 0, z_min = 0;
+};
+void join_gate(MultiPhaseProblem &problem, size_t k, const RobotParams &robot, const WallGate &gate);
+
 // A phase of mode from sampled state xs0 to xs1 (either nullptr: left free
 // within the mode's bounds), its guess a straight line guess0 -> guess1.
 PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,

@@ -30,6 +30,15 @@ tap_check "an unwritable --out fails at once (exit 1, before any study)" \
 "$CS" --study ambot --quick --out "$T" > "$T/log" 2>&1; rc=$?
 tap_check "the quick Ambot study runs and writes results.json and results.md" \
   test "$rc" = 0 -a -s "$T/results.json" -a -s "$T/results.md"
+tap_check "and its part results/ambot.{md,json}, which the combined results.md holds" \
+  test -s "$T/results/ambot.json" -a -n "$(grep -F "$(head -n 1 "$T/results/ambot.md")" "$T/results.md" 2>/dev/null)"
+# A study run alone keeps the other studies' last results: a DI part
+# written before must still be in results.md after the Ambot study runs again.
+printf '## 1. a stand-in DI part\n' > "$T/results/di.md"
+printf '{"stand_in": true}' > "$T/results/di.json"
+"$CS" --study ambot --quick --out "$T" > "$T/log2" 2>&1
+tap_check "a study run alone keeps the other studies' parts in results.md and results.json" \
+  test -n "$(grep "a stand-in DI part" "$T/results.md")" -a -n "$(grep -F '"stand_in": true' "$T/results.json")"
 
 if [ "$rc" = 0 ]; then
   python3 - "$T/results.json" > "$T/checks" <<'PY'

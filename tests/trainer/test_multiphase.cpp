@@ -3,7 +3,8 @@
 // integrator's two-phase optimum against a dense sweep of the switching
 // velocity on the guard p = 0 (the paper's reference, Fig. 10), and an Ambot
 // shore crossing whose free switch point does at least as well as a fixed one,
-// and the takeoff and landing conditions of a drive-fly-drive chain.
+// the takeoff and landing conditions of a drive-fly-drive chain, and the
+// smoother's wall gates and takeoff-at-the-start plans (problem structure).
 // Prints TAP.
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "trainer/collocation.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
+#include "trainer/smoother.hpp"
 #include "trainer/switching.hpp"
 
 namespace {
@@ -173,6 +175,51 @@ void bad_problems(const RobotParams &di)
 		      "a row naming a missing phase is refused", e.what());
 	}
 }
+// A 20 x 4 m map, 1 m cells: a 6 m platform for x < 8, the floor (height 0)
+// beyond. A flight from the platform down to the floor crosses the wall at
+// x = 8: the smoother cuts it there into two phases meeting at least 6.5 m high.
+void wall_gates(const RobotParams &drivo)
+{
+	TerrainGrid m;
+	m.nx = 20;
+	m.ny = 4;
+	m.terrain.assign(80, 1);
+	m.height_m.assign(80, 0.0f);
+	for (int iy = 0; iy < 4; iy++)
+		for (int ix = 0; ix < 8; ix++)
+			m.height_m[static_cast<size_t>(iy * 20 + ix)] = 6;
+	auto wp = [](int mode, double x, double z, bool guard) {
+		Waypoint w;
+		w.mode = mode;
+		w.guard = guard;
+		w.state[0] = x;
+		w.state[1] = 2;
+		if (mode == mode_number("flight"))
+			w.state[2] = z;
+		return w;
+	};
+	const int G = mode_number("ground"), F = mode_number("flight");
+	std::vector<Waypoint> plan = {wp(G, 2, 0, false), wp(G, 6, 0, true),  wp(F, 6, 7, true),
+				      wp(F, 12, 1, true), wp(G, 12, 0, true), wp(G, 16, 0, false)};
+	MultiPhaseProblem p = smoothing_problem(drivo, plan, m, TakeoffLanding{100, 40});
+	bool ok = p.phases.size() == 4 && p.phases[1].mode == "flight" && p.phases[2].mode == "flight";
+	if (ok) {
+		const PhaseSpec &a = p.phases[1];
+		ok = a.last_lo[0] == 8 && a.last_hi[0] == 8 && a.last_lo[2] == 6.5 && a.guess.back()[2] >= 6.5;
+	}
+	check(ok, "a flight over a wall is cut at the wall: the two phases meet on x = 8, at least 6.5 m high");
+	check(p.switch_cost == 140, "the cut adds no cost; takeoff and landing do (" + fmt(p.switch_cost) + ")");
+	// Taking off at the first waypoint and landing at the last: no ground
+	// phases, the flight starts and ends hovering 1 m above those points.
+	std::vector<Waypoint> hop = {wp(G, 2, 0, true), wp(F, 2, 7, true), wp(F, 12, 1, true), wp(G, 12, 0, true)};
+	MultiPhaseProblem q = smoothing_problem(drivo, hop, m, TakeoffLanding{100, 40});
+	ok = q.phases.size() == 2 && q.phases[0].mode == "flight" && q.phases[1].mode == "flight" &&
+	     q.switch_cost == 140;
+	if (ok)
+		ok = q.phases[0].first_lo[0] == 2 && q.phases[0].first_hi[2] == 7 && q.phases[0].first_lo[5] == 0 &&
+		     q.phases[1].last_hi[0] == 12 && q.phases[1].last_lo[2] == 1;
+	check(ok, "a plan that takes off at its start and lands at its goal is flight only, hover to hover");
+}
 
 }  // namespace
 
@@ -183,6 +230,7 @@ int main()
 	RobotParams drivo = load_robot("trainer/params/drivocopter.yaml");
 	derivative_tests(ambot);
 	takeoff_landing_joins(drivo);
+	wall_gates(drivo);
 	di_case(di, 0.8, 0.2, -0.8, 0.0);
 	di_case(di, 0.7, -0.1, -0.5, 0.2);
 	shore_crossing(ambot);

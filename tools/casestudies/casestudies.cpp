@@ -6,13 +6,19 @@
 //          convergence of the graph cost over ten Poisson-disc spacings.
 //   ambot  river and island crossing: the energy-optimal plan (committed SVR
 //          models) against the shortest-distance plan on the same graph.
-// Writes OUT/results.json (every number) and OUT/results.md (the tables);
+//   drivocopter  the paper's Table I: on each chasm scene the fixed mode
+//          sequences F ... DFDFD, each one multi-phase optimization (the
+//          smoother's, on a plan of that sequence), against hylo's plan, its
+//          predicted cost and its smoothed cost.
+// Each study writes OUT/results/<study>.{md,json}; OUT/results.json (every
+// number) and OUT/results.md (the tables) are put together from those parts.
 // tools/casestudies/plot.py draws the convergence figure from the JSON.
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -22,6 +28,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -43,13 +51,15 @@ using namespace hylo::trainer;
 using hylo::scene::Scene;
 
 const char *kUsage =
-	"usage: hylo-casestudies [--study di|ambot|all] [--out DIR] [--jobs N] [--quick]\n"
+	"usage: hylo-casestudies [--study di|ambot|drivocopter|all] [--out DIR] [--jobs N] [--quick]\n"
 	"  The paper's case studies (docs/results.md explains each).\n"
-	"  --study S   which study to run (default all)\n"
+	"  --study S   which study to run (default all); the others' last results\n"
+	"              (DIR/results/<study>.{md,json}) are kept in the combined files\n"
 	"  --out DIR   where results.json and results.md go (default docs)\n"
-	"  --jobs N    worker processes for exact edge costs (default 2)\n"
-	"  --quick     a check: the DI convergence on 3 spacings instead of 10, and\n"
-	"              Ambot plans without exact edge costs or smoothing\n";
+	"  --jobs N    worker processes for exact edge costs and solves (default 2)\n"
+	"  --quick     a check: the DI convergence on 3 spacings instead of 10, Ambot\n"
+	"              plans without exact edge costs or smoothing, the Drivocopter\n"
+	"              sequences on the 30 m chasm from one switch placement\n";
 
 struct Options {
 	std::string study = "all", out = "docs";
@@ -71,54 +81,60 @@ std::string num(double v)
 	return b;
 }
 
-// f(i) for i in [0, n) in `jobs` forked workers (Ipopt is not thread-safe);
-// results in index order. A worker that dies makes every value NaN.
+// f(i), a record of `width` numbers, for i in [0, n), each in a process of
+// its own forked from this one, `jobs` at a time (Ipopt is not thread-safe,
+// solve times differ by 10x). A fresh process per item keeps results
+// independent of what ran before: OpenBLAS's kernels sum in an order that
+// depends on the alignment of their buffers, so a solve's iterates (and
+// whether it converges) changed with the solves a worker had done before it.
+// Records in index order; an item whose process died stays NaN.
+std::vector<std::vector<double>> parallel_records(size_t n, size_t width, int jobs,
+						  const std::function<std::vector<double>(size_t)> &f)
+{
+	std::vector<std::vector<double>> out(n, std::vector<double>(width, NAN));
+	if (n == 0)
+		return out;
+	size_t bytes = n * width * sizeof(double);
+	void *mem = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+	if (mem == MAP_FAILED)
+		throw std::runtime_error(std::string("mmap: ") + std::strerror(errno));
+	auto *rec = static_cast<double *>(mem);
+	std::fill(rec, rec + n * width, NAN);
+	size_t next = 0, running = 0;
+	const size_t limit = static_cast<size_t>(std::max(1, jobs));
+	while (next < n || running > 0) {
+		if (next < n && running < limit) {
+			std::fflush(nullptr);
+			pid_t pid = fork();
+			if (pid < 0)
+				throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
+			if (pid == 0) {
+				std::vector<double> v = f(next);
+				v.resize(width, NAN);
+				std::copy(v.begin(), v.end(), rec + next * width);
+				_exit(0);
+			}
+			next++;
+			running++;
+			continue;
+		}
+		if (waitpid(-1, nullptr, 0) > 0)
+			running--;
+		else if (errno != EINTR)
+			throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+	}
+	for (size_t i = 0; i < n; i++)
+		out[i].assign(rec + i * width, rec + (i + 1) * width);
+	munmap(mem, bytes);
+	return out;
+}
+
 std::vector<double> parallel_map(size_t n, int jobs, const std::function<double(size_t)> &f)
 {
-	std::vector<double> out(n, NAN);
-	int w_count = static_cast<int>(std::min<size_t>(static_cast<size_t>(std::max(1, jobs)), n));
-	if (w_count <= 1) {
-		for (size_t i = 0; i < n; i++)
-			out[i] = f(i);
-		return out;
-	}
-	std::vector<pid_t> pids;
-	std::vector<int> fds;
-	for (int w = 0; w < w_count; w++) {
-		int p[2];
-		if (pipe(p) != 0)
-			throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
-		std::fflush(nullptr);
-		pid_t pid = fork();
-		if (pid < 0)
-			throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
-		if (pid == 0) {
-			close(p[0]);
-			for (size_t i = static_cast<size_t>(w); i < n; i += static_cast<size_t>(w_count)) {
-				double v = f(i);
-				if (write(p[1], &v, sizeof v) != static_cast<ssize_t>(sizeof v))
-					_exit(1);
-			}
-			_exit(0);
-		}
-		close(p[1]);
-		pids.push_back(pid);
-		fds.push_back(p[0]);
-	}
-	for (int w = 0; w < w_count; w++) {
-		for (size_t i = static_cast<size_t>(w); i < n; i += static_cast<size_t>(w_count)) {
-			double v;
-			ssize_t k;
-			do
-				k = read(fds[static_cast<size_t>(w)], &v, sizeof v);
-			while (k < 0 && errno == EINTR);
-			if (k != static_cast<ssize_t>(sizeof v))
-				break;
-			out[i] = v;
-		}
-		close(fds[static_cast<size_t>(w)]);
-		waitpid(pids[static_cast<size_t>(w)], nullptr, 0);
-	}
+	auto rec = parallel_records(n, 1, jobs, [&](size_t i) { return std::vector<double>{f(i)}; });
+	std::vector<double> out(n);
+	for (size_t i = 0; i < n; i++)
+		out[i] = rec[i][0];
 	return out;
 }
 
@@ -220,6 +236,7 @@ TerrainGrid grid_of(const Scene &sc)
 	g.origin_y_m = sc.origin_y_m;
 	g.terrain = sc.terrain;
 	g.height_m = sc.height_m;
+	g.max_step_m = sc.max_step_m;
 	return g;
 }
 
@@ -539,18 +556,23 @@ std::string plan_json(const PlanResult &r)
 	       ", \"smoothed_water_m\": " + num(r.smoothed_water) + ",\n    \"path\": [" + r.path + "]}";
 }
 
-std::string ambot_study(const Options &opt, std::string &md)
+// The robot with its two committed models (onboard/models/, the registry).
+hylo_robot committed_robot(const std::string &name)
 {
-	RobotParams ambot = load_robot(robot_file("ambot"));
 	hylo_robot robots[HYLO_MAX_ROBOTS];
 	hylo_reason reason;
 	uint32_t n = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &reason);
-	const hylo_robot *energy = nullptr;
 	for (uint32_t i = 0; i < n; i++)
-		if (std::string(robots[i].name) == "ambot")
-			energy = &robots[i];
-	if (!energy || !energy->modes[0].model || !energy->modes[1].model)
-		throw std::runtime_error("ambot: no committed models in onboard/models/");
+		if (robots[i].name == name && robots[i].modes[0].model && robots[i].modes[1].model)
+			return robots[i];
+	throw std::runtime_error(name + ": no committed models in onboard/models/");
+}
+
+std::string ambot_study(const Options &opt, std::string &md)
+{
+	RobotParams ambot = load_robot(robot_file("ambot"));
+	const hylo_robot energy_robot = committed_robot("ambot");
+	const hylo_robot *energy = &energy_robot;
 	// Same roadmap and edges (the feasibility classifiers drop the same
 	// edges); each edge weighted by its length instead of its energy.
 	// Admissible: cost >= length (floor 1 per metre).
@@ -598,6 +620,354 @@ std::string ambot_study(const Options &opt, std::string &md)
 	return js + "\n]";
 }
 
+// ---- study 3: Drivocopter, fixed mode sequences (the paper's Table I) -----
+
+// A chasm scene along the line from start to goal: platform 1 up to the
+// first wall at e1, the floor up to the second wall at e2, platform 2 after.
+struct Chasm {
+	double y = 0, x_start = 0, x_goal = 0, e1 = 0, e2 = 0, h_platform = 0, h_floor = 0, margin = 0;
+};
+
+Chasm chasm_of(const Scene &sc)
+{
+	Chasm c;
+	c.y = sc.goal.start.x[1];
+	c.x_start = sc.goal.start.x[0];
+	c.x_goal = sc.goal.goal.x[0];
+	c.margin = sc.resolution_m;   // switch points keep a cell from the walls
+	int iy = static_cast<int>((c.y - sc.origin_y_m) / sc.resolution_m);
+	int i0 = static_cast<int>((c.x_start - sc.origin_x_m) / sc.resolution_m);
+	int i1 = static_cast<int>((c.x_goal - sc.origin_x_m) / sc.resolution_m);
+	auto h = [&](int ix) { return sc.height_m[static_cast<size_t>(iy * sc.nx + ix)]; };
+	std::vector<double> walls;
+	for (int ix = i0; ix < i1; ix++)
+		if (std::fabs(h(ix + 1) - h(ix)) > sc.max_step_m)
+			walls.push_back(sc.origin_x_m + (ix + 1) * sc.resolution_m);
+	if (walls.size() != 2 || c.x_goal <= c.x_start)
+		throw std::runtime_error(sc.path + ": not a chasm scene (two walls between start and goal along x)");
+	c.e1 = walls[0];
+	c.e2 = walls[1];
+	c.h_platform = h(i0);
+	c.h_floor = h(i0 + static_cast<int>((c.e1 - c.x_start) / sc.resolution_m) + 1);
+	return c;
+}
+
+// A fixed mode sequence (D drive, F fly) across the chasm as a plan for the
+// smoother: D legs on platform 1 (first letter), platform 2 (last) or the
+// floor (between flights); switch points placed `lambda` of the way from the
+// wall they lead over (0: at the wall) to the leg's far end, every ground leg
+// through waypoints at most 4 m apart at 2 m/s, every flight through
+// waypoints at most 8 m apart at up to 8 m/s (3 m/s^2 from and to hover),
+// high enough above the platforms. These are only the initial guess: the
+// smoother lets every switch point slide along its whole platform or floor.
+std::vector<Waypoint> sequence_plan(const Chasm &c, const std::string &seq, double lambda)
+{
+	const int G = mode_number("ground"), F = mode_number("flight");
+	std::vector<Waypoint> w;
+	auto ground = [&](double x, double v, double heading, bool guard) {
+		Waypoint p;
+		p.mode = G;
+		p.guard = guard;
+		p.state[0] = x;
+		p.state[1] = c.y;
+		p.state[2] = v;
+		p.state[3] = heading;
+		w.push_back(p);
+	};
+	auto drive = [&](double x0, double x1, bool guard0, bool guard1) {
+		int n = std::max(1, static_cast<int>(std::ceil(std::fabs(x1 - x0) / 4)));
+		for (int i = 0; i <= n; i++)
+			ground(x0 + (x1 - x0) * i / n, i == 0 || i == n ? 0 : 2, 0, (i == 0 && guard0) || (i == n && guard1));
+	};
+	auto surface_h = [&](double x) { return x < c.e1 || x >= c.e2 ? c.h_platform : c.h_floor; };
+	auto fly = [&](double x0, double x1) {
+		double z0 = surface_h(x0) + 1, z1 = surface_h(x1) + 1, L = std::fabs(x1 - x0);
+		int n = std::max(1, static_cast<int>(std::ceil(L / 8)));
+		for (int i = 0; i <= n; i++) {
+			double s = L * i / n, x = x0 + (x1 - x0) * i / n;
+			double z = z0 + (z1 - z0) * i / n;
+			if (x < c.e1 || x >= c.e2)
+				z = std::max(z, c.h_platform + 1);
+			double v = i == 0 || i == n ? 0 : std::min(8.0, std::sqrt(6 * std::min(s, L - s)));
+			Waypoint p;
+			p.mode = F;
+			p.guard = i == 0 || i == n;
+			double st[6] = {x, c.y, z, x1 > x0 ? v : -v, 0, 0};
+			std::copy(st, st + 6, p.state);
+			w.push_back(p);
+		}
+	};
+	const double mid = 0.5 * (c.e1 + c.e2);
+	const size_t last = seq.size() - 1;
+	double x = c.x_start;
+	for (size_t i = 0; i < seq.size(); i++) {
+		if (seq[i] == 'D') {
+			double to = i == last	? c.x_goal
+				    : i == 0	? (c.e1 - c.margin) - lambda * (c.e1 - c.margin - c.x_start)
+						: (c.e2 - c.margin) - lambda * (c.e2 - c.margin - std::max(x, mid));
+			drive(x, to, i > 0, i < last);
+			x = to;
+		} else {
+			double to = i == last	    ? c.x_goal
+				    : i + 1 == last ? (c.e2 + c.margin) + lambda * (c.x_goal - c.e2 - c.margin)
+						    : (c.e1 + c.margin) + lambda * (mid - c.e1 - c.margin);
+			if (i == 0)
+				ground(x, 0, 0, true);
+			fly(x, to);
+			if (i == last)   // else the next (D) leg's first waypoint is the landing point
+				ground(to, 0, 0, true);
+			x = to;
+		}
+	}
+	return w;
+}
+
+// Lowest height of a solution's flight above the terrain under it [m].
+double flight_clearance(const MultiPhaseSolution &s, const Scene &sc)
+{
+	double lo = INFINITY;
+	for (size_t k = 0; k < s.phases.size(); k++) {
+		if (s.modes[k] != "flight")
+			continue;
+		const Trajectory &t = s.phases[k].traj;
+		for (size_t i = 0; i < t.t.size(); i++) {
+			const double *x = &t.x[i * static_cast<size_t>(t.nx)];
+			int ix = static_cast<int>(std::floor((x[0] - sc.origin_x_m) / sc.resolution_m));
+			int iy = static_cast<int>(std::floor((x[1] - sc.origin_y_m) / sc.resolution_m));
+			if (ix < 0 || iy < 0 || ix >= sc.nx || iy >= sc.ny)
+				continue;
+			lo = std::min(lo, x[2] - sc.height_m[static_cast<size_t>(iy * sc.nx + ix)]);
+		}
+	}
+	return lo;
+}
+
+// "DFDFD" from a plan's mode sequence.
+std::string letters(const hylo_plan &p)
+{
+	std::string s;
+	for (uint32_t i = 0; i < p.n_modes; i++)
+		s += p.mode_sequence[i] == HYLO_MODE_FLIGHT ? 'F' : 'D';
+	return s;
+}
+
+// One smoothing solve of a plan: {cost, T, replay error, clearance, seconds,
+// switch-point x...}; cost NaN when it failed.
+std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Waypoint> &plan, const Scene &sc,
+				  const TakeoffLanding &tl)
+{
+	std::vector<double> r(5, NAN);
+	try {
+		SmoothOptions so;
+		so.guard_half_length_m = 1e3;   // the whole platform or floor
+		MultiPhaseProblem prob = smoothing_problem(robot, plan, grid_of(sc), tl, so);
+		prob.T_scales = {1.0};
+		MultiPhaseSolution s = solve_multiphase(robot, prob, smoothing_solve_options());
+		r[4] = s.solve_seconds;
+		if (!s.converged)
+			return r;
+		r[0] = s.cost;
+		r[1] = s.T;
+		r[2] = s.replay_error;
+		r[3] = flight_clearance(s, sc);
+		for (size_t k = 0; k + 1 < s.phases.size(); k++)
+			if (s.modes[k] != s.modes[k + 1]) {
+				const Trajectory &t = s.phases[k].traj;
+				r.push_back(t.x[(t.t.size() - 1) * static_cast<size_t>(t.nx)]);
+			}
+	} catch (const std::exception &e) {
+		std::fprintf(stderr, "  smoothing failed: %s\n", e.what());
+	}
+	return r;
+}
+
+struct ChasmItem {
+	size_t chasm;
+	int seq;   // index into the sequences; -1: hylo's plan
+	double lambda;
+};
+
+std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
+		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
+		      const std::vector<std::string> &plan_seq, const std::vector<double> &predicted,
+		      const std::vector<double> &plan_s, const TakeoffLanding &tl, std::string &md);
+
+// checkpoint(md, json) is called after each chasm with the results so far.
+std::string drivocopter_study(const Options &opt, std::string &md,
+			      const std::function<void(const std::string &, const std::string &)> &checkpoint)
+{
+	RobotParams robot = load_robot(robot_file("drivocopter"));
+	const hylo_robot svr_robot = committed_robot("drivocopter");
+	const hylo_robot *svr = &svr_robot;
+	std::fprintf(stderr, "drivocopter: takeoff and landing costs\n");
+	const TakeoffLanding tl = takeoff_landing(robot, SolveOptions());
+	const std::vector<std::string> seqs = {"F", "DF", "DFD", "FDF", "DFDF", "DFDFD"};
+	// Switch points start at the walls. A second placement half way to the
+	// legs' far ends, tried on the 30 m chasm, failed its cold start in 3 of
+	// 5 sequences (at 400 Ipopt iterations; DF still at 1,000) and ended
+	// within 0.02% of this one where it converged (DF, DFD).
+	const std::vector<double> lambdas = {0.0};
+	std::vector<int> widths = {30, 50, 70, 90, 110};
+	if (opt.quick)
+		widths = {30};
+	using Item = ChasmItem;
+	std::vector<Scene> scenes;
+	std::vector<Chasm> chasms;
+	std::vector<std::vector<Waypoint>> plans;
+	std::vector<std::string> plan_seq;
+	std::vector<double> predicted, plan_s;
+	std::vector<Item> items;
+	for (size_t c = 0; c < widths.size(); c++) {
+		char path[64];
+		std::snprintf(path, sizeof path, "scenes/chasm_%03d.yaml", widths[c]);
+		scenes.push_back(hylo::scene::load(path));
+		chasms.push_back(chasm_of(scenes.back()));
+		Planner pl;
+		auto t0 = std::chrono::steady_clock::now();
+		pl.plan_on(*svr, scenes.back(), goal_of(scenes.back()));
+		plan_s.push_back(seconds_since(t0));
+		plans.push_back(waypoints(*pl.plan));
+		plan_seq.push_back(letters(*pl.plan));
+		predicted.push_back(pl.plan->total_cost);
+		std::fprintf(stderr, "drivocopter %s: hylo plans %s, %.1f J predicted (%.2f s)\n", path,
+			     plan_seq.back().c_str(), predicted.back(), plan_s.back());
+		items.push_back({c, -1, 0});
+		for (size_t q = 0; q < seqs.size(); q++)
+			for (double l : lambdas) {
+				items.push_back({c, static_cast<int>(q), l});
+				if (seqs[q] == "F")
+					break;   // no switch point to place
+			}
+	}
+	std::fprintf(stderr, "drivocopter: %zu multi-phase solves on %d workers\n", items.size(), opt.jobs);
+	// One chasm at a time, its results written as they come (hours in all).
+	std::vector<std::vector<double>> rec(items.size());
+	std::string head_md = md, js;
+	for (size_t done = 1; done <= widths.size(); done++) {
+		std::vector<size_t> mine;
+		for (size_t i = 0; i < items.size(); i++)
+			if (items[i].chasm == done - 1)
+				mine.push_back(i);
+		auto r = parallel_records(mine.size(), 9, opt.jobs, [&](size_t j) {
+			const Item &it = items[mine[j]];
+			std::vector<Waypoint> w = it.seq < 0 ? plans[it.chasm]
+							     : sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)], it.lambda);
+			std::vector<double> v = smooth_record(robot, w, scenes[it.chasm], tl);
+			std::fprintf(stderr, "  chasm %d m %s (placement %.1f): %.1f J, %.0f s\n", widths[it.chasm],
+				     it.seq < 0 ? ("hylo " + plan_seq[it.chasm]).c_str() : seqs[static_cast<size_t>(it.seq)].c_str(),
+				     it.lambda, v[0], v[4]);
+			return v;
+		});
+		for (size_t j = 0; j < mine.size(); j++)
+			rec[mine[j]] = r[j];
+		md = head_md;
+		js = table_one(widths, done, seqs, lambdas.size(), items, rec, plan_seq, predicted, plan_s, tl, md);
+		checkpoint(md, js);
+	}
+	return js;
+}
+
+// The table of study 3 for the first `done` chasms; returns its JSON.
+std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
+		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
+		      const std::vector<std::string> &plan_seq, const std::vector<double> &predicted,
+		      const std::vector<double> &plan_s, const TakeoffLanding &tl, std::string &md)
+{
+	md += "\n## 3. Drivocopter: fixed mode sequences against hylo (the paper's Table I)\n\n"
+	      "Each chasm scene (`scenes/chasm_*.yaml`: platforms 6 m high, start and goal on them 10 m "
+	      "back from the walls; the width is the floor between the walls). Fixed sequences "
+	      "(D drive, F fly): one multi-phase collocation each, from ground rest at the start to "
+	      "ground rest at the goal, takeoff (" + num(tl.takeoff_j) + " J) and landing (" +
+	      num(tl.landing_j) + " J) included, every switch point free on its whole platform or floor, "
+	      "flights cut at each wall into phases that meet 0.5 m above its top (the planner's flight "
+	      "clearance); switch points placed at the walls initially (" + std::to_string(placements) +
+	      " placement). hylo: the planner's plan with the committed "
+	      "SVR models (predicted cost) smoothed by the same multi-phase solver from the plan "
+	      "(smoothed cost), and its sequence's fixed-sequence optimum. Smoothing options: flight segments "
+	      "of at most 40 ms, replay tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt "
+	      "iterations for the cold first solve. Costs in J; best fixed sequence in bold.\n\n"
+	      "| width [m] | F | DF | DFD | FDF | DFDF | DFDFD | hylo sequence | hylo predicted | hylo smoothed | "
+	      "its sequence vs best |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+	std::string js = "[";
+	std::vector<std::string> best_seq(done);
+	for (size_t c = 0; c < done; c++) {
+		std::vector<double> best(seqs.size(), NAN);
+		std::vector<std::vector<double>> best_rec(seqs.size());
+		const std::vector<double> *hylo = nullptr;
+		for (size_t i = 0; i < items.size(); i++) {
+			if (items[i].chasm != c)
+				continue;
+			if (items[i].seq < 0) {
+				hylo = &rec[i];
+				continue;
+			}
+			size_t q = static_cast<size_t>(items[i].seq);
+			if (std::isfinite(rec[i][0]) && !(rec[i][0] >= best[q])) {
+				best[q] = rec[i][0];
+				best_rec[q] = rec[i];
+			}
+		}
+		size_t qb = 0;
+		for (size_t q = 0; q < seqs.size(); q++)
+			if (std::isfinite(best[q]) && !(best[q] >= best[qb]))
+				qb = q;
+		best_seq[c] = seqs[qb];
+		double hs = (*hylo)[0];
+		// hylo against the best: its smoothed cost, else its sequence's optimum.
+		auto own = std::find(seqs.begin(), seqs.end(), plan_seq[c]);
+		double seq_best = own == seqs.end() ? NAN : best[static_cast<size_t>(own - seqs.begin())];
+		double rel = (hs - best[qb]) / best[qb], seq_rel = (seq_best - best[qb]) / best[qb];
+		md += "| " + std::to_string(widths[c]) + " |";
+		for (size_t q = 0; q < seqs.size(); q++) {
+			char cell[64];
+			std::snprintf(cell, sizeof cell, q == qb ? " **%.1f** |" : " %.1f |", best[q]);
+			md += std::isfinite(best[q]) ? cell : " failed |";
+		}
+		char tail[256];
+		std::snprintf(tail, sizeof tail, " %s | %.1f | %s | %+.2f%% |\n", plan_seq[c].c_str(), predicted[c],
+			      std::isfinite(hs) ? num(std::round(hs * 10) / 10).c_str() : "failed",
+			      100 * (std::isfinite(hs) ? std::min(rel, seq_rel) : seq_rel));
+		md += tail;
+		js += std::string(c ? "," : "") + "\n  {\"scene\": \"chasm_" + std::to_string(widths[c]) +
+		      "\", \"width_m\": " + std::to_string(widths[c]) + ", \"fixed\": {";
+		for (size_t q = 0; q < seqs.size(); q++) {
+			const std::vector<double> &r = best_rec[q];
+			js += std::string(q ? ", " : "") + "\"" + seqs[q] + "\": ";
+			if (r.empty()) {
+				js += "null";
+				continue;
+			}
+			js += "{\"cost_j\": " + num(r[0]) + ", \"T_s\": " + num(r[1]) + ", \"replay_error\": " +
+			      num(r[2]) + ", \"flight_clearance_m\": " + num(r[3]) + ", \"switch_x_m\": [";
+			for (size_t k = 5; k < r.size() && std::isfinite(r[k]); k++)
+				js += std::string(k > 5 ? ", " : "") + num(r[k]);
+			js += "]}";
+		}
+		js += "},\n   \"best_fixed\": \"" + seqs[qb] + "\", \"hylo\": {\"sequence\": \"" + plan_seq[c] +
+		      "\", \"predicted_j\": " + num(predicted[c]) + ", \"plan_s\": " + num(plan_s[c]) +
+		      ", \"smoothed_j\": " + num(hs) + ", \"sequence_fixed_j\": " + num(seq_best) +
+		      ", \"sequence_vs_best\": " + num(seq_rel) + ", \"T_s\": " + num((*hylo)[1]) + ", \"replay_error\": " +
+		      num((*hylo)[2]) + ", \"flight_clearance_m\": " + num((*hylo)[3]) +
+		      ", \"smoothed_vs_best\": " + num(rel) + "}}";
+	}
+	// The crossover: the first width whose best sequence drives on the floor.
+	std::string cross = "none between " + std::to_string(widths.front()) + " and " +
+			    std::to_string(widths[done - 1]) + " m";
+	for (size_t c = 1; c < done; c++) {
+		bool before = best_seq[c - 1].find("FDF") != std::string::npos;
+		bool after = best_seq[c].find("FDF") != std::string::npos;
+		if (!before && after) {
+			cross = "between " + std::to_string(widths[c - 1]) + " m (" + best_seq[c - 1] + ") and " +
+				std::to_string(widths[c]) + " m (" + best_seq[c] + ")";
+			break;
+		}
+	}
+	md += "\nCrossover from flying over the chasm to driving through it: " + cross + ".\n";
+	if (done < widths.size())
+		md += "\n(Partial: " + std::to_string(done) + " of " + std::to_string(widths.size()) + " chasms so far.)\n";
+	return js + "\n]";
+}
+
 void write_atomically(const std::string &path, const std::string &text)
 {
 	std::string tmp = path + ".tmp";
@@ -606,6 +976,29 @@ void write_atomically(const std::string &path, const std::string &text)
 	f.close();
 	if (!f || std::rename(tmp.c_str(), path.c_str()) != 0)
 		throw std::runtime_error(path + ": cannot write");
+}
+
+const char *const kStudies[] = {"di", "ambot", "drivocopter"};
+
+// results.md and results.json from every study's part in OUT/results/.
+void write_results(const std::string &out)
+{
+	std::string md = "# hylo: the paper's case studies, measured\n\n"
+			 "Written by `make casestudies` (tools/casestudies/); every number is also in "
+			 "`results.json`.\n\n";
+	std::string js = "{";
+	for (const char *name : kStudies) {
+		std::ifstream fm(out + "/results/" + name + ".md"), fj(out + "/results/" + name + ".json");
+		if (!fm || !fj)
+			continue;
+		std::stringstream m, j;
+		m << fm.rdbuf();
+		j << fj.rdbuf();
+		md += m.str();
+		js += std::string(js.size() > 1 ? "," : "") + "\n\"" + name + "\": " + j.str();
+	}
+	write_atomically(out + "/results.json", js + "\n}\n");
+	write_atomically(out + "/results.md", md);
 }
 
 int run(int argc, char **argv)
@@ -623,8 +1016,9 @@ int run(int argc, char **argv)
 			return 0;
 		} else if (a == "--study") {
 			opt.study = value();
-			if (opt.study != "di" && opt.study != "ambot" && opt.study != "all")
-				throw std::invalid_argument("--study: unknown study '" + opt.study + "' (di, ambot, all)");
+			if (opt.study != "di" && opt.study != "ambot" && opt.study != "drivocopter" && opt.study != "all")
+				throw std::invalid_argument("--study: unknown study '" + opt.study +
+							    "' (di, ambot, drivocopter, all)");
 		} else if (a == "--out") {
 			opt.out = value();
 		} else if (a == "--jobs") {
@@ -640,27 +1034,34 @@ int run(int argc, char **argv)
 	// Fail now, not after an hour of solving.
 	if (access(opt.out.c_str(), W_OK) != 0)
 		throw std::runtime_error(opt.out + ": cannot write there (" + std::strerror(errno) + ")");
-	auto t0 = std::chrono::steady_clock::now();
-	std::string md = "# hylo: the paper's case studies, measured\n\n"
-			 "Written by `make casestudies` (tools/casestudies/); every number is also in "
-			 "`results.json`.\n\n";
-	std::string js = "{";
-	if (opt.study == "di" || opt.study == "all")
-		js += "\n\"di\": " + di_study(opt, md);
-	if (opt.study == "ambot" || opt.study == "all")
-		js += std::string(js.size() > 1 ? "," : "") + "\n\"ambot\": " + ambot_study(opt, md);
-	md += "\n## 3. Drivocopter: fixed mode sequences against hylo (the paper's Table I)\n\n"
-	      "Not measured yet. Both Drivocopter models are committed and the planner node plans "
-	      "every chasm scene (`scenes/chasm_*.yaml`; the README's Case studies section gives "
-	      "the plans), but the fixed-sequence baselines and the smoothing of such plans are not"
-	      " built: their flight phases run 30-150 m, hundreds of 20 ms collocation segments "
-	      "each, and no such multi-phase problem has been solved here yet. The takeoff/landing "
-	      "problems they use are in place.\n";
-	js += ",\n\"seconds\": " + num(seconds_since(t0)) + "\n}\n";
-	write_atomically(opt.out + "/results.json", js);
-	write_atomically(opt.out + "/results.md", md);
-	std::fprintf(stderr, "wrote %s/results.json and %s/results.md (%.0f s)\n", opt.out.c_str(), opt.out.c_str(),
-		     seconds_since(t0));
+	// Each study writes its part (OUT/results/<study>.{md,json}); results.md
+	// and results.json are put together from every part there, so one study
+	// can be re-run without the others (the DI study takes half an hour).
+	const std::string parts = opt.out + "/results";
+	if (mkdir(parts.c_str(), 0755) != 0 && errno != EEXIST)
+		throw std::runtime_error(parts + ": cannot create (" + std::strerror(errno) + ")");
+	for (const char *name : kStudies) {
+		if (opt.study != name && opt.study != "all")
+			continue;
+		auto t0 = std::chrono::steady_clock::now();
+		auto save = [&](const std::string &md, const std::string &js) {
+			char took[96];
+			std::snprintf(took, sizeof took, "\n(%s%.0f s on %d workers.)\n", opt.quick ? "--quick, " : "",
+				      seconds_since(t0), opt.jobs);
+			write_atomically(parts + "/" + name + ".md", md + took);
+			write_atomically(parts + "/" + name + ".json", js);
+			write_results(opt.out);
+		};
+		std::string md, js;
+		if (std::string(name) == "di")
+			js = di_study(opt, md);
+		else if (std::string(name) == "ambot")
+			js = ambot_study(opt, md);
+		else
+			js = drivocopter_study(opt, md, save);
+		save(md, js);
+	}
+	std::fprintf(stderr, "wrote %s/results.json and %s/results.md\n", opt.out.c_str(), opt.out.c_str());
 	return 0;
 }
 
