@@ -443,6 +443,11 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	for (const ModeInfo &i : base.info)
 		if (i.step_max_iter > 0)
 			step_opt.max_iter = std::min(step_opt.max_iter, i.step_max_iter);
+	// Smoothing: a long plan's steps can need more (the relax-1 step of
+	// hylo's 30 m chasm plan and the refinements of its 50 m one stopped at
+	// flight's 400).
+	if (opt.step_max_iter > 0)
+		step_opt.max_iter = opt.step_max_iter;
 	const bool give_up = step_opt.max_iter < opt.max_iter;
 	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
 		       Ipopt::SmartPtr<CollocationNlp> &nlp, bool warm, const SolveOptions &o) {
@@ -480,10 +485,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		for (double relax : levels) {
 			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
-			SolveOptions o = step_opt;
-			if (start.empty() && opt.first_step_max_iter > 0)
-				o.max_iter = opt.first_step_max_iter;
-			res = run(p, relax, start, nlp, !start.empty(), o);
+			res = run(p, relax, start, nlp, !start.empty(), step_opt);
 			if (succeeded(res.first))
 				start = nlp->solution();
 			else if (give_up)

@@ -26,8 +26,8 @@ struct SolveOptions {
 	double replay_state_tol = kReplayStateTol;  // largest scaled end-state error a replay may show
 	double max_step_s = 0;            // > 0: replaces the longest segment of modes that set one
 					  // (flight's 20 ms; see smoothing_solve_options)
-	int first_step_max_iter = 0;      // > 0: the iteration limit of a start's first (cold) solve,
-					  // instead of its mode's continuation-step limit
+	int step_max_iter = 0;            // > 0: the iteration limit of every step (cold start,
+					  // continuation, refinement) instead of its modes' limits
 	bool replay = true;               // check every solution with CVODE
 	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here

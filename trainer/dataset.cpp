@@ -13,10 +13,10 @@
 #include <sstream>
 #include <stdexcept>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <fcntl.h>
 
+#include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
 
@@ -64,77 +64,26 @@ std::string read_file(const std::string &path)
 	return ss.str();
 }
 
-// Solves samples [lo, hi) with jobs worker processes; returns rows in index order.
+// Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
+// time; returns rows in index order.
 std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
 				     uint64_t lo, uint64_t hi, uint64_t &converged)
 {
-	uint64_t n = hi - lo;
-	std::vector<std::string> rows(n);
-	int jobs = static_cast<int>(std::min<uint64_t>(static_cast<uint64_t>(std::max(1, opt.jobs)), n));
-	std::vector<pid_t> pids;
-	std::vector<int> fds;
-	for (int w = 0; w < jobs; w++) {
-		int p[2];
-		if (pipe(p) != 0)
-			throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
-		pid_t pid = fork();
-		if (pid < 0)
-			throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
-		if (pid == 0) {   // worker: its share of the chunk, one line per row
-			close(p[0]);
-			std::string out;
-			for (uint64_t i = lo + static_cast<uint64_t>(w); i < hi; i += static_cast<uint64_t>(jobs)) {
-				double a[6] = {0}, b[6] = {0};
-				draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
-				Solution s;
-				try {
-					s = solve_bvp(opt.mode, robot, a, b, opt.solve);
-				} catch (const std::exception &e) {
-					s.status_text = std::string("error: ") + e.what();
-				}
-				out += std::to_string(i) + "\t" + csv_row(opt.mode, i, a, b, s) + "\n";
-			}
-			try {
-				write_all(p[1], out, "worker pipe");
-			} catch (...) {
-				_exit(1);
-			}
-			_exit(0);
+	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
+		uint64_t i = lo + k;
+		double a[6] = {0}, b[6] = {0};
+		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+		Solution s;
+		try {
+			s = solve_bvp(opt.mode, robot, a, b, opt.solve);
+		} catch (const std::exception &e) {
+			s.status_text = std::string("error: ") + e.what();
 		}
-		close(p[1]);
-		pids.push_back(pid);
-		fds.push_back(p[0]);
-	}
-	bool failed = false;
-	for (size_t w = 0; w < fds.size(); w++) {
-		std::string text;
-		char buf[65536];
-		ssize_t k;
-		while ((k = read(fds[w], buf, sizeof buf)) != 0) {
-			if (k < 0 && errno == EINTR)
-				continue;
-			if (k < 0)
-				break;
-			text.append(buf, static_cast<size_t>(k));
-		}
-		close(fds[w]);
-		int status = 0;
-		waitpid(pids[w], &status, 0);
-		if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-			failed = true;
-		std::istringstream lines(text);
-		std::string line;
-		while (std::getline(lines, line)) {
-			size_t tab = line.find('\t');
-			uint64_t i = std::stoull(line.substr(0, tab));
-			rows[i - lo] = line.substr(tab + 1);
-		}
-	}
-	for (const auto &r : rows)
-		if (r.empty())
-			failed = true;
-	if (failed)
-		throw std::runtime_error("a worker process failed");
+		return csv_row(opt.mode, i, a, b, s);
+	});
+	for (size_t k = 0; k < rows.size(); k++)
+		if (rows[k].empty())
+			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
 	// Count converged rows from their "converged" column.
 	std::vector<std::string> names = csv_columns(opt.mode);
 	size_t col = static_cast<size_t>(std::find(names.begin(), names.end(), "converged") - names.begin());
@@ -156,6 +105,10 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	m << "robot: " << robot.robot << "\nmode: " << opt.mode << "\nseed: " << opt.seed << "\n";
 	if (opt.shards > 1)
 		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
+	// Flight pairs have been drawn two ways; v2 (with cruise pairs) must not
+	// resume a v1 file.
+	if (opt.mode == "flight")
+		m << "draws: 2\n";
 	m << "segments: " << opt.solve.segments << "\nparams_sha256: " << sha256_file(robot.path) << "\n";
 	return m.str();
 }
@@ -171,9 +124,37 @@ std::vector<double> features(const std::string &mode, const double *a, const dou
 			dth += 2 * kPi;
 		return {c * dx + s * dy, -s * dx + c * dy, dth, a[2], b[2]};
 	}
-	if (mode == "flight")
-		return {b[0] - a[0], b[1] - a[1], b[2] - a[2], a[3], a[4], a[5], b[3], b[4], b[5]};
+	if (mode == "flight") {
+		// Horizontal components in the heading of the horizontal
+		// displacement, else of v1, else of v2 (hylo/features.h says why).
+		double cand[3][2] = {{b[0] - a[0], b[1] - a[1]}, {a[3], a[4]}, {b[3], b[4]}}, c = 1, s = 0;
+		for (const auto &h : cand) {
+			double n = std::hypot(h[0], h[1]);
+			if (n > 0) {
+				c = h[0] / n, s = h[1] / n;
+				break;
+			}
+		}
+		std::vector<double> f(9);
+		for (int k = 0; k < 3; k++) {
+			const double *v = k == 0 ? nullptr : k == 1 ? a + 3 : b + 3;
+			double x = v ? v[0] : b[0] - a[0], y = v ? v[1] : b[1] - a[1];
+			f[static_cast<size_t>(3 * k)] = c * x + s * y;
+			f[static_cast<size_t>(3 * k + 1)] = -s * x + c * y;
+			f[static_cast<size_t>(3 * k + 2)] = v ? v[2] : b[2] - a[2];
+		}
+		return f;
+	}
 	return {a[0], a[1], b[0], b[1]};
+}
+
+std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
+{
+	if (mode != "flight")
+		return {};
+	// Features (dx', dy', dz, v1x', v1y', v1z, v2x', v2y', v2z) in the
+	// displacement's heading: the reflection across that heading.
+	return {{1, -1, 1, 1, -1, 1, 1, -1, 1}};
 }
 
 void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b)
@@ -196,20 +177,40 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 			} while (x * x + y * y + z * z > 1);
 			v[0] = radius * x, v[1] = radius * y, v[2] = radius * z;
 		};
-		// Velocities level, as the planner's roadmap makes them (one
+		// Velocities level, as the planner's roadmap makes them (hover, or one
 		// horizontal velocity per heading, roadmap.c): samples spent on
-		// vertical velocities would teach the model edges never asked for.
-		auto level = [&](double *v) {
-			double x, y;
-			do {
-				x = r.uniform(-1, 1), y = r.uniform(-1, 1);
-			} while (x * x + y * y > 1);
-			v[0] = s.speed_max_mps * x, v[1] = s.speed_max_mps * y, v[2] = 0;
+		// vertical velocities would teach the model edges never asked for. A
+		// fifth of them hover (every takeoff and landing is at hover).
+		auto level_speed = [&](double *v, double heading) {
+			double sp = r.uniform(0, 1) < 0.2 ? 0.0 : r.uniform(0, s.speed_max_mps);
+			v[0] = sp == 0 ? 0 : sp * std::cos(heading);
+			v[1] = sp == 0 ? 0 : sp * std::sin(heading);
+			v[2] = 0;
 		};
 		a[0] = a[1] = a[2] = 0;
-		level(a + 3);
-		ball(s.max_distance_m, b);
-		level(b + 3);
+		if (r.uniform(0, 1) < 0.5) {
+			// Any level velocities, any displacement.
+			level_speed(a + 3, r.uniform(-kPi, kPi));
+			ball(s.max_distance_m, b);
+			level_speed(b + 3, r.uniform(-kPi, kPi));
+		} else {
+			// Cruise: both velocities along the horizontal direction of the
+			// displacement, which is mostly along it. An energy-optimal path
+			// is made of such edges; drawn at random they are rare and the
+			// model overpriced them (an 8 m edge at 8 m/s by 3.3x).
+			double heading = r.uniform(-kPi, kPi), off[3];
+			double along = s.max_distance_m * r.uniform(0, 1);
+			do
+				ball(0.3 * s.max_distance_m, off);
+			while ((along + off[0]) * (along + off[0]) + off[1] * off[1] + off[2] * off[2] >
+			       s.max_distance_m * s.max_distance_m);
+			double c = std::cos(heading), sn = std::sin(heading);
+			b[0] = c * (along + off[0]) - sn * off[1];
+			b[1] = sn * (along + off[0]) + c * off[1];
+			b[2] = off[2];
+			level_speed(a + 3, heading);
+			level_speed(b + 3, heading);
+		}
 	} else {
 		bool pos = m == "di_pos";
 		a[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);

@@ -37,6 +37,13 @@ struct GenSummary {
 // Features of models.md section 7 for a pair of sampled states.
 std::vector<double> features(const std::string &mode, const double *x1s, const double *x2s);
 
+// Sign flips of the features that leave a mode's optimal cost unchanged, one
+// vector of +-1 per flip (the fit trains on each sample's mirror images too).
+// Flight: the reflection across the displacement's heading (in world axes
+// the reflections x -> -x and y -> -y are exact to 1e-15 in the solver; turns
+// about z are not, by up to 0.1%: ZYX Euler angles).
+std::vector<std::vector<double>> feature_symmetries(const std::string &mode);
+
 // Sample i's pair: x1s, x2s (sampled_dim(mode) each).
 void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s);
 

@@ -130,6 +130,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	FitOptions fo;
 	fo.seed = g.seed;
 	fo.jobs = g.jobs;
+	fo.symmetries = feature_symmetries(g.mode);
 	SvrExport m;
 	FitReport rep = fit_cost(nf, rows.x_conv, rows.cost, fo, m);
 	m.robot = robot.robot;
@@ -163,6 +164,10 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		{"feasibility accuracy", have_classifier ? format_double(crep.accuracy) : "none"},
 		{"hylo version", kHyloVersion},
 	};
+	if (!fo.symmetries.empty())
+		m.provenance.insert(m.provenance.end() - 1,
+				    {"mirror images", std::to_string(fo.symmetries.size()) +
+							      " per training pair (feature_symmetries, trainer/dataset.cpp)"});
 	if (g.mode == "flight") {
 		// Takeoff and landing (models.md section 6): hover at h to hover at h+1, and back.
 		TakeoffLanding tl = takeoff_landing(robot, g.solve);

@@ -350,7 +350,7 @@ SolveOptions smoothing_solve_options()
 	SolveOptions o;
 	o.replay_state_tol = 0.05;
 	o.max_step_s = 0.04;
-	o.first_step_max_iter = 1000;
+	o.step_max_iter = 1000;
 	return o;
 }
 

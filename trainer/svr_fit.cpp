@@ -197,8 +197,29 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	std::vector<double> target(n);
 	for (size_t i = 0; i < n; i++)
 		target[i] = (logc[i] - mean) / lscale;
+	// The mirror images: rows n*(s+1) + i of xa are row i flipped by
+	// symmetry s; with_images(idx) adds them to a list of fitted rows.
+	std::vector<double> xa = x;
+	for (const std::vector<double> &sg : opt.symmetries) {
+		if (sg.size() != static_cast<size_t>(nf))
+			throw std::invalid_argument("fit: a symmetry has " + std::to_string(sg.size()) +
+						    " signs for " + std::to_string(nf) + " features");
+		for (size_t i = 0; i < n; i++)
+			for (size_t k = 0; k < sg.size(); k++)
+				xa.push_back(sg[k] * x[i * sg.size() + k]);
+	}
+	for (size_t s = 0; s < opt.symmetries.size(); s++)
+		target.insert(target.end(), target.begin(), target.begin() + static_cast<long>(n));
+	auto with_images = [&](const std::vector<size_t> &idx) {
+		std::vector<size_t> all = idx;
+		for (size_t s = 1; s <= opt.symmetries.size(); s++)
+			for (size_t i : idx)
+				all.push_back(s * n + i);
+		return all;
+	};
+	const std::vector<size_t> train_all = with_images(train);
 	std::vector<double> offset, scale;
-	standardization(nf, x, train, offset, scale);
+	standardization(nf, xa, train_all, offset, scale);
 
 	// Cross-validation on a deterministic subset of the training split.
 	std::vector<size_t> cv(train.begin(),
@@ -217,10 +238,10 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 		std::vector<size_t> fit_idx, val_idx;
 		for (size_t i = 0; i < cv.size(); i++)
 			(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
-		Problem p(nf, x, fit_idx, target, offset, scale);
+		Problem p(nf, xa, with_images(fit_idx), target, offset, scale);
 		svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
 		svm_model *m = svm_train(&p.prob, &par);
-		Problem v(nf, x, val_idx, target, offset, scale);
+		Problem v(nf, xa, val_idx, target, offset, scale);
 		double err = 0;
 		for (size_t r = 0; r < val_idx.size(); r++) {
 			double pred = std::exp(svm_predict(m, v.rows[r]) * lscale + mean);
@@ -238,7 +259,7 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	}
 
 	// The final fit on the whole training split.
-	Problem p(nf, x, train, target, offset, scale);
+	Problem p(nf, xa, train_all, target, offset, scale);
 	svm_parameter par = params(EPSILON_SVR, grid[best].C, grid[best].gamma, grid[best].eps);
 	svm_model *m = svm_train(&p.prob, &par);
 	FitReport rep;

@@ -25,6 +25,10 @@ struct FitOptions {
 	std::vector<double> epsilon = {0.005, 0.02};   // standardized log-cost units
 	size_t cv_max_samples = 2000;      // cross-validate on at most this many training samples
 	int jobs = 1;                      // threads for the cross-validation fits
+	// Sign flips of the features under which the cost is invariant: every
+	// training row is also fitted flipped (held-out and validation rows
+	// are not; a fold's flipped copies stay in its fold).
+	std::vector<std::vector<double>> symmetries;
 };
 
 struct FitReport {

@@ -1,4 +1,5 @@
 #include <math.h>
+#include <stddef.h>
 #include "hylo/features.h"
 
 unsigned hylo_feature_count(hylo_mode mode)
@@ -32,6 +33,32 @@ hylo_real hylo_wrap_angle(hylo_real a)
 	return w;
 }
 
+/* Flight's frame: the heading of the horizontal displacement, else of the
+ * start's horizontal velocity, else of the goal's, else the world's. */
+static void flight_frame(const hylo_real *tail, const hylo_real *head, hylo_real *c, hylo_real *s)
+{
+	hylo_real cand[3][2];
+	unsigned i;
+
+	cand[0][0] = head[0] - tail[0];
+	cand[0][1] = head[1] - tail[1];
+	cand[1][0] = tail[3];
+	cand[1][1] = tail[4];
+	cand[2][0] = head[3];
+	cand[2][1] = head[4];
+	for (i = 0; i < 3; i++) {
+		hylo_real n = hypot(cand[i][0], cand[i][1]);
+
+		if (n > 0) {
+			*c = cand[i][0] / n;
+			*s = cand[i][1] / n;
+			return;
+		}
+	}
+	*c = 1;
+	*s = 0;
+}
+
 unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
 		       hylo_real *f)
 {
@@ -50,13 +77,20 @@ unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 		f[4] = head[2];
 		return HYLO_FEATURES_PLANAR;
 	}
-	case HYLO_MODE_FLIGHT:
+	case HYLO_MODE_FLIGHT: {
+		hylo_real c, s;
+
+		flight_frame(tail, head, &c, &s);
 		for (k = 0; k < 3; k++) {
-			f[k] = head[k] - tail[k];
-			f[3 + k] = tail[3 + k];
-			f[6 + k] = head[3 + k];
+			const hylo_real *v = k == 0 ? NULL : k == 1 ? tail + 3 : head + 3;
+			hylo_real x = v ? v[0] : head[0] - tail[0], y = v ? v[1] : head[1] - tail[1];
+
+			f[3 * k] = c * x + s * y;
+			f[3 * k + 1] = -s * x + c * y;
+			f[3 * k + 2] = v ? v[2] : head[2] - tail[2];
 		}
 		return HYLO_FEATURES_FLIGHT;
+	}
 	case HYLO_MODE_DI_NEG:
 	case HYLO_MODE_DI_POS:
 		f[0] = tail[0];

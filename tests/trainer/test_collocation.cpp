@@ -12,6 +12,7 @@
 
 #include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
+#include "trainer/dataset.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
 
@@ -119,6 +120,31 @@ int main()
 	replay("flight", drivo, fbad);
 	check(!fbad.replay_ok && fbad.replay_error > kReplayStateTol,
 	      "Drivocopter flight: a corrupted control is detected", std::to_string(fbad.replay_error));
+
+	// Flight training pairs: level velocities within the speed limit,
+	// displacements within the connection radius, a fifth of the velocities
+	// hover, and cruise pairs (both velocities along the displacement, what
+	// a roadmap path is made of) a fifth or more (independent draws: 1%).
+	{
+		const ModeParams &fm = drivo.mode("flight");
+		int n = 4000, level = 1, hover = 0, cruise = 0;
+		for (int i = 0; i < n; i++) {
+			double x1[6], x2[6];
+			draw_pair(fm, 1, static_cast<uint64_t>(i), x1, x2);
+			double d = std::sqrt(x2[0] * x2[0] + x2[1] * x2[1] + x2[2] * x2[2]);
+			double s1 = std::hypot(x1[3], x1[4]), s2 = std::hypot(x2[3], x2[4]), dh = std::hypot(x2[0], x2[1]);
+			level = level && x1[2] == 0 && x1[5] == 0 && x2[5] == 0 && d <= fm.sampling.max_distance_m &&
+				s1 <= fm.sampling.speed_max_mps && s2 <= fm.sampling.speed_max_mps;
+			hover += (s1 == 0) + (s2 == 0);
+			auto along = [&](const double *v, double s) { return (v[0] * x2[0] + v[1] * x2[1]) > 0.9 * s * dh; };
+			cruise += s1 > 0 && s2 > 0 && dh > 0 && along(x1 + 3, s1) && along(x2 + 3, s2);
+		}
+		check(level, "flight pairs: level velocities within the speed limit, displacement within the radius");
+		check(hover > 0.15 * 2 * n && hover < 0.25 * 2 * n, "flight pairs: a fifth of the velocities hover",
+		      std::to_string(hover) + " of " + std::to_string(2 * n));
+		check(cruise > n / 5, "flight pairs: a fifth or more cruise along their displacement",
+		      std::to_string(cruise) + " of " + std::to_string(n));
+	}
 
 	try {
 		double out[2] = {0.5, 0};   // p > 0 is outside di_neg

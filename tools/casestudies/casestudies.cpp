@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -28,9 +29,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <sys/mman.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
@@ -42,6 +41,8 @@ extern "C" {
 #include "tools/scene/scene.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/params.hpp"
+#include "trainer/processes.hpp"
+#include "trainer/sha256.hpp"
 #include "trainer/smoother.hpp"
 #include "trainer/switching.hpp"
 
@@ -59,7 +60,10 @@ const char *kUsage =
 	"  --jobs N    worker processes for exact edge costs and solves (default 2)\n"
 	"  --quick     a check: the DI convergence on 3 spacings instead of 10, Ambot\n"
 	"              plans without exact edge costs or smoothing, the Drivocopter\n"
-	"              sequences on the 30 m chasm from one switch placement\n";
+	"              sequences on the 30 m chasm from one switch placement\n"
+	"  The Drivocopter study logs each finished solve to DIR/results/drivocopter.solves\n"
+	"  and a rerun takes them from there (an interrupted run resumes); delete that\n"
+	"  file to solve again after changing the solver.\n";
 
 struct Options {
 	std::string study = "all", out = "docs";
@@ -81,51 +85,21 @@ std::string num(double v)
 	return b;
 }
 
-// f(i), a record of `width` numbers, for i in [0, n), each in a process of
-// its own forked from this one, `jobs` at a time (Ipopt is not thread-safe,
-// solve times differ by 10x). A fresh process per item keeps results
-// independent of what ran before: OpenBLAS's kernels sum in an order that
-// depends on the alignment of their buffers, so a solve's iterates (and
-// whether it converges) changed with the solves a worker had done before it.
-// Records in index order; an item whose process died stays NaN.
+// f(0) ... f(n-1), each in a fresh process forked from this one, `jobs` at a
+// time (processes.hpp says why). Records in index order; an item whose process
+// died stays NaN.
 std::vector<std::vector<double>> parallel_records(size_t n, size_t width, int jobs,
 						  const std::function<std::vector<double>(size_t)> &f)
 {
+	std::vector<std::string> raw = fork_each(n, jobs, [&](size_t i) {
+		std::vector<double> v = f(i);
+		v.resize(width, NAN);
+		return std::string(reinterpret_cast<const char *>(v.data()), width * sizeof(double));
+	}, width * sizeof(double));
 	std::vector<std::vector<double>> out(n, std::vector<double>(width, NAN));
-	if (n == 0)
-		return out;
-	size_t bytes = n * width * sizeof(double);
-	void *mem = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-	if (mem == MAP_FAILED)
-		throw std::runtime_error(std::string("mmap: ") + std::strerror(errno));
-	auto *rec = static_cast<double *>(mem);
-	std::fill(rec, rec + n * width, NAN);
-	size_t next = 0, running = 0;
-	const size_t limit = static_cast<size_t>(std::max(1, jobs));
-	while (next < n || running > 0) {
-		if (next < n && running < limit) {
-			std::fflush(nullptr);
-			pid_t pid = fork();
-			if (pid < 0)
-				throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
-			if (pid == 0) {
-				std::vector<double> v = f(next);
-				v.resize(width, NAN);
-				std::copy(v.begin(), v.end(), rec + next * width);
-				_exit(0);
-			}
-			next++;
-			running++;
-			continue;
-		}
-		if (waitpid(-1, nullptr, 0) > 0)
-			running--;
-		else if (errno != EINTR)
-			throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
-	}
 	for (size_t i = 0; i < n; i++)
-		out[i].assign(rec + i * width, rec + (i + 1) * width);
-	munmap(mem, bytes);
+		if (raw[i].size() == width * sizeof(double))
+			std::memcpy(out[i].data(), raw[i].data(), raw[i].size());
 	return out;
 }
 
@@ -781,6 +755,57 @@ std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Wa
 	return r;
 }
 
+// Finished solves survive an interruption: each appends a line "<key>\t<record>"
+// to a log (OUT/results/drivocopter.solves) and a rerun takes its records from
+// there. Keys name the robot file's hash, the chasm, the sequence (hylo's plan
+// by its predicted cost) and the placement; delete the log after changing the
+// solver.
+class SolveLog {
+public:
+	explicit SolveLog(std::string path) : path_(std::move(path))
+	{
+		std::ifstream f(path_);
+		std::string line;
+		while (std::getline(f, line)) {
+			size_t tab = line.find('\t');
+			if (tab == std::string::npos)
+				continue;
+			std::vector<double> r;
+			std::istringstream in(line.substr(tab + 1));
+			std::string v;
+			while (in >> v)
+				r.push_back(std::strtod(v.c_str(), nullptr));
+			if (r.size() >= 5)
+				done_[line.substr(0, tab)] = r;
+		}
+	}
+	const std::vector<double> *find(const std::string &key) const
+	{
+		auto it = done_.find(key);
+		return it == done_.end() ? nullptr : &it->second;
+	}
+	// One write() with O_APPEND: lines from concurrent processes do not mix.
+	void add(const std::string &key, const std::vector<double> &r) const
+	{
+		std::string line = key + "\t";
+		for (double v : r) {
+			char b[40];
+			std::snprintf(b, sizeof b, " %.17g", v);
+			line += b;
+		}
+		line += "\n";
+		int fd = open(path_.c_str(), O_WRONLY | O_APPEND | O_CREAT, 0644);
+		if (fd < 0 || write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
+			std::fprintf(stderr, "  %s: cannot append (%s)\n", path_.c_str(), std::strerror(errno));
+		if (fd >= 0)
+			close(fd);
+	}
+
+private:
+	std::string path_;
+	std::map<std::string, std::vector<double>> done_;
+};
+
 struct ChasmItem {
 	size_t chasm;
 	int seq;   // index into the sequences; -1: hylo's plan
@@ -839,6 +864,8 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 					break;   // no switch point to place
 			}
 	}
+	const std::string log_path = opt.out + "/results/drivocopter.solves", robot_sha = sha256_file(robot.path);
+	const SolveLog log(log_path);
 	std::fprintf(stderr, "drivocopter: %zu multi-phase solves on %d workers\n", items.size(), opt.jobs);
 	// One chasm at a time, its results written as they come (hours in all).
 	std::vector<std::vector<double>> rec(items.size());
@@ -850,12 +877,23 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 				mine.push_back(i);
 		auto r = parallel_records(mine.size(), 9, opt.jobs, [&](size_t j) {
 			const Item &it = items[mine[j]];
+			char key[160];
+			std::snprintf(key, sizeof key, "%.16s chasm_%03d %s%s placement %.3f", robot_sha.c_str(),
+				      widths[it.chasm], it.seq < 0 ? "hylo " : "",
+				      it.seq < 0 ? (plan_seq[it.chasm] + " " + num(predicted[it.chasm])).c_str()
+						 : seqs[static_cast<size_t>(it.seq)].c_str(),
+				      it.lambda);
+			if (const std::vector<double> *old = log.find(key)) {
+				std::fprintf(stderr, "  %s: from %s\n", key, log_path.c_str());
+				return *old;
+			}
 			std::vector<Waypoint> w = it.seq < 0 ? plans[it.chasm]
 							     : sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)], it.lambda);
 			std::vector<double> v = smooth_record(robot, w, scenes[it.chasm], tl);
 			std::fprintf(stderr, "  chasm %d m %s (placement %.1f): %.1f J, %.0f s\n", widths[it.chasm],
 				     it.seq < 0 ? ("hylo " + plan_seq[it.chasm]).c_str() : seqs[static_cast<size_t>(it.seq)].c_str(),
 				     it.lambda, v[0], v[4]);
+			log.add(key, v);
 			return v;
 		});
 		for (size_t j = 0; j < mine.size(); j++)
@@ -885,7 +923,7 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	      "SVR models (predicted cost) smoothed by the same multi-phase solver from the plan "
 	      "(smoothed cost), and its sequence's fixed-sequence optimum. Smoothing options: flight segments "
 	      "of at most 40 ms, replay tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt "
-	      "iterations for the cold first solve. Costs in J; best fixed sequence in bold.\n\n"
+	      "iterations per solve. Costs in J; best fixed sequence in bold.\n\n"
 	      "| width [m] | F | DF | DFD | FDF | DFDF | DFDFD | hylo sequence | hylo predicted | hylo smoothed | "
 	      "its sequence vs best |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
 	std::string js = "[";
