@@ -448,7 +448,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	// flight's 400).
 	if (opt.step_max_iter > 0)
 		step_opt.max_iter = opt.step_max_iter;
-	const bool give_up = step_opt.max_iter < opt.max_iter;
+	// A step that runs out of its own limit gives its start up.
+	const bool give_up = step_opt.max_iter < opt.max_iter || opt.step_max_iter > 0;
 	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
 		       Ipopt::SmartPtr<CollocationNlp> &nlp, bool warm, const SolveOptions &o) {
 		nlp = build(p, relax);

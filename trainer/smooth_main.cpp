@@ -161,8 +161,7 @@ private:
 			}
 			SmoothOptions so;
 			so.segments_per_edge = o_.segments_per_edge;
-			MultiPhaseProblem prob = smoothing_problem(r, wps, m->second.grid, costs, so);
-			MultiPhaseSolution s = solve_multiphase(r, prob, smoothing_solve_options());
+			MultiPhaseSolution s = smooth_plan(r, wps, m->second.grid, costs, so);
 			if (!s.converged)
 				return fail(t, hylo::plan_t::STATUS_NO_PATH, "the smoothing optimization failed: " + s.status_text);
 			double t0 = 0;

@@ -345,6 +345,48 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 	return p;
 }
 
+std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan)
+{
+	std::vector<Waypoint> out = plan;
+	size_t i0 = 0;
+	while (i0 < plan.size()) {
+		size_t i1 = i0;
+		while (i1 + 1 < plan.size() && plan[i1 + 1].mode == plan[i0].mode)
+			i1++;
+		const Waypoint &a = plan[i0], &b = plan[i1];
+		bool flight = mode_name(a.mode) == "flight";
+		int np = flight ? 3 : 2;
+		for (size_t i = i0 + 1; i < i1; i++) {
+			double f = static_cast<double>(i - i0) / static_cast<double>(i1 - i0);
+			for (int k = 0; k < np; k++)
+				out[i].state[k] = a.state[k] + f * (b.state[k] - a.state[k]);
+			if (!flight && std::hypot(b.state[0] - a.state[0], b.state[1] - a.state[1]) > 1e-9)
+				out[i].state[3] = std::atan2(b.state[1] - a.state[1], b.state[0] - a.state[0]);
+		}
+		i0 = i1 + 1;
+	}
+	return out;
+}
+
+MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
+			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
+			       const std::vector<double> &T_scales)
+{
+	MultiPhaseSolution s;
+	double seconds = 0;
+	for (int attempt = 0; attempt < 2; attempt++) {
+		MultiPhaseProblem prob = smoothing_problem(robot, attempt ? straightened(plan) : plan, map, costs, opt);
+		if (!T_scales.empty())
+			prob.T_scales = T_scales;
+		s = solve_multiphase(robot, prob, smoothing_solve_options());
+		seconds += s.solve_seconds;
+		s.solve_seconds = seconds;
+		if (s.converged)
+			break;
+	}
+	return s;
+}
+
 SolveOptions smoothing_solve_options()
 {
 	SolveOptions o;

@@ -60,14 +60,28 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 				    const TerrainGrid &map, const TakeoffLanding &costs,
 				    const SmoothOptions &opt = {});
 
+// The plan with every run of one mode straightened: its inner waypoints
+// moved onto the line between the run's end points (same count, evenly
+// spaced; ground and water headings along the line). Ends, switch points,
+// speeds and modes are kept.
+std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan);
+
+// Smooths a plan: the multi-phase problem from the plan itself, and if that
+// fails, from its straightened copy (a roadmap's sideways S-curves made the
+// exact-constant step of hylo's 30 m chasm plan fail at 1,000 iterations).
+MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
+			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
+			       const std::vector<double> &T_scales = {});
+
 // Solver options of the smoother: an open-loop replay of a whole phase (tens
 // of metres) drifts with its length, so a phase's replayed end state may be
 // 0.05 off (scaled: metres, m/s, rad) where a training edge may be 0.02 off.
 // Flight segments of up to 40 ms instead of 20: a 30 m flight at 50 ms
 // segments replayed knot to knot within 0.046 and its cost within 0.04% of
 // its replay (at 20 ms it is 500 segments, 0.8 s per Ipopt iteration).
-// The cold first solve from a plan's guess may take up to 1,000 Ipopt
-// iterations (chasm crossings needed over 400, flight's step limit).
+// Every solve (cold start, continuation step, refinement) may take up to
+// 1,000 Ipopt iterations (chasm crossings needed over 400, flight's step
+// limit in training).
 SolveOptions smoothing_solve_options();
 
 // Exact cost of the plan's own path: every edge solved on its own as a

@@ -6,6 +6,7 @@
 // the takeoff and landing conditions of a drive-fly-drive chain, and the
 // smoother's wall gates and takeoff-at-the-start plans (problem structure).
 // Prints TAP.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -219,6 +220,21 @@ void wall_gates(const RobotParams &drivo)
 		ok = q.phases[0].first_lo[0] == 2 && q.phases[0].first_hi[2] == 7 && q.phases[0].first_lo[5] == 0 &&
 		     q.phases[1].last_hi[0] == 12 && q.phases[1].last_lo[2] == 1;
 	check(ok, "a plan that takes off at its start and lands at its goal is flight only, hover to hover");
+	// Straightened: a sideways S-curve on the ground is laid on the line
+	// between its ends (evenly, heading along it); the flight run's inner
+	// point moves onto its line too; ends, guards, speeds and modes stay.
+	std::vector<Waypoint> s = {wp(G, 2, 0, false), wp(G, 4, 0, false), wp(G, 6, 0, true),
+				   wp(F, 6, 7, true), wp(F, 9, 2, false), wp(F, 12, 1, true), wp(G, 12, 0, true)};
+	s[1].state[1] = 3.5;   // off the line y = 2
+	s[1].state[2] = 2;
+	s[4].state[3] = 8;
+	std::vector<Waypoint> st = straightened(s);
+	ok = st.size() == s.size() && st[1].state[0] == 4 && st[1].state[1] == 2 && st[1].state[2] == 2 &&
+	     st[1].state[3] == 0 && st[4].state[0] == 9 && st[4].state[2] == 4 && st[4].state[3] == 8;
+	for (size_t i = 0; i < s.size(); i++)
+		ok = ok && st[i].mode == s[i].mode && st[i].guard == s[i].guard &&
+		     (i == 1 || i == 4 || std::equal(s[i].state, s[i].state + 6, st[i].state));
+	check(ok, "straightened: inner waypoints on the line between each run's ends, the rest kept");
 }
 
 }  // namespace

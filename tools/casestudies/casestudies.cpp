@@ -734,9 +734,7 @@ std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Wa
 	try {
 		SmoothOptions so;
 		so.guard_half_length_m = 1e3;   // the whole platform or floor
-		MultiPhaseProblem prob = smoothing_problem(robot, plan, grid_of(sc), tl, so);
-		prob.T_scales = {1.0};
-		MultiPhaseSolution s = solve_multiphase(robot, prob, smoothing_solve_options());
+		MultiPhaseSolution s = smooth_plan(robot, plan, grid_of(sc), tl, so, {1.0});
 		r[4] = s.solve_seconds;
 		if (!s.converged)
 			return r;
