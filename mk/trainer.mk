@@ -5,7 +5,7 @@ TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/sha256.cpp \
 	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
-TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
+TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread
 TRAINER_LIB := $(BUILD)/lib/libhylo_trainer.a
 TRAINER := $(BUILD)/bin/trainer
@@ -14,7 +14,8 @@ $(BUILD)/obj/trainer/%.o: trainer/%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) -c $< -o $@
 
-$(TRAINER_LIB): $(TRAINER_OBJS)
+# The trainer computes flight features with the onboard code itself.
+$(TRAINER_LIB): $(TRAINER_OBJS) $(BUILD)/obj/onboard/src/features.o
 	@mkdir -p $(@D)
 	rm -f $@ && $(AR) rcs $@ $^
 

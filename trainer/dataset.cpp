@@ -16,6 +16,9 @@
 #include <unistd.h>
 #include <fcntl.h>
 
+extern "C" {
+#include "hylo/features.h"
+}
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
@@ -124,25 +127,9 @@ std::vector<double> features(const std::string &mode, const double *a, const dou
 			dth += 2 * kPi;
 		return {c * dx + s * dy, -s * dx + c * dy, dth, a[2], b[2]};
 	}
-	if (mode == "flight") {
-		// Horizontal components in the heading of the horizontal
-		// displacement, else of v1, else of v2 (hylo/features.h says why).
-		double cand[3][2] = {{b[0] - a[0], b[1] - a[1]}, {a[3], a[4]}, {b[3], b[4]}}, c = 1, s = 0;
-		for (const auto &h : cand) {
-			double n = std::hypot(h[0], h[1]);
-			if (n > 0) {
-				c = h[0] / n, s = h[1] / n;
-				break;
-			}
-		}
-		std::vector<double> f(9);
-		for (int k = 0; k < 3; k++) {
-			const double *v = k == 0 ? nullptr : k == 1 ? a + 3 : b + 3;
-			double x = v ? v[0] : b[0] - a[0], y = v ? v[1] : b[1] - a[1];
-			f[static_cast<size_t>(3 * k)] = c * x + s * y;
-			f[static_cast<size_t>(3 * k + 1)] = -s * x + c * y;
-			f[static_cast<size_t>(3 * k + 2)] = v ? v[2] : b[2] - a[2];
-		}
+	if (mode == "flight") {   // the onboard code's (hylo/features.h says why)
+		std::vector<double> f(HYLO_FEATURES_FLIGHT);
+		hylo_features(HYLO_MODE_FLIGHT, a, b, f.data());
 		return f;
 	}
 	return {a[0], a[1], b[0], b[1]};

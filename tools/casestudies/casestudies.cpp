@@ -44,6 +44,7 @@ extern "C" {
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/smoother.hpp"
+#include "trainer/svr_export.hpp"
 #include "trainer/switching.hpp"
 
 namespace {
@@ -786,11 +787,8 @@ public:
 	void add(const std::string &key, const std::vector<double> &r) const
 	{
 		std::string line = key + "\t";
-		for (double v : r) {
-			char b[40];
-			std::snprintf(b, sizeof b, " %.17g", v);
-			line += b;
-		}
+		for (double v : r)
+			line += " " + format_double(v);
 		line += "\n";
 		int fd = open(path_.c_str(), O_WRONLY | O_APPEND | O_CREAT, 0644);
 		if (fd < 0 || write(fd, line.data(), line.size()) != static_cast<ssize_t>(line.size()))
