@@ -579,6 +579,23 @@ bool known_mode(const std::string &m)
 	return m == "ground" || m == "marine" || m == "flight" || m == "di_neg" || m == "di_pos";
 }
 
+namespace {
+const char *const kModeNames[] = {"", "ground", "marine", "flight", "di_neg", "di_pos"};
+}  // namespace
+
+std::string mode_name(int m)
+{
+	return m >= 1 && m <= 5 ? kModeNames[m] : "";
+}
+
+int mode_number(const std::string &mode)
+{
+	for (int m = 1; m <= 5; m++)
+		if (mode == kModeNames[m])
+			return m;
+	return 0;
+}
+
 int sampled_dim(const std::string &m)
 {
 	if (m == "ground" || m == "marine")

@@ -60,6 +60,10 @@ struct Solution {
 // Mode names the trainer knows and their sampled dimension (models.md section 7).
 bool known_mode(const std::string &mode);
 int sampled_dim(const std::string &mode);
+// Modes as numbered in goal_t (MODE_*) and onboard (hylo_mode); "" or 0 for
+// an unknown one.
+std::string mode_name(int goal_mode);
+int mode_number(const std::string &mode);
 
 // Solves the BVP x1s -> x2s (sampled coordinates, sampled_dim(mode) each) of
 // mode with the robot's parameters. Several initial guesses; keeps the

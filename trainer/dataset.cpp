@@ -120,19 +120,13 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 
 std::vector<double> features(const std::string &mode, const double *a, const double *b)
 {
-	if (mode == "ground" || mode == "marine") {
-		double dx = b[0] - a[0], dy = b[1] - a[1], c = std::cos(a[3]), s = std::sin(a[3]);
-		double dth = std::remainder(b[3] - a[3], 2 * kPi);
-		if (dth <= -kPi)
-			dth += 2 * kPi;
-		return {c * dx + s * dy, -s * dx + c * dy, dth, a[2], b[2]};
-	}
-	if (mode == "flight") {   // the onboard code's (hylo/features.h says why)
-		std::vector<double> f(HYLO_FEATURES_FLIGHT);
-		hylo_features(HYLO_MODE_FLIGHT, a, b, f.data());
-		return f;
-	}
-	return {a[0], a[1], b[0], b[1]};
+	// The onboard code's, so training and planning cannot disagree.
+	const hylo_mode m = static_cast<hylo_mode>(mode_number(mode));
+	std::vector<double> f(hylo_feature_count(m));
+	if (f.empty())
+		throw std::invalid_argument("features: no mode " + mode);
+	hylo_features(m, a, b, f.data());
+	return f;
 }
 
 std::vector<std::vector<double>> feature_symmetries(const std::string &mode)

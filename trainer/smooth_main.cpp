@@ -33,8 +33,10 @@ void usage(FILE *out)
 		"Smooths plans: subscribes <prefix>HYLO_MAP and <prefix>HYLO_PLAN, solves one\n"
 		"multi-phase trajectory optimization over each successful plan's mode sequence\n"
 		"(switch points free along their guards, switching costs included), checks it\n"
-		"with a CVODE replay and publishes <prefix>HYLO_TRAJ. A failed plan or one whose\n"
-		"map was not seen gets a traj_t whose status says why.\n"
+		"with a CVODE replay and publishes <prefix>HYLO_TRAJ. A plan that drives\n"
+		"between two flights is also smoothed with that drive flown over, and the\n"
+		"cheaper trajectory is published. A failed plan or one whose map was not seen\n"
+		"gets a traj_t whose status says why.\n"
 		"\n"
 		"  --lcm-url URL         LCM provider to listen on (default: $LCM_DEFAULT_URL,\n"
 		"                        else LCM's default udpm://239.255.76.67:7667?ttl=0)\n"
@@ -161,7 +163,7 @@ private:
 			}
 			SmoothOptions so;
 			so.segments_per_edge = o_.segments_per_edge;
-			MultiPhaseSolution s = smooth_plan(r, wps, m->second.grid, costs, so);
+			MultiPhaseSolution s = smooth_best(r, wps, m->second.grid, costs, so);
 			if (!s.converged)
 				return fail(t, hylo::plan_t::STATUS_NO_PATH, "the smoothing optimization failed: " + s.status_text);
 			double t0 = 0;

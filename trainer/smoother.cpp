@@ -8,7 +8,6 @@
 namespace hylo::trainer {
 namespace {
 
-const char *const kModes[] = {"", "ground", "marine", "flight", "di_neg", "di_pos"};
 constexpr int8_t kGround = 1, kWater = 2;
 
 struct Cell {
@@ -96,34 +95,52 @@ SwitchGuard shoreline_guard(const TerrainGrid &m, double x, double y, double hal
 	return {x - ends[0] * tx, y - ends[0] * ty, x + ends[1] * tx, y + ends[1] * ty, 0};
 }
 
-// The stretch of level, drivable ground through (x, y) along (dx, dy) where
-// the robot may take off or land.
-SwitchGuard platform_guard(const TerrainGrid &m, double x, double y, double dx, double dy, double half_length)
+// The rectangle of level, drivable ground around (x, y) where the robot may
+// take off or land: grown a row or column of cells at a time while the new
+// cells are level with (x, y)'s and within half_length of it. Its bounds are
+// the centres of its outer cells (the robot keeps half a cell from the edge),
+// widened to hold (x, y) itself. An area, not a line: a plan that reaches the
+// platform's edge at a corner may take off straight ahead instead.
+SwitchGuard platform_area(const TerrainGrid &m, double x, double y, double half_length)
 {
 	Cell c = cell_at(m, x, y);
 	if (!c.inside || m.terrain[static_cast<size_t>(c.index)] != kGround)
 		throw std::invalid_argument("the takeoff or landing point (" + std::to_string(x) + ", " +
 					    std::to_string(y) + ") is not on drivable ground");
-	double h = m.height_m[static_cast<size_t>(c.index)];
-	double n = std::hypot(dx, dy);
-	if (n < 1e-12)
-		return {x, y, x, y, h};
-	dx /= n;
-	dy /= n;
-	auto level = [&](double px, double py) {
-		Cell k = cell_at(m, px, py);
-		return k.inside && m.terrain[static_cast<size_t>(k.index)] == kGround &&
-		       std::fabs(m.height_m[static_cast<size_t>(k.index)] - h) < 1e-3;
+	const double h = m.height_m[static_cast<size_t>(c.index)];
+	const int cx = c.index % m.nx, cy = c.index / m.nx;
+	const int reach = static_cast<int>(std::floor(half_length / m.resolution_m + 1e-9));
+	auto level = [&](int ix, int iy) {
+		size_t k = static_cast<size_t>(iy * m.nx + ix);
+		return m.terrain[k] == kGround && std::fabs(m.height_m[k] - h) < 1e-3;
 	};
-	// Keep half a cell from the platform's edge: the guard must stay on it.
-	double step = 0.5 * m.resolution_m, ends[2] = {0, 0};
-	for (int side = 0; side < 2; side++) {
-		double sgn = side ? 1.0 : -1.0;
-		for (double s = step; s <= half_length + 1e-9 && level(x + sgn * (s + step) * dx, y + sgn * (s + step) * dy);
-		     s += step)
-			ends[side] = s;
+	int lo[2] = {cx, cy}, hi[2] = {cx, cy};
+	const int size[2] = {m.nx, m.ny}, centre[2] = {cx, cy};
+	for (bool grew = true; grew;) {
+		grew = false;
+		for (int axis = 0; axis < 2; axis++)
+			for (int dir = -1; dir <= 1; dir += 2) {
+				int at = (dir < 0 ? lo[axis] : hi[axis]) + dir;
+				if (at < 0 || at >= size[axis] || std::abs(at - centre[axis]) > reach)
+					continue;
+				bool ok = true;
+				int other = 1 - axis;
+				for (int j = lo[other]; j <= hi[other] && ok; j++)
+					ok = axis == 0 ? level(at, j) : level(j, at);
+				if (ok) {
+					(dir < 0 ? lo[axis] : hi[axis]) = at;
+					grew = true;
+				}
+			}
 	}
-	return {x - ends[0] * dx, y - ends[0] * dy, x + ends[1] * dx, y + ends[1] * dy, h};
+	SwitchGuard g;
+	g.area = true;
+	g.height_m = h;
+	g.ax = std::min(x, m.origin_x_m + (lo[0] + 0.5) * m.resolution_m);
+	g.bx = std::max(x, m.origin_x_m + (hi[0] + 0.5) * m.resolution_m);
+	g.ay = std::min(y, m.origin_y_m + (lo[1] + 0.5) * m.resolution_m);
+	g.by = std::max(y, m.origin_y_m + (hi[1] + 0.5) * m.resolution_m);
+	return g;
 }
 
 std::vector<double> sampled(const Waypoint &w)
@@ -136,23 +153,6 @@ bool same_place(const Waypoint &a, const Waypoint &b)
 {
 	return std::hypot(a.state[0] - b.state[0], a.state[1] - b.state[1]) < 1e-6;
 }
-
-}  // namespace
-
-std::string mode_name(int m)
-{
-	return m >= 1 && m <= 5 ? kModes[m] : "";
-}
-
-int mode_number(const std::string &mode)
-{
-	for (int m = 1; m <= 5; m++)
-		if (mode == kModes[m])
-			return m;
-	return 0;
-}
-
-namespace {
 
 double height_at(const TerrainGrid &m, double x, double y)
 {
@@ -317,25 +317,9 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 		SwitchGuard guard;
 		if ((a == "ground" && b == "marine") || (a == "marine" && b == "ground")) {
 			guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
-		} else if (a == "ground" && b == "flight") {
-			const Waypoint &prev = runs[k].second > runs[k].first ? plan[runs[k].second - 1] : g;
-			const Waypoint &next = plan[std::min(runs[k + 1].first + 1, runs[k + 1].second)];
-			double dx = g.state[0] - prev.state[0], dy = g.state[1] - prev.state[1];
-			if (std::hypot(dx, dy) < 1e-9) {
-				dx = next.state[0] - g.state[0];
-				dy = next.state[1] - g.state[1];
-			}
-			guard = platform_guard(map, g.state[0], g.state[1], dx, dy, opt.guard_half_length_m);
-		} else if (a == "flight" && b == "ground") {
-			const Waypoint &land = plan[runs[k + 1].first];
-			const Waypoint &next = runs[k + 1].second > runs[k + 1].first ? plan[runs[k + 1].first + 1] : land;
-			double dx = next.state[0] - land.state[0], dy = next.state[1] - land.state[1];
-			if (std::hypot(dx, dy) < 1e-9 && runs[k].second > runs[k].first) {
-				const Waypoint &before = plan[runs[k].second - 1];   // no later motion: the approach
-				dx = land.state[0] - before.state[0];
-				dy = land.state[1] - before.state[1];
-			}
-			guard = platform_guard(map, land.state[0], land.state[1], dx, dy, opt.guard_half_length_m);
+		} else {   // takeoff or landing: where the robot is on the ground
+			const Waypoint &ground = a == "ground" ? g : plan[runs[k + 1].first];
+			guard = platform_area(map, ground.state[0], ground.state[1], opt.guard_half_length_m);
 		}
 		// Phases joined at this switch: the last of run k, the first of run k + 1.
 		if (first_phase[k + 1] != last_phase[k] + 1)
@@ -385,6 +369,46 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 			break;
 	}
 	return s;
+}
+
+std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
+{
+	const int F = mode_number("flight"), G = mode_number("ground");
+	std::vector<std::vector<Waypoint>> out;
+	for (size_t i = 0; i < plan.size(); i++) {
+		// i: a landing's hover (flight) followed by the ground run [i + 1, j]
+		// and the next takeoff's hover j + 1.
+		if (plan[i].mode != F || i + 1 >= plan.size() || plan[i + 1].mode != G)
+			continue;
+		size_t j = i + 1;
+		while (j + 1 < plan.size() && plan[j + 1].mode == G)
+			j++;
+		// Each flight must keep its other end: run one's takeoff hover (before
+		// i) and run two's landing hover (after j + 1).
+		if (j + 2 >= plan.size() || plan[j + 1].mode != F || plan[j + 2].mode != F || i == 0 ||
+		    plan[i - 1].mode != F)
+			continue;
+		std::vector<Waypoint> alt(plan.begin(), plan.begin() + static_cast<std::ptrdiff_t>(i));
+		alt.insert(alt.end(), plan.begin() + static_cast<std::ptrdiff_t>(j + 2), plan.end());
+		out.push_back(std::move(alt));
+	}
+	return out;
+}
+
+MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypoint> &plan,
+			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
+			       const std::vector<double> &T_scales)
+{
+	MultiPhaseSolution best = smooth_plan(robot, plan, map, costs, opt, T_scales);
+	double seconds = best.solve_seconds;
+	for (const std::vector<Waypoint> &alt : flown_over(plan)) {
+		MultiPhaseSolution s = smooth_plan(robot, alt, map, costs, opt, T_scales);
+		seconds += s.solve_seconds;
+		if (s.converged && (!best.converged || s.cost < best.cost))
+			best = std::move(s);
+	}
+	best.solve_seconds = seconds;
+	return best;
 }
 
 SolveOptions smoothing_solve_options()

@@ -23,10 +23,18 @@ void fix(std::vector<double> &lo, std::vector<double> &hi, int component, double
 	lo[static_cast<size_t>(component)] = hi[static_cast<size_t>(component)] = value;
 }
 
-// The switch point (components 0, 1 of phase k's last knot) on the guard segment.
-void on_segment(MultiPhaseProblem &p, size_t k, const SwitchGuard &g)
+// The switch point (components 0, 1 of phase k's last knot) on the guard.
+void on_guard(MultiPhaseProblem &p, size_t k, const SwitchGuard &g)
 {
 	const int ph = static_cast<int>(k);
+	PhaseSpec &a = p.phases[k];
+	if (g.area) {
+		a.last_lo[0] = std::max(a.last_lo[0], std::min(g.ax, g.bx));
+		a.last_hi[0] = std::min(a.last_hi[0], std::max(g.ax, g.bx));
+		a.last_lo[1] = std::max(a.last_lo[1], std::min(g.ay, g.by));
+		a.last_hi[1] = std::min(a.last_hi[1], std::max(g.ay, g.by));
+		return;
+	}
 	double tx = g.bx - g.ax, ty = g.by - g.ay, len2 = tx * tx + ty * ty;
 	if (len2 < 1e-18) {
 		fix(p.phases[k].last_lo, p.phases[k].last_hi, 0, g.ax);
@@ -86,7 +94,7 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 			p.rows.push_back(carry(k, 2, 6, slope));
 			p.rows.push_back(carry(k, 2, 7, slope));
 		}
-		on_segment(p, k, g);
+		on_guard(p, k, g);
 	} else if (a.mode == "ground" && b.mode == "flight") {
 		for (int i : {2, 3, 5})
 			fix(a.last_lo, a.last_hi, i, 0.0);
@@ -96,7 +104,7 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 			fix(b.first_lo, b.first_hi, i, hover[static_cast<size_t>(i)]);
 		p.rows.push_back(carry(k, 0, 0));
 		p.rows.push_back(carry(k, 1, 1));
-		on_segment(p, k, g);
+		on_guard(p, k, g);
 		p.switch_cost += costs.takeoff_j;
 	} else if (a.mode == "flight" && b.mode == "ground") {
 		double xs[6] = {0, 0, g.height_m + 1, 0, 0, 0};
@@ -107,7 +115,7 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 			fix(b.first_lo, b.first_hi, i, 0.0);
 		p.rows.push_back(carry(k, 0, 0));
 		p.rows.push_back(carry(k, 1, 1));
-		on_segment(p, k, g);
+		on_guard(p, k, g);
 		p.switch_cost += costs.landing_j;
 	} else {
 		throw std::invalid_argument("no mode switch " + pair + " (models.md section 6)");

@@ -5,7 +5,7 @@
 //   ground <-> marine   guard: the shoreline (a segment here), state carried
 //                       over, phiL = phiR = phi_n(vx) entering the water, cost 0
 //   ground -> flight    takeoff from rest at terrain height h to hover at h + 1
-//                       (yaw 0), cost J_takeoff
+//                       (yaw 0), cost J_takeoff; guard: an area of level ground
 //   flight -> ground    landing from that hover to rest with heading 0, cost J_landing
 #ifndef HYLO_TRAINER_SWITCHING_HPP
 #define HYLO_TRAINER_SWITCHING_HPP
@@ -19,11 +19,13 @@
 
 namespace hylo::trainer {
 
-// Where a switch may happen: its (px, py) on the segment a-b (a == b pins it)
-// at terrain height height_m. Unused by the double integrator (p = 0).
+// Where a switch may happen: its (px, py) on the segment a-b (a == b pins it),
+// or with area set anywhere in the axis-aligned rectangle with corners a and
+// b, at terrain height height_m. Unused by the double integrator (p = 0).
 struct SwitchGuard {
 	double ax = 0, ay = 0, bx = 0, by = 0;
 	double height_m = 0;
+	bool area = false;
 };
 
 // Energies of takeoff and landing [J]: the flight problems from hover at h to

@@ -210,6 +210,16 @@ void wall_gates(const RobotParams &drivo)
 	}
 	check(ok, "a flight over a wall is cut at the wall: the two phases meet on x = 8, at least 6.5 m high");
 	check(p.switch_cost == 140, "the cut adds no cost; takeoff and landing do (" + fmt(p.switch_cost) + ")");
+	// Takeoff and landing points slide over an area of level ground (cell
+	// centres, within 6 m per axis), not along a line: the platform x < 8 for
+	// the takeoff at (6, 2), the floor from x = 8 for the landing at (12, 2).
+	ok = p.phases.size() == 4;
+	if (ok) {
+		const PhaseSpec &d = p.phases[0], &f = p.phases[2];
+		ok = d.last_lo[0] == 0.5 && d.last_hi[0] == 7.5 && d.last_lo[1] == 0.5 && d.last_hi[1] == 3.5 &&
+		     f.last_lo[0] == 8.5 && f.last_hi[0] == 18.5 && f.last_lo[1] == 0.5 && f.last_hi[1] == 3.5;
+	}
+	check(ok, "takeoff and landing areas: x in [0.5, 7.5] on the platform, [8.5, 18.5] on the floor, y in [0.5, 3.5]");
 	// Taking off at the first waypoint and landing at the last: no ground
 	// phases, the flight starts and ends hovering 1 m above those points.
 	std::vector<Waypoint> hop = {wp(G, 2, 0, true), wp(F, 2, 7, true), wp(F, 12, 1, true), wp(G, 12, 0, true)};
@@ -235,6 +245,23 @@ void wall_gates(const RobotParams &drivo)
 		ok = ok && st[i].mode == s[i].mode && st[i].guard == s[i].guard &&
 		     (i == 1 || i == 4 || std::equal(s[i].state, s[i].state + 6, st[i].state));
 	check(ok, "straightened: inner waypoints on the line between each run's ends, the rest kept");
+	// Flown over: the drive between two flights (waypoints 4-8: landing
+	// hover, drive, takeoff hover) removed and the flights joined.
+	std::vector<Waypoint> dfdfd = {wp(G, 2, 0, false), wp(G, 6, 0, true),	wp(F, 6, 7, true),  wp(F, 9, 3, false),
+				       wp(F, 12, 1, true),  wp(G, 12, 0, true), wp(G, 14, 0, false), wp(G, 15, 0, true),
+				       wp(F, 15, 1, true),  wp(F, 17, 3, false), wp(F, 18, 1, true), wp(G, 18, 0, true)};
+	std::vector<std::vector<Waypoint>> alts = flown_over(dfdfd);
+	ok = alts.size() == 1 && alts[0].size() == 7 && flown_over(plan).empty() && flown_over(alts[0]).empty();
+	if (ok) {
+		const size_t kept[] = {0, 1, 2, 3, 9, 10, 11};
+		for (size_t i = 0; i < 7; i++)
+			ok = ok && alts[0][i].mode == dfdfd[kept[i]].mode &&
+			     std::equal(dfdfd[kept[i]].state, dfdfd[kept[i]].state + 6, alts[0][i].state);
+		MultiPhaseProblem f = smoothing_problem(drivo, alts[0], m, TakeoffLanding{100, 40});
+		// Drive, then the flight cut at the wall x = 8; it lands on the last waypoint.
+		ok = ok && f.phases.size() == 3 && f.phases[2].mode == "flight" && f.switch_cost == 140;
+	}
+	check(ok, "flown over: DFDFD gives one DFD neighbour, its flights joined; DFD gives none");
 }
 
 }  // namespace

@@ -726,6 +726,15 @@ std::string letters(const hylo_plan &p)
 	return s;
 }
 
+std::string letters(const std::vector<Waypoint> &w)
+{
+	std::string s;
+	for (size_t i = 0; i < w.size(); i++)
+		if (i == 0 || w[i].mode != w[i - 1].mode)
+			s += w[i].mode == mode_number("flight") ? 'F' : 'D';
+	return s;
+}
+
 // One smoothing solve of a plan: {cost, T, replay error, clearance, seconds,
 // switch-point x...}; cost NaN when it failed.
 std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Waypoint> &plan, const Scene &sc,
@@ -806,12 +815,14 @@ struct ChasmItem {
 	size_t chasm;
 	int seq;   // index into the sequences; -1: hylo's plan
 	double lambda;
+	int flown = -1;   // hylo: -1 its plan, k its k-th flown_over() neighbour
 };
 
 std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
 		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
-		      const std::vector<std::string> &plan_seq, const std::vector<double> &predicted,
-		      const std::vector<double> &plan_s, const TakeoffLanding &tl, std::string &md);
+		      const std::vector<std::string> &plan_seq, const std::vector<std::vector<std::string>> &flown_seq,
+		      const std::vector<double> &predicted, const std::vector<double> &plan_s, const TakeoffLanding &tl,
+		      std::string &md);
 
 // checkpoint(md, json) is called after each chasm with the results so far.
 std::string drivocopter_study(const Options &opt, std::string &md,
@@ -836,6 +847,8 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 	std::vector<Chasm> chasms;
 	std::vector<std::vector<Waypoint>> plans;
 	std::vector<std::string> plan_seq;
+	std::vector<std::vector<std::vector<Waypoint>>> flown;   // flown_over() of each plan
+	std::vector<std::vector<std::string>> flown_seq;
 	std::vector<double> predicted, plan_s;
 	std::vector<Item> items;
 	for (size_t c = 0; c < widths.size(); c++) {
@@ -853,6 +866,12 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 		std::fprintf(stderr, "drivocopter %s: hylo plans %s, %.1f J predicted (%.2f s)\n", path,
 			     plan_seq.back().c_str(), predicted.back(), plan_s.back());
 		items.push_back({c, -1, 0});
+		flown.push_back(flown_over(plans.back()));
+		flown_seq.emplace_back();
+		for (size_t k = 0; k < flown.back().size(); k++) {
+			items.push_back({c, -1, 0, static_cast<int>(k)});
+			flown_seq.back().push_back(letters(flown.back()[k]));
+		}
 		for (size_t q = 0; q < seqs.size(); q++)
 			for (double l : lambdas) {
 				items.push_back({c, static_cast<int>(q), l});
@@ -873,29 +892,33 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 				mine.push_back(i);
 		auto r = parallel_records(mine.size(), 9, opt.jobs, [&](size_t j) {
 			const Item &it = items[mine[j]];
-			char key[160];
-			std::snprintf(key, sizeof key, "%.16s chasm_%03d %s%s placement %.3f", robot_sha.c_str(),
-				      widths[it.chasm], it.seq < 0 ? "hylo " : "",
-				      it.seq < 0 ? (plan_seq[it.chasm] + " " + num(predicted[it.chasm])).c_str()
-						 : seqs[static_cast<size_t>(it.seq)].c_str(),
-				      it.lambda);
+			std::string what = it.seq >= 0 ? seqs[static_cast<size_t>(it.seq)]
+					   : "hylo " + plan_seq[it.chasm] + " " + num(predicted[it.chasm]);
+			if (it.flown >= 0)
+				what += " flown over " + std::to_string(it.flown) + " " +
+					flown_seq[it.chasm][static_cast<size_t>(it.flown)];
+			char key[200];
+			std::snprintf(key, sizeof key, "%.16s chasm_%03d %s placement %.3f", robot_sha.c_str(),
+				      widths[it.chasm], what.c_str(), it.lambda);
 			if (const std::vector<double> *old = log.find(key)) {
 				std::fprintf(stderr, "  %s: from %s\n", key, log_path.c_str());
 				return *old;
 			}
-			std::vector<Waypoint> w = it.seq < 0 ? plans[it.chasm]
-							     : sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)], it.lambda);
+			std::vector<Waypoint> w =
+				it.seq >= 0  ? sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)], it.lambda)
+				: it.flown < 0 ? plans[it.chasm]
+					       : flown[it.chasm][static_cast<size_t>(it.flown)];
 			std::vector<double> v = smooth_record(robot, w, scenes[it.chasm], tl);
 			std::fprintf(stderr, "  chasm %d m %s (placement %.1f): %.1f J, %.0f s\n", widths[it.chasm],
-				     it.seq < 0 ? ("hylo " + plan_seq[it.chasm]).c_str() : seqs[static_cast<size_t>(it.seq)].c_str(),
-				     it.lambda, v[0], v[4]);
+				     what.c_str(), it.lambda, v[0], v[4]);
 			log.add(key, v);
 			return v;
 		});
 		for (size_t j = 0; j < mine.size(); j++)
 			rec[mine[j]] = r[j];
 		md = head_md;
-		js = table_one(widths, done, seqs, lambdas.size(), items, rec, plan_seq, predicted, plan_s, tl, md);
+		js = table_one(widths, done, seqs, lambdas.size(), items, rec, plan_seq, flown_seq, predicted, plan_s, tl,
+			       md);
 		checkpoint(md, js);
 	}
 	return js;
@@ -904,8 +927,9 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 // The table of study 3 for the first `done` chasms; returns its JSON.
 std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
 		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
-		      const std::vector<std::string> &plan_seq, const std::vector<double> &predicted,
-		      const std::vector<double> &plan_s, const TakeoffLanding &tl, std::string &md)
+		      const std::vector<std::string> &plan_seq, const std::vector<std::vector<std::string>> &flown_seq,
+		      const std::vector<double> &predicted, const std::vector<double> &plan_s, const TakeoffLanding &tl,
+		      std::string &md)
 {
 	md += "\n## 3. Drivocopter: fixed mode sequences against hylo (the paper's Table I)\n\n"
 	      "Each chasm scene (`scenes/chasm_*.yaml`: platforms 6 m high, start and goal on them 10 m "
@@ -916,23 +940,28 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	      "flights cut at each wall into phases that meet 0.5 m above its top (the planner's flight "
 	      "clearance); switch points placed at the walls initially (" + std::to_string(placements) +
 	      " placement). hylo: the planner's plan with the committed "
-	      "SVR models (predicted cost) smoothed by the same multi-phase solver from the plan "
-	      "(smoothed cost), and its sequence's fixed-sequence optimum. Smoothing options: flight segments "
-	      "of at most 40 ms, replay tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt "
-	      "iterations per solve. Costs in J; best fixed sequence in bold.\n\n"
-	      "| width [m] | F | DF | DFD | FDF | DFDF | DFDFD | hylo sequence | hylo predicted | hylo smoothed | "
-	      "its sequence vs best |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+	      "SVR models (its sequence and predicted cost), smoothed by the same multi-phase solver from the "
+	      "plan; `hylo-smooth` also smooths the plan with each drive between two flights flown over "
+	      "instead (`flown_over()`) and keeps the cheapest: that is hylo's result. Smoothing options: "
+	      "flight segments of at most 40 ms, replay tolerance 0.05 (knot to knot for flight), up to 1,000 "
+	      "Ipopt iterations per solve. Costs in J; best fixed sequence in bold.\n\n"
+	      "| width [m] | F | DF | DFD | FDF | DFDF | DFDFD | hylo plan (predicted) | plan smoothed | "
+	      "flown over | hylo | vs best |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 	std::string js = "[";
 	std::vector<std::string> best_seq(done);
 	for (size_t c = 0; c < done; c++) {
 		std::vector<double> best(seqs.size(), NAN);
 		std::vector<std::vector<double>> best_rec(seqs.size());
-		const std::vector<double> *hylo = nullptr;
+		const std::vector<double> *hylo = nullptr;   // the plan smoothed
+		std::vector<const std::vector<double> *> flown;   // its flown_over() neighbours smoothed
 		for (size_t i = 0; i < items.size(); i++) {
 			if (items[i].chasm != c)
 				continue;
 			if (items[i].seq < 0) {
-				hylo = &rec[i];
+				if (items[i].flown < 0)
+					hylo = &rec[i];
+				else
+					flown.push_back(&rec[i]);
 				continue;
 			}
 			size_t q = static_cast<size_t>(items[i].seq);
@@ -946,21 +975,34 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 			if (std::isfinite(best[q]) && !(best[q] >= best[qb]))
 				qb = q;
 		best_seq[c] = seqs[qb];
-		double hs = (*hylo)[0];
-		// hylo against the best: its smoothed cost, else its sequence's optimum.
+		// hylo's result: the cheapest converged of the plan and its neighbours.
+		const std::vector<double> *res = hylo;
+		std::string res_seq = plan_seq[c];
+		for (size_t k = 0; k < flown.size(); k++)
+			if (std::isfinite((*flown[k])[0]) && !((*flown[k])[0] >= (*res)[0])) {
+				res = flown[k];
+				res_seq = flown_seq[c][k];
+			}
+		const double hs = (*res)[0];
 		auto own = std::find(seqs.begin(), seqs.end(), plan_seq[c]);
 		double seq_best = own == seqs.end() ? NAN : best[static_cast<size_t>(own - seqs.begin())];
 		double rel = (hs - best[qb]) / best[qb], seq_rel = (seq_best - best[qb]) / best[qb];
+		auto cost = [](double v) { return std::isfinite(v) ? num(std::round(v * 10) / 10) : std::string("failed"); };
 		md += "| " + std::to_string(widths[c]) + " |";
 		for (size_t q = 0; q < seqs.size(); q++) {
 			char cell[64];
 			std::snprintf(cell, sizeof cell, q == qb ? " **%.1f** |" : " %.1f |", best[q]);
 			md += std::isfinite(best[q]) ? cell : " failed |";
 		}
-		char tail[256];
-		std::snprintf(tail, sizeof tail, " %s | %.1f | %s | %+.2f%% |\n", plan_seq[c].c_str(), predicted[c],
-			      std::isfinite(hs) ? num(std::round(hs * 10) / 10).c_str() : "failed",
-			      100 * (std::isfinite(hs) ? std::min(rel, seq_rel) : seq_rel));
+		std::string fl;
+		for (size_t k = 0; k < flown.size(); k++)
+			fl += std::string(k ? ", " : "") + flown_seq[c][k] + " " + cost((*flown[k])[0]);
+		char pct[32] = "", tail[512];
+		if (std::isfinite(hs))
+			std::snprintf(pct, sizeof pct, "%+.2f%%", 100 * rel);
+		std::snprintf(tail, sizeof tail, " %s (%.1f) | %s | %s | %s | %s |\n", plan_seq[c].c_str(), predicted[c],
+			      cost((*hylo)[0]).c_str(), fl.empty() ? "none" : fl.c_str(),
+			      std::isfinite(hs) ? (res_seq + " " + cost(hs)).c_str() : "failed", pct);
 		md += tail;
 		js += std::string(c ? "," : "") + "\n  {\"scene\": \"chasm_" + std::to_string(widths[c]) +
 		      "\", \"width_m\": " + std::to_string(widths[c]) + ", \"fixed\": {";
@@ -977,12 +1019,17 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 				js += std::string(k > 5 ? ", " : "") + num(r[k]);
 			js += "]}";
 		}
+		std::string fj;
+		for (size_t k = 0; k < flown.size(); k++)
+			fj += std::string(k ? ", " : "") + "{\"sequence\": \"" + flown_seq[c][k] +
+			      "\", \"smoothed_j\": " + num((*flown[k])[0]) + "}";
 		js += "},\n   \"best_fixed\": \"" + seqs[qb] + "\", \"hylo\": {\"sequence\": \"" + plan_seq[c] +
 		      "\", \"predicted_j\": " + num(predicted[c]) + ", \"plan_s\": " + num(plan_s[c]) +
-		      ", \"smoothed_j\": " + num(hs) + ", \"sequence_fixed_j\": " + num(seq_best) +
-		      ", \"sequence_vs_best\": " + num(seq_rel) + ", \"T_s\": " + num((*hylo)[1]) + ", \"replay_error\": " +
-		      num((*hylo)[2]) + ", \"flight_clearance_m\": " + num((*hylo)[3]) +
-		      ", \"smoothed_vs_best\": " + num(rel) + "}}";
+		      ", \"smoothed_j\": " + num((*hylo)[0]) + ", \"sequence_fixed_j\": " + num(seq_best) +
+		      ", \"sequence_vs_best\": " + num(seq_rel) + ", \"flown_over\": [" + fj +
+		      "], \"result_sequence\": \"" + res_seq + "\", \"result_j\": " + num(hs) + ", \"T_s\": " +
+		      num((*res)[1]) + ", \"replay_error\": " + num((*res)[2]) + ", \"flight_clearance_m\": " +
+		      num((*res)[3]) + ", \"result_vs_best\": " + num(rel) + "}}";
 	}
 	// The crossover: the first width whose best sequence drives on the floor.
 	std::string cross = "none between " + std::to_string(widths.front()) + " and " +
