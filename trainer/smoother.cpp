@@ -389,6 +389,30 @@ std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
 		    plan[i - 1].mode != F)
 			continue;
 		std::vector<Waypoint> alt(plan.begin(), plan.begin() + static_cast<std::ptrdiff_t>(i));
+		// The joined leg: waypoints at most 8 m apart along the line, speeds
+		// of a 3 m/s^2 ramp up to 8 m/s from and to the ends' (a guess only;
+		// a 50 m leg guessed at rest was guessed at 50 s).
+		const Waypoint &a = plan[i - 1], &b = plan[j + 2];
+		double d[3], L = 0;
+		for (int k = 0; k < 3; k++) {
+			d[k] = b.state[k] - a.state[k];
+			L += d[k] * d[k];
+		}
+		L = std::sqrt(L);
+		const int n = static_cast<int>(std::ceil(L / 8));
+		for (int q = 1; q < n; q++) {
+			double f = static_cast<double>(q) / n, sa = f * L, sb = L - sa;
+			double va = std::sqrt(a.state[3] * a.state[3] + a.state[4] * a.state[4] + a.state[5] * a.state[5]);
+			double vb = std::sqrt(b.state[3] * b.state[3] + b.state[4] * b.state[4] + b.state[5] * b.state[5]);
+			double v = std::min({8.0, std::sqrt(va * va + 6 * sa), std::sqrt(vb * vb + 6 * sb)});
+			Waypoint w;
+			w.mode = F;
+			for (int k = 0; k < 3; k++) {
+				w.state[k] = a.state[k] + f * d[k];
+				w.state[3 + k] = v * d[k] / L;
+			}
+			alt.push_back(w);
+		}
 		alt.insert(alt.end(), plan.begin() + static_cast<std::ptrdiff_t>(j + 2), plan.end());
 		out.push_back(std::move(alt));
 	}

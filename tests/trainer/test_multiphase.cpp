@@ -262,6 +262,19 @@ void wall_gates(const RobotParams &drivo)
 		ok = ok && f.phases.size() == 3 && f.phases[2].mode == "flight" && f.switch_cost == 140;
 	}
 	check(ok, "flown over: DFDFD gives one DFD neighbour, its flights joined; DFD gives none");
+	// A joined leg over 8 m gets waypoints at most 8 m apart, speeds along it
+	// on a 3 m/s^2 ramp from the ends: 10 m from (9, 2, 3) to (19, 2, 3) at
+	// rest gets one, at x = 14 and sqrt(6 * 5) m/s.
+	dfdfd[9].state[0] = 19;
+	alts = flown_over(dfdfd);
+	ok = alts.size() == 1 && alts[0].size() == 8;
+	if (ok) {
+		const Waypoint &w = alts[0][4];
+		ok = w.mode == F && !w.guard && w.state[0] == 14 && w.state[1] == 2 && w.state[2] == 3 &&
+		     std::fabs(w.state[3] - std::sqrt(30.0)) < 1e-12 && w.state[4] == 0 && w.state[5] == 0 &&
+		     alts[0][5].state[0] == 19;
+	}
+	check(ok, "flown over: a joined leg of 10 m gets a waypoint at its middle at sqrt(6 * 5) m/s");
 }
 
 }  // namespace
