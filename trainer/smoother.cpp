@@ -10,6 +10,11 @@ namespace {
 
 constexpr int8_t kGround = 1, kWater = 2;
 
+double norm3(double x, double y, double z)
+{
+	return std::sqrt(x * x + y * y + z * z);
+}
+
 struct Cell {
 	bool inside = false;
 	int index = 0;
@@ -211,11 +216,8 @@ double flight_time_guess(const std::vector<std::vector<double>> &xs)
 	double T = 0;
 	for (size_t i = 1; i < xs.size(); i++) {
 		const double *a = xs[i - 1].data(), *b = xs[i].data();
-		double d = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
-				     (b[2] - a[2]) * (b[2] - a[2]));
-		double va = std::sqrt(a[3] * a[3] + a[4] * a[4] + a[5] * a[5]);
-		double vb = std::sqrt(b[3] * b[3] + b[4] * b[4] + b[5] * b[5]);
-		T += d / std::max(1.0, 0.5 * (va + vb));
+		double d = norm3(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+		T += d / std::max(1.0, 0.5 * (norm3(a[3], a[4], a[5]) + norm3(b[3], b[4], b[5])));
 	}
 	return std::max(0.2, T);
 }
@@ -393,17 +395,12 @@ std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
 		// of a 3 m/s^2 ramp up to 8 m/s from and to the ends' (a guess only;
 		// a 50 m leg guessed at rest was guessed at 50 s).
 		const Waypoint &a = plan[i - 1], &b = plan[j + 2];
-		double d[3], L = 0;
-		for (int k = 0; k < 3; k++) {
-			d[k] = b.state[k] - a.state[k];
-			L += d[k] * d[k];
-		}
-		L = std::sqrt(L);
+		const double d[3] = {b.state[0] - a.state[0], b.state[1] - a.state[1], b.state[2] - a.state[2]};
+		const double L = norm3(d[0], d[1], d[2]);
+		const double va = norm3(a.state[3], a.state[4], a.state[5]), vb = norm3(b.state[3], b.state[4], b.state[5]);
 		const int n = static_cast<int>(std::ceil(L / 8));
 		for (int q = 1; q < n; q++) {
 			double f = static_cast<double>(q) / n, sa = f * L, sb = L - sa;
-			double va = std::sqrt(a.state[3] * a.state[3] + a.state[4] * a.state[4] + a.state[5] * a.state[5]);
-			double vb = std::sqrt(b.state[3] * b.state[3] + b.state[4] * b.state[4] + b.state[5] * b.state[5]);
 			double v = std::min({8.0, std::sqrt(va * va + 6 * sa), std::sqrt(vb * vb + 6 * sb)});
 			Waypoint w;
 			w.mode = F;

@@ -3,7 +3,8 @@
 // with that mode sequence is solved, the switch points free to slide along
 // their guards (a straight piece of the shoreline fitted to the map, or a
 // rectangle of the level ground the robot takes off from or lands on),
-// switching costs included. The smoothed trajectory is the optimum from the plan's guess.
+// switching costs included. The smoothed trajectory is the optimum from the
+// plan's guess.
 //
 // The map's domain is enforced at the switch points and at wall gates: a
 // flight crossing a wall (a height step over max_step) is cut there into two

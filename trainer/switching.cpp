@@ -37,8 +37,8 @@ void on_guard(MultiPhaseProblem &p, size_t k, const SwitchGuard &g)
 	}
 	double tx = g.bx - g.ax, ty = g.by - g.ay, len2 = tx * tx + ty * ty;
 	if (len2 < 1e-18) {
-		fix(p.phases[k].last_lo, p.phases[k].last_hi, 0, g.ax);
-		fix(p.phases[k].last_lo, p.phases[k].last_hi, 1, g.ay);
+		fix(a.last_lo, a.last_hi, 0, g.ax);
+		fix(a.last_lo, a.last_hi, 1, g.ay);
 		return;
 	}
 	LinearRow normal, along;
