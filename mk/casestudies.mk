@@ -4,12 +4,26 @@
 #   make casestudies QUICK=1 the DI convergence on 3 spacings (a check)
 HYLO_CASESTUDIES := $(BUILD)/bin/hylo-casestudies
 
-$(HYLO_CASESTUDIES): tools/casestudies/casestudies.cpp $(BUILD)/obj/tools/scene/scene.o \
+CHASM_OBJ := $(BUILD)/obj/tools/casestudies/chasm.o
+
+$(CHASM_OBJ): tools/casestudies/chasm.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) -c $< -o $@
+
+$(HYLO_CASESTUDIES): tools/casestudies/casestudies.cpp $(CHASM_OBJ) $(BUILD)/obj/tools/scene/scene.o \
 		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
 
 ALL_TARGETS += $(HYLO_CASESTUDIES)
+
+# Test: the chasm scenes and the fixed sequences' plans (C++, TAP).
+CHASM_TEST := $(BUILD)/test/casestudies/test_chasm
+$(CHASM_TEST): tests/casestudies/test_chasm.cpp $(CHASM_OBJ) $(BUILD)/obj/tools/scene/scene.o $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -o $@
+ALL_TARGETS += $(CHASM_TEST)
+TESTS += $(CHASM_TEST)
 
 # Figures need matplotlib (PyPI, into .venv).
 venv-report: .venv/.report-stamp

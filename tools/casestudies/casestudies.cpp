@@ -38,6 +38,7 @@ extern "C" {
 #include "hylo/planner.h"
 #include "node/registry.h"
 }
+#include "tools/casestudies/chasm.hpp"
 #include "tools/scene/scene.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/params.hpp"
@@ -50,6 +51,11 @@ extern "C" {
 namespace {
 
 using namespace hylo::trainer;
+using hylo::casestudies::Chasm;
+using hylo::casestudies::chasm_of;
+using hylo::casestudies::letters;
+using hylo::casestudies::sequence_plan;
+using hylo::casestudies::widened;
 using hylo::scene::Scene;
 
 const char *kUsage =
@@ -61,8 +67,10 @@ const char *kUsage =
 	"  --jobs N    worker processes for exact edge costs and solves (default 2)\n"
 	"  --quick     a check: the DI convergence on 3 spacings instead of 10, Ambot\n"
 	"              plans without exact edge costs or smoothing, the Drivocopter\n"
-	"              sequences on the 30 m chasm from one switch placement\n"
-	"  The Drivocopter study logs each finished solve to DIR/results/drivocopter.solves\n"
+	"              sequences on the 30 m chasm from one switch placement, no crossover\n"
+	"  The Drivocopter study ends by locating the crossover from flying over to driving\n"
+	"  through to the metre (the two sequences solved on chasms widened in between).\n"
+	"  It logs each finished solve to DIR/results/drivocopter.solves\n"
 	"  and a rerun takes them from there (an interrupted run resumes); delete that\n"
 	"  file to solve again after changing the solver.\n";
 
@@ -597,106 +605,6 @@ std::string ambot_study(const Options &opt, std::string &md)
 
 // ---- study 3: Drivocopter, fixed mode sequences (the paper's Table I) -----
 
-// A chasm scene along the line from start to goal: platform 1 up to the
-// first wall at e1, the floor up to the second wall at e2, platform 2 after.
-struct Chasm {
-	double y = 0, x_start = 0, x_goal = 0, e1 = 0, e2 = 0, h_platform = 0, h_floor = 0, margin = 0;
-};
-
-Chasm chasm_of(const Scene &sc)
-{
-	Chasm c;
-	c.y = sc.goal.start.x[1];
-	c.x_start = sc.goal.start.x[0];
-	c.x_goal = sc.goal.goal.x[0];
-	c.margin = sc.resolution_m;   // switch points keep a cell from the walls
-	int iy = static_cast<int>((c.y - sc.origin_y_m) / sc.resolution_m);
-	int i0 = static_cast<int>((c.x_start - sc.origin_x_m) / sc.resolution_m);
-	int i1 = static_cast<int>((c.x_goal - sc.origin_x_m) / sc.resolution_m);
-	auto h = [&](int ix) { return sc.height_m[static_cast<size_t>(iy * sc.nx + ix)]; };
-	std::vector<double> walls;
-	for (int ix = i0; ix < i1; ix++)
-		if (std::fabs(h(ix + 1) - h(ix)) > sc.max_step_m)
-			walls.push_back(sc.origin_x_m + (ix + 1) * sc.resolution_m);
-	if (walls.size() != 2 || c.x_goal <= c.x_start)
-		throw std::runtime_error(sc.path + ": not a chasm scene (two walls between start and goal along x)");
-	c.e1 = walls[0];
-	c.e2 = walls[1];
-	c.h_platform = h(i0);
-	c.h_floor = h(i0 + static_cast<int>((c.e1 - c.x_start) / sc.resolution_m) + 1);
-	return c;
-}
-
-// A fixed mode sequence (D drive, F fly) across the chasm as a plan for the
-// smoother: D legs on platform 1 (first letter), platform 2 (last) or the
-// floor (between flights); switch points placed `lambda` of the way from the
-// wall they lead over (0: at the wall) to the leg's far end, every ground leg
-// through waypoints at most 4 m apart at 2 m/s, every flight through
-// waypoints at most 8 m apart at up to 8 m/s (3 m/s^2 from and to hover),
-// high enough above the platforms. These are only the initial guess: the
-// smoother lets every switch point slide along its whole platform or floor.
-std::vector<Waypoint> sequence_plan(const Chasm &c, const std::string &seq, double lambda)
-{
-	const int G = mode_number("ground"), F = mode_number("flight");
-	std::vector<Waypoint> w;
-	auto ground = [&](double x, double v, double heading, bool guard) {
-		Waypoint p;
-		p.mode = G;
-		p.guard = guard;
-		p.state[0] = x;
-		p.state[1] = c.y;
-		p.state[2] = v;
-		p.state[3] = heading;
-		w.push_back(p);
-	};
-	auto drive = [&](double x0, double x1, bool guard0, bool guard1) {
-		int n = std::max(1, static_cast<int>(std::ceil(std::fabs(x1 - x0) / 4)));
-		for (int i = 0; i <= n; i++)
-			ground(x0 + (x1 - x0) * i / n, i == 0 || i == n ? 0 : 2, 0, (i == 0 && guard0) || (i == n && guard1));
-	};
-	auto surface_h = [&](double x) { return x < c.e1 || x >= c.e2 ? c.h_platform : c.h_floor; };
-	auto fly = [&](double x0, double x1) {
-		double z0 = surface_h(x0) + 1, z1 = surface_h(x1) + 1, L = std::fabs(x1 - x0);
-		int n = std::max(1, static_cast<int>(std::ceil(L / 8)));
-		for (int i = 0; i <= n; i++) {
-			double s = L * i / n, x = x0 + (x1 - x0) * i / n;
-			double z = z0 + (z1 - z0) * i / n;
-			if (x < c.e1 || x >= c.e2)
-				z = std::max(z, c.h_platform + 1);
-			double v = i == 0 || i == n ? 0 : std::min(8.0, std::sqrt(6 * std::min(s, L - s)));
-			Waypoint p;
-			p.mode = F;
-			p.guard = i == 0 || i == n;
-			double st[6] = {x, c.y, z, x1 > x0 ? v : -v, 0, 0};
-			std::copy(st, st + 6, p.state);
-			w.push_back(p);
-		}
-	};
-	const double mid = 0.5 * (c.e1 + c.e2);
-	const size_t last = seq.size() - 1;
-	double x = c.x_start;
-	for (size_t i = 0; i < seq.size(); i++) {
-		if (seq[i] == 'D') {
-			double to = i == last	? c.x_goal
-				    : i == 0	? (c.e1 - c.margin) - lambda * (c.e1 - c.margin - c.x_start)
-						: (c.e2 - c.margin) - lambda * (c.e2 - c.margin - std::max(x, mid));
-			drive(x, to, i > 0, i < last);
-			x = to;
-		} else {
-			double to = i == last	    ? c.x_goal
-				    : i + 1 == last ? (c.e2 + c.margin) + lambda * (c.x_goal - c.e2 - c.margin)
-						    : (c.e1 + c.margin) + lambda * (mid - c.e1 - c.margin);
-			if (i == 0)
-				ground(x, 0, 0, true);
-			fly(x, to);
-			if (i == last)   // else the next (D) leg's first waypoint is the landing point
-				ground(to, 0, 0, true);
-			x = to;
-		}
-	}
-	return w;
-}
-
 // Lowest height of a solution's flight above the terrain under it [m].
 double flight_clearance(const MultiPhaseSolution &s, const Scene &sc)
 {
@@ -723,15 +631,6 @@ std::string letters(const hylo_plan &p)
 	std::string s;
 	for (uint32_t i = 0; i < p.n_modes; i++)
 		s += p.mode_sequence[i] == HYLO_MODE_FLIGHT ? 'F' : 'D';
-	return s;
-}
-
-std::string letters(const std::vector<Waypoint> &w)
-{
-	std::string s;
-	for (size_t i = 0; i < w.size(); i++)
-		if (i == 0 || w[i].mode != w[i - 1].mode)
-			s += w[i].mode == mode_number("flight") ? 'F' : 'D';
 	return s;
 }
 
@@ -823,6 +722,95 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		      const std::vector<std::string> &plan_seq, const std::vector<std::vector<std::string>> &flown_seq,
 		      const std::vector<double> &predicted, const std::vector<double> &plan_s, const TakeoffLanding &tl,
 		      std::string &md);
+
+// Per fixed sequence of chasm c, its cheapest converged record (empty: none).
+std::vector<std::vector<double>> best_fixed(const std::vector<ChasmItem> &items,
+					    const std::vector<std::vector<double>> &rec, size_t c, size_t n_seqs)
+{
+	std::vector<std::vector<double>> best(n_seqs);
+	for (size_t i = 0; i < items.size(); i++) {
+		if (items[i].chasm != c || items[i].seq < 0 || !std::isfinite(rec[i][0]))
+			continue;
+		std::vector<double> &b = best[static_cast<size_t>(items[i].seq)];
+		if (b.empty() || rec[i][0] < b[0])
+			b = rec[i];
+	}
+	return best;
+}
+
+double cost_of(const std::vector<double> &r) { return r.empty() ? NAN : r[0]; }
+
+// Where the best fixed sequence changes from flying over the chasm (A) to
+// driving through it (B), to the metre: between the two table widths that
+// bracket it, both sequences solved on widened chasms, each width by
+// false position on cost(A) - cost(B) (bisection while an end has no value).
+// Appends its section to md; returns its JSON (null: no change in the table).
+std::string crossover(const Options &opt, const RobotParams &robot, const TakeoffLanding &tl,
+		      const std::vector<int> &widths, const std::vector<Scene> &scenes,
+		      const std::vector<Chasm> &chasms, const std::vector<std::string> &seqs,
+		      const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
+		      const SolveLog &log, const std::string &robot_sha, std::string &md)
+{
+	std::vector<size_t> best(widths.size());
+	std::vector<std::vector<std::vector<double>>> fixed;
+	for (size_t c = 0; c < widths.size(); c++) {
+		fixed.push_back(best_fixed(items, rec, c, seqs.size()));
+		for (size_t q = 0; q < seqs.size(); q++)
+			if (cost_of(fixed[c][q]) < cost_of(fixed[c][best[c]]) || !std::isfinite(cost_of(fixed[c][best[c]])))
+				best[c] = q;
+	}
+	size_t c = 1;
+	auto drives = [&](size_t k) { return seqs[best[k]].find("FDF") != std::string::npos; };
+	while (c < widths.size() && !(drives(c) && !drives(c - 1)))
+		c++;
+	if (c == widths.size())
+		return "null";
+	const size_t qa = best[c - 1], qb = best[c];
+	const std::string &A = seqs[qa], &B = seqs[qb];
+	int lo = widths[c - 1], hi = widths[c];
+	double dlo = cost_of(fixed[c - 1][qa]) - cost_of(fixed[c - 1][qb]);
+	double dhi = cost_of(fixed[c][qa]) - cost_of(fixed[c][qb]);
+	std::string rows, js = "{\"from\": \"" + A + "\", \"to\": \"" + B + "\", \"solved\": [";
+	bool failed = false;
+	for (int round = 0; hi - lo > 1 && !failed; round++) {
+		double f = std::isfinite(dlo) && std::isfinite(dhi) ? -dlo / (dhi - dlo) : 0.5;
+		int w = std::clamp(static_cast<int>(std::lround(lo + f * (hi - lo))), lo + 1, hi - 1);
+		Scene sc = widened(scenes[c - 1], chasms[c - 1], w - widths[c - 1]);
+		Chasm ch = chasm_of(sc);
+		auto r = parallel_records(2, 9, opt.jobs, [&](size_t j) {
+			const std::string &seq = j ? B : A;
+			char key[200];
+			std::snprintf(key, sizeof key, "%.16s chasm_%03d %s placement %.3f", robot_sha.c_str(), w,
+				      seq.c_str(), 0.0);
+			if (const std::vector<double> *old = log.find(key))
+				return *old;
+			std::vector<double> v = smooth_record(robot, sequence_plan(ch, seq, 0.0), sc, tl);
+			std::fprintf(stderr, "  crossover: chasm %d m %s: %.1f J, %.0f s\n", w, seq.c_str(), v[0], v[4]);
+			log.add(key, v);
+			return v;
+		});
+		const double d = r[0][0] - r[1][0];
+		char row[160];
+		std::snprintf(row, sizeof row, "| %d | %.1f | %.1f | %+.1f |\n", w, r[0][0], r[1][0], d);
+		rows += row;
+		js += std::string(round ? ", " : "") + "{\"width_m\": " + std::to_string(w) + ", \"" + A +
+		      "\": " + num(r[0][0]) + ", \"" + B + "\": " + num(r[1][0]) + "}";
+		if (!std::isfinite(d))
+			failed = true;
+		else if (d < 0)
+			lo = w, dlo = d;
+		else
+			hi = w, dhi = d;
+	}
+	md += "\nThe crossover to the metre: " + A + " and " + B + " solved on chasms widened between " +
+	      std::to_string(widths[c - 1]) + " and " + std::to_string(widths[c]) +
+	      " m (floor columns inserted at the middle; each width chosen by false position on the cost "
+	      "difference):\n\n| width [m] | " + A + " | " + B + " | " + A + " - " + B + " |\n|---|---|---|---|\n" +
+	      rows + "\n" +
+	      (failed ? "A solve failed; the crossover lies between " : "So the crossover lies between ") +
+	      std::to_string(lo) + " m (" + A + " cheaper) and " + std::to_string(hi) + " m (" + B + " cheaper).\n";
+	return js + "], \"between_m\": [" + std::to_string(lo) + ", " + std::to_string(hi) + "]}";
+}
 
 // checkpoint(md, json) is called after each chasm with the results so far.
 std::string drivocopter_study(const Options &opt, std::string &md,
@@ -917,11 +905,15 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 		for (size_t j = 0; j < mine.size(); j++)
 			rec[mine[j]] = r[j];
 		md = head_md;
-		js = table_one(widths, done, seqs, lambdas.size(), items, rec, plan_seq, flown_seq, predicted, plan_s, tl,
-			       md);
-		checkpoint(md, js);
+		js = "{\"chasms\": " +
+		     table_one(widths, done, seqs, lambdas.size(), items, rec, plan_seq, flown_seq, predicted, plan_s,
+			       tl, md);
+		checkpoint(md, js + ", \"crossover\": null}");
 	}
-	return js;
+	if (!opt.quick)
+		js += ", \"crossover\": " +
+		      crossover(opt, robot, tl, widths, scenes, chasms, seqs, items, rec, log, robot_sha, md);
+	return js + "}";
 }
 
 // The table of study 3 for the first `done` chasms; returns its JSON.
@@ -950,25 +942,19 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	std::string js = "[";
 	std::vector<std::string> best_seq(done);
 	for (size_t c = 0; c < done; c++) {
-		std::vector<double> best(seqs.size(), NAN);
-		std::vector<std::vector<double>> best_rec(seqs.size());
+		const std::vector<std::vector<double>> best_rec = best_fixed(items, rec, c, seqs.size());
+		std::vector<double> best;
+		for (const std::vector<double> &r : best_rec)
+			best.push_back(cost_of(r));
 		const std::vector<double> *hylo = nullptr;   // the plan smoothed
 		std::vector<const std::vector<double> *> flown;   // its flown_over() neighbours smoothed
 		for (size_t i = 0; i < items.size(); i++) {
-			if (items[i].chasm != c)
+			if (items[i].chasm != c || items[i].seq >= 0)
 				continue;
-			if (items[i].seq < 0) {
-				if (items[i].flown < 0)
-					hylo = &rec[i];
-				else
-					flown.push_back(&rec[i]);
-				continue;
-			}
-			size_t q = static_cast<size_t>(items[i].seq);
-			if (std::isfinite(rec[i][0]) && !(rec[i][0] >= best[q])) {
-				best[q] = rec[i][0];
-				best_rec[q] = rec[i];
-			}
+			if (items[i].flown < 0)
+				hylo = &rec[i];
+			else
+				flown.push_back(&rec[i]);
 		}
 		size_t qb = 0;
 		for (size_t q = 0; q < seqs.size(); q++)
