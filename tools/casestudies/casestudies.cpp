@@ -743,7 +743,8 @@ double cost_of(const std::vector<double> &r) { return r.empty() ? NAN : r[0]; }
 // Where the best fixed sequence changes from flying over the chasm (A) to
 // driving through it (B), to the metre: between the two table widths that
 // bracket it, both sequences solved on widened chasms, each width by
-// false position on cost(A) - cost(B) (bisection while an end has no value).
+// false position on cost(A) - cost(B) (while the upper end has no value, the
+// secant through the two points below; else bisection).
 // Appends its section to md; returns its JSON (null: no change in the table).
 std::string crossover(const Options &opt, const RobotParams &robot, const TakeoffLanding &tl,
 		      const std::vector<int> &widths, const std::vector<Scene> &scenes,
@@ -770,11 +771,19 @@ std::string crossover(const Options &opt, const RobotParams &robot, const Takeof
 	int lo = widths[c - 1], hi = widths[c];
 	double dlo = cost_of(fixed[c - 1][qa]) - cost_of(fixed[c - 1][qb]);
 	double dhi = cost_of(fixed[c][qa]) - cost_of(fixed[c][qb]);
+	// Below the bracket: the secant's second point while hi has no value
+	// (a long flight's solve may fail there).
+	int w2 = c >= 2 ? widths[c - 2] : 0;
+	double d2 = c >= 2 ? cost_of(fixed[c - 2][qa]) - cost_of(fixed[c - 2][qb]) : NAN;
 	std::string rows, js = "{\"from\": \"" + A + "\", \"to\": \"" + B + "\", \"solved\": [";
 	bool failed = false;
 	for (int round = 0; hi - lo > 1 && !failed; round++) {
-		double f = std::isfinite(dlo) && std::isfinite(dhi) ? -dlo / (dhi - dlo) : 0.5;
-		int w = std::clamp(static_cast<int>(std::lround(lo + f * (hi - lo))), lo + 1, hi - 1);
+		double guess = 0.5 * (lo + hi);
+		if (std::isfinite(dlo) && std::isfinite(dhi))
+			guess = lo - dlo * (hi - lo) / (dhi - dlo);
+		else if (std::isfinite(dlo) && std::isfinite(d2) && dlo > d2)
+			guess = lo - dlo * (lo - w2) / (dlo - d2);
+		int w = std::clamp(static_cast<int>(std::lround(guess)), lo + 1, hi - 1);
 		Scene sc = widened(scenes[c - 1], chasms[c - 1], w - widths[c - 1]);
 		Chasm ch = chasm_of(sc);
 		auto r = parallel_records(2, 9, opt.jobs, [&](size_t j) {
@@ -798,18 +807,26 @@ std::string crossover(const Options &opt, const RobotParams &robot, const Takeof
 		if (!std::isfinite(d))
 			failed = true;
 		else if (d < 0)
-			lo = w, dlo = d;
+			w2 = lo, d2 = dlo, lo = w, dlo = d;
 		else
 			hi = w, dhi = d;
 	}
 	md += "\nThe crossover to the metre: " + A + " and " + B + " solved on chasms widened between " +
 	      std::to_string(widths[c - 1]) + " and " + std::to_string(widths[c]) +
-	      " m (floor columns inserted at the middle; each width chosen by false position on the cost "
-	      "difference):\n\n| width [m] | " + A + " | " + B + " | " + A + " - " + B + " |\n|---|---|---|---|\n" +
+	      " m (floor columns inserted at the middle; each width chosen by false position, or by the "
+	      "secant through the widths below, on the cost difference):\n\n| width [m] | " + A + " | " + B + " | " + A + " - " + B + " |\n|---|---|---|---|\n" +
 	      rows + "\n" +
 	      (failed ? "A solve failed; the crossover lies between " : "So the crossover lies between ") +
-	      std::to_string(lo) + " m (" + A + " cheaper) and " + std::to_string(hi) + " m (" + B + " cheaper).\n";
-	return js + "], \"between_m\": [" + std::to_string(lo) + ", " + std::to_string(hi) + "]}";
+	      std::to_string(lo) + " m (" + A + " cheaper) and " + std::to_string(hi) + " m (" + B + " cheaper)";
+	const double at = std::isfinite(dlo) && std::isfinite(dhi) ? lo - dlo * (hi - lo) / (dhi - dlo) : NAN;
+	if (std::isfinite(at)) {
+		char lin[96];
+		std::snprintf(lin, sizeof lin, ", at %.1f m by linear interpolation", at);
+		md += lin;
+	}
+	md += ".\n";
+	return js + "], \"between_m\": [" + std::to_string(lo) + ", " + std::to_string(hi) +
+	       "], \"interpolated_m\": " + num(at) + "}";
 }
 
 // checkpoint(md, json) is called after each chasm with the results so far.
@@ -1030,6 +1047,15 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		}
 	}
 	md += "\nCrossover from flying over the chasm to driving through it: " + cross + ".\n";
+	double solver_s = 0;
+	size_t n_solves = 0;
+	for (size_t i = 0; i < items.size(); i++)
+		if (items[i].chasm < done && std::isfinite(rec[i][4]))
+			solver_s += rec[i][4], n_solves++;
+	char took[128];
+	std::snprintf(took, sizeof took, "\n%zu solves, %.1f h of solver time (each solve's own time, from the log).\n",
+		      n_solves, solver_s / 3600);
+	md += took;
 	if (done < widths.size())
 		md += "\n(Partial: " + std::to_string(done) + " of " + std::to_string(widths.size()) + " chasms so far.)\n";
 	return js + "\n]";
