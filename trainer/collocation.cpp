@@ -231,6 +231,8 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool 
 	ok = ok && app->Options()->SetIntegerValue("max_iter", opt.max_iter);
 	ok = ok && app->Options()->SetStringValue("linear_solver", "mumps");
 	ok = ok && app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
+	if (opt.objective_scale != 1)
+		ok = ok && app->Options()->SetNumericValue("obj_scaling_factor", opt.objective_scale);
 	// Monotone barrier from a small start converged on every robot mode tried,
 	// where the adaptive strategy hit the iteration limit (stiff friction terms).
 	ok = ok && app->Options()->SetStringValue("mu_strategy", "monotone");

@@ -28,6 +28,8 @@ struct SolveOptions {
 					  // (flight's 20 ms; see smoothing_solve_options)
 	int step_max_iter = 0;            // > 0: the iteration limit of every step (cold start,
 					  // continuation, refinement) instead of its modes' limits
+	double objective_scale = 1;       // Ipopt's obj_scaling_factor: on top of the problem's own
+					  // objective scaling, 1 / max(1, 10 T_guess) (see smoothing_solve_options)
 	bool replay = true;               // check every solution with CVODE
 	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here

@@ -438,6 +438,7 @@ SolveOptions smoothing_solve_options()
 	o.replay_state_tol = 0.05;
 	o.max_step_s = 0.04;
 	o.step_max_iter = 1000;
+	o.objective_scale = 100;
 	return o;
 }
 

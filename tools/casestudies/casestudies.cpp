@@ -1001,8 +1001,8 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		for (size_t k = 0; k < flown.size(); k++)
 			fl += std::string(k ? ", " : "") + flown_seq[c][k] + " " + cost((*flown[k])[0]);
 		char pct[32] = "", tail[512];
-		if (std::isfinite(hs))
-			std::snprintf(pct, sizeof pct, "%+.2f%%", 100 * rel);
+		if (std::isfinite(hs))   // "0.00%" rather than "-0.00%" for a rounding-level difference
+			std::snprintf(pct, sizeof pct, "%+.2f%%", std::fabs(rel) < 5e-5 ? 0.0 : 100 * rel);
 		std::snprintf(tail, sizeof tail, " %s (%.1f) | %s | %s | %s | %s |\n", plan_seq[c].c_str(), predicted[c],
 			      cost((*hylo)[0]).c_str(), fl.empty() ? "none" : fl.c_str(),
 			      std::isfinite(hs) ? (res_seq + " " + cost(hs)).c_str() : "failed", pct);
