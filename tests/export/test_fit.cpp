@@ -64,8 +64,10 @@ hylo::trainer::FitOptions small_grid()
 	return o;
 }
 
-// The onboard view of a fitted model.
-hylo_svr_model view(const hylo::trainer::SvrExport &a, int nf)
+// The onboard view of a fitted regressor or classifier (a classifier's
+// decision value is unscaled: label offset 0, scale 1).
+template <class Export>
+hylo_svr_model view_of(const Export &a, int nf)
 {
 	hylo_svr_model m{};
 	m.name = "fitbot_ground";
@@ -77,6 +79,13 @@ hylo_svr_model view(const hylo::trainer::SvrExport &a, int nf)
 	m.coef = a.coef.data();
 	m.feature_offset = a.feature_offset.data();
 	m.feature_scale = a.feature_scale.data();
+	m.label_scale = 1;
+	return m;
+}
+
+hylo_svr_model view(const hylo::trainer::SvrExport &a, int nf)
+{
+	hylo_svr_model m = view_of(a, nf);
 	m.label_offset = a.label_offset;
 	m.label_scale = a.label_scale;
 	m.label_log = a.label_log;
@@ -163,17 +172,7 @@ int main()
 	ClassifierExport f;
 	ClassifierReport rf = fit_feasibility(5, d.x, d.feasible, o, f);
 	check(rf.accuracy > 0.9, "feasibility classifier held-out accuracy > 90%", std::to_string(rf.accuracy));
-	hylo_svr_model fm = m;
-	fm.n_sv = static_cast<uint32_t>(f.coef.size());
-	fm.gamma = f.gamma;
-	fm.rho = f.rho;
-	fm.sv = f.sv.data();
-	fm.coef = f.coef.data();
-	fm.feature_offset = f.feature_offset.data();
-	fm.feature_scale = f.feature_scale.data();
-	fm.label_offset = 0;
-	fm.label_scale = 1;
-	fm.label_log = 0;
+	hylo_svr_model fm = view_of(f, 5);
 	size_t agree = 0;
 	for (size_t i = 0; i < fresh.cost.size(); i++)
 		agree += (hylo_svr_predict(&fm, &fresh.x[5 * i]) >= 0) == fresh.feasible[i];
