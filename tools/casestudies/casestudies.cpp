@@ -705,6 +705,25 @@ public:
 			close(fd);
 	}
 
+	// The record of one chasm solve, "what" on the chasm `width` m wide from
+	// placement lambda: from the log, else solve() and logged.
+	std::vector<double> solve(const std::string &robot_sha, int width, const std::string &what, double lambda,
+				  const std::function<std::vector<double>()> &solve) const
+	{
+		char key[200];
+		std::snprintf(key, sizeof key, "%.16s chasm_%03d %s placement %.3f", robot_sha.c_str(), width,
+			      what.c_str(), lambda);
+		if (const std::vector<double> *old = find(key)) {
+			std::fprintf(stderr, "  %s: from %s\n", key, path_.c_str());
+			return *old;
+		}
+		std::vector<double> v = solve();
+		std::fprintf(stderr, "  chasm %d m %s (placement %.1f): %.1f J, %.0f s\n", width, what.c_str(), lambda,
+			     v[0], v[4]);
+		add(key, v);
+		return v;
+	}
+
 private:
 	std::string path_;
 	std::map<std::string, std::vector<double>> done_;
@@ -740,6 +759,27 @@ std::vector<std::vector<double>> best_fixed(const std::vector<ChasmItem> &items,
 
 double cost_of(const std::vector<double> &r) { return r.empty() ? NAN : r[0]; }
 
+// Index of the cheapest finite cost (0 if none is).
+size_t cheapest(const std::vector<double> &costs)
+{
+	size_t qb = 0;
+	for (size_t q = 0; q < costs.size(); q++)
+		if (std::isfinite(costs[q]) && !(costs[q] >= costs[qb]))
+			qb = q;
+	return qb;
+}
+
+// The first chasm whose best sequence drives on the floor after one whose
+// best flies over it; best_seq.size() if none.
+size_t first_drive_change(const std::vector<std::string> &best_seq)
+{
+	auto drives = [&](size_t k) { return best_seq[k].find("FDF") != std::string::npos; };
+	size_t c = 1;
+	while (c < best_seq.size() && !(drives(c) && !drives(c - 1)))
+		c++;
+	return c;
+}
+
 // Where the best fixed sequence changes from flying over the chasm (A) to
 // driving through it (B), to the metre: between the two table widths that
 // bracket it, both sequences solved on widened chasms, each width by
@@ -752,18 +792,18 @@ std::string crossover(const Options &opt, const RobotParams &robot, const Takeof
 		      const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
 		      const SolveLog &log, const std::string &robot_sha, std::string &md)
 {
-	std::vector<size_t> best(widths.size());
+	std::vector<size_t> best;
+	std::vector<std::string> best_seq;
 	std::vector<std::vector<std::vector<double>>> fixed;
 	for (size_t c = 0; c < widths.size(); c++) {
 		fixed.push_back(best_fixed(items, rec, c, seqs.size()));
-		for (size_t q = 0; q < seqs.size(); q++)
-			if (cost_of(fixed[c][q]) < cost_of(fixed[c][best[c]]) || !std::isfinite(cost_of(fixed[c][best[c]])))
-				best[c] = q;
+		std::vector<double> costs;
+		for (const std::vector<double> &r : fixed.back())
+			costs.push_back(cost_of(r));
+		best.push_back(cheapest(costs));
+		best_seq.push_back(seqs[best.back()]);
 	}
-	size_t c = 1;
-	auto drives = [&](size_t k) { return seqs[best[k]].find("FDF") != std::string::npos; };
-	while (c < widths.size() && !(drives(c) && !drives(c - 1)))
-		c++;
+	const size_t c = first_drive_change(best_seq);
 	if (c == widths.size())
 		return "null";
 	const size_t qa = best[c - 1], qb = best[c];
@@ -788,15 +828,8 @@ std::string crossover(const Options &opt, const RobotParams &robot, const Takeof
 		Chasm ch = chasm_of(sc);
 		auto r = parallel_records(2, 9, opt.jobs, [&](size_t j) {
 			const std::string &seq = j ? B : A;
-			char key[200];
-			std::snprintf(key, sizeof key, "%.16s chasm_%03d %s placement %.3f", robot_sha.c_str(), w,
-				      seq.c_str(), 0.0);
-			if (const std::vector<double> *old = log.find(key))
-				return *old;
-			std::vector<double> v = smooth_record(robot, sequence_plan(ch, seq, 0.0), sc, tl);
-			std::fprintf(stderr, "  crossover: chasm %d m %s: %.1f J, %.0f s\n", w, seq.c_str(), v[0], v[4]);
-			log.add(key, v);
-			return v;
+			return log.solve(robot_sha, w, seq, 0.0,
+					 [&] { return smooth_record(robot, sequence_plan(ch, seq, 0.0), sc, tl); });
 		});
 		const double d = r[0][0] - r[1][0];
 		char row[160];
@@ -902,22 +935,14 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 			if (it.flown >= 0)
 				what += " flown over " + std::to_string(it.flown) + " " +
 					flown_seq[it.chasm][static_cast<size_t>(it.flown)];
-			char key[200];
-			std::snprintf(key, sizeof key, "%.16s chasm_%03d %s placement %.3f", robot_sha.c_str(),
-				      widths[it.chasm], what.c_str(), it.lambda);
-			if (const std::vector<double> *old = log.find(key)) {
-				std::fprintf(stderr, "  %s: from %s\n", key, log_path.c_str());
-				return *old;
-			}
-			std::vector<Waypoint> w =
-				it.seq >= 0  ? sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)], it.lambda)
-				: it.flown < 0 ? plans[it.chasm]
-					       : flown[it.chasm][static_cast<size_t>(it.flown)];
-			std::vector<double> v = smooth_record(robot, w, scenes[it.chasm], tl);
-			std::fprintf(stderr, "  chasm %d m %s (placement %.1f): %.1f J, %.0f s\n", widths[it.chasm],
-				     what.c_str(), it.lambda, v[0], v[4]);
-			log.add(key, v);
-			return v;
+			return log.solve(robot_sha, widths[it.chasm], what, it.lambda, [&] {
+				std::vector<Waypoint> w =
+					it.seq >= 0 ? sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)],
+								    it.lambda)
+					: it.flown < 0 ? plans[it.chasm]
+						       : flown[it.chasm][static_cast<size_t>(it.flown)];
+				return smooth_record(robot, w, scenes[it.chasm], tl);
+			});
 		});
 		for (size_t j = 0; j < mine.size(); j++)
 			rec[mine[j]] = r[j];
@@ -973,10 +998,7 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 			else
 				flown.push_back(&rec[i]);
 		}
-		size_t qb = 0;
-		for (size_t q = 0; q < seqs.size(); q++)
-			if (std::isfinite(best[q]) && !(best[q] >= best[qb]))
-				qb = q;
+		const size_t qb = cheapest(best);
 		best_seq[c] = seqs[qb];
 		// hylo's result: the cheapest converged of the plan and its neighbours.
 		const std::vector<double> *res = hylo;
@@ -1037,15 +1059,9 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	// The crossover: the first width whose best sequence drives on the floor.
 	std::string cross = "none between " + std::to_string(widths.front()) + " and " +
 			    std::to_string(widths[done - 1]) + " m";
-	for (size_t c = 1; c < done; c++) {
-		bool before = best_seq[c - 1].find("FDF") != std::string::npos;
-		bool after = best_seq[c].find("FDF") != std::string::npos;
-		if (!before && after) {
-			cross = "between " + std::to_string(widths[c - 1]) + " m (" + best_seq[c - 1] + ") and " +
-				std::to_string(widths[c]) + " m (" + best_seq[c] + ")";
-			break;
-		}
-	}
+	if (size_t c = first_drive_change(best_seq); c < done)
+		cross = "between " + std::to_string(widths[c - 1]) + " m (" + best_seq[c - 1] + ") and " +
+			std::to_string(widths[c]) + " m (" + best_seq[c] + ")";
 	md += "\nCrossover from flying over the chasm to driving through it: " + cross + ".\n";
 	double solver_s = 0;
 	size_t n_solves = 0;
