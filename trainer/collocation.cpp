@@ -465,10 +465,17 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 				     p.setups[0].T_guess, p.setups[0].segments, relax, status_text(st), it);
 		return std::make_pair(st, it);
 	};
-	for (const std::vector<double> &Ts : starts_T) {
-		if (best.converged && first_accepted)
-			break;
-		Stacked p = base;
+	// A start after its continuation on the coarse mesh: the cost (with the
+	// switches') and duration it reached there.
+	struct Coarse {
+		Stacked p;
+		Ipopt::SmartPtr<CollocationNlp> nlp;
+		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
+		double cost = 0, T = 0;
+	};
+	auto coarse = [&](const std::vector<double> &Ts, Coarse &c) {
+		Stacked &p = c.p;
+		p = base;
 		for (size_t k = 0; k < p.setups.size(); k++) {
 			p.setups[k].T_guess = Ts[k];
 			const ModeInfo &i = p.info[k];
@@ -480,29 +487,40 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 				p.setups[k].guess = i.path_guess(p.setups[k].guess[0], p.setups[k].guess[1], Ts[k]);
 		}
 		best.starts++;
-		// Continuation on the coarse mesh: smoother problems first, each
-		// starting the next; the last (1) has models.md's exact constants.
+		// Continuation: smoother problems first, each starting the next; the
+		// last (1) has models.md's exact constants.
 		std::vector<double> start;
-		Ipopt::SmartPtr<CollocationNlp> nlp;
-		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
 		for (double relax : levels) {
 			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
-			res = run(p, relax, start, nlp, !start.empty(), step_opt);
-			if (succeeded(res.first))
-				start = nlp->solution();
+			c.res = run(p, relax, start, c.nlp, !start.empty(), step_opt);
+			if (succeeded(c.res.first))
+				start = c.nlp->solution();
 			else if (give_up)
 				break;
 		}
-		if (!opt.derivative_test_file.empty())
-			return best;
-		if (!succeeded(res.first))
-			continue;
+		if (!succeeded(c.res.first))
+			return false;
 		best.converged_starts++;
-		// Mesh refinement until the replays agree: each finer mesh starts
-		// from the coarser solution (its knots and midpoints become knots).
+		c.cost = switch_cost;
+		for (size_t k = 0; k < p.setups.size(); k++) {
+			Solution ph;
+			c.nlp->fill(k, ph);
+			c.cost += ph.cost;
+			c.T += ph.T;
+		}
+		return true;
+	};
+	// Mesh refinement until the replays agree: each finer mesh starts from
+	// the coarser solution (its knots and midpoints become knots). Keeps the
+	// result if it is the cheapest so far.
+	auto refine = [&](Coarse &c) {
+		best.refined_starts++;
+		Stacked &p = c.p;
+		Ipopt::SmartPtr<CollocationNlp> &nlp = c.nlp;
+		std::pair<Ipopt::ApplicationReturnStatus, int> res = c.res;
 		int iterations = res.second;
-		for (int refine = 0;; refine++) {
+		for (int refinement = 0;; refinement++) {
 			MultiPhaseSolution s;
 			s.modes = p.modes;
 			s.status = static_cast<int>(res.first);
@@ -538,12 +556,13 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 				if (s.cost < best.cost) {
 					s.starts = best.starts;
 					s.converged_starts = best.converged_starts;
+					s.refined_starts = best.refined_starts;
 					best = std::move(s);
 				}
-				break;
+				return;
 			}
-			if (refine >= refinements)
-				break;
+			if (refinement >= refinements)
+				return;
 			// Only the phases whose replay failed get the finer mesh.
 			std::vector<double> fine = nlp->refined(failed);
 			for (size_t k = 0; k < p.setups.size(); k++)
@@ -552,8 +571,44 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 			res = run(p, 1.0, fine, nlp, true, step_opt);
 			iterations += res.second;
 			if (!succeeded(res.first))
-				break;
+				return;
 		}
+	};
+	if (first_accepted || !std::isfinite(opt.refine_within)) {
+		// Each start in turn, refined as soon as it converges.
+		for (const std::vector<double> &Ts : starts_T) {
+			if (best.converged && first_accepted)
+				break;
+			Coarse c;
+			bool ok = coarse(Ts, c);
+			if (!opt.derivative_test_file.empty())
+				return best;
+			if (ok)
+				refine(c);
+		}
+	} else {
+		// Every start on the coarse mesh first. A start that reached an
+		// earlier one's solution (cost and duration to 1e-6) is not refined
+		// again, nor one whose coarse cost is more than refine_within above
+		// the best refined result: refinement lowers costs by a few percent.
+		std::vector<Coarse> reached;
+		for (const std::vector<double> &Ts : starts_T) {
+			Coarse c;
+			bool ok = coarse(Ts, c);
+			if (!opt.derivative_test_file.empty())
+				return best;
+			auto same = [&](const Coarse &o) {
+				return std::fabs(o.cost - c.cost) <= 1e-6 * std::fabs(o.cost) &&
+				       std::fabs(o.T - c.T) <= 1e-6 * o.T;
+			};
+			if (ok && std::none_of(reached.begin(), reached.end(), same))
+				reached.push_back(std::move(c));
+		}
+		std::stable_sort(reached.begin(), reached.end(),
+				 [](const Coarse &a, const Coarse &b) { return a.cost < b.cost; });
+		for (Coarse &c : reached)
+			if (!best.converged || c.cost <= best.cost * (1 + opt.refine_within))
+				refine(c);
 	}
 	if (!best.converged) {
 		best.cost = 0;
@@ -677,6 +732,7 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 	out.iterations = m.iterations;
 	out.starts = m.starts;
 	out.converged_starts = m.converged_starts;
+	out.refined_starts = m.refined_starts;
 	out.solve_seconds = m.solve_seconds;
 	if (!m.converged)
 		out.cost = 0;

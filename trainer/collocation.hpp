@@ -7,6 +7,7 @@
 #ifndef HYLO_TRAINER_COLLOCATION_HPP
 #define HYLO_TRAINER_COLLOCATION_HPP
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,6 +31,12 @@ struct SolveOptions {
 					  // continuation, refinement) instead of its modes' limits
 	double objective_scale = 1;       // Ipopt's obj_scaling_factor: on top of the problem's own
 					  // objective scaling, 1 / max(1, 10 T_guess) (see smoothing_solve_options)
+	// Finite: every start is first solved on the coarse mesh; only starts
+	// that reached a solution of their own and whose coarse cost is within
+	// this fraction of the best refined result are refined (training data
+	// generation, training_solve_options). Infinite: each start is refined.
+	// Modes that keep their first accepted start (flight) ignore it.
+	double refine_within = std::numeric_limits<double>::infinity();
 	bool replay = true;               // check every solution with CVODE
 	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here
@@ -48,6 +55,7 @@ struct Solution {
 	std::string status_text;
 	int iterations = 0;               // of the kept start
 	int starts = 0, converged_starts = 0;
+	int refined_starts = 0;           // starts taken on to the replay and mesh refinement
 	int segments = 0;
 	double cost = 0;                  // J [J]
 	double T = 0;                     // [s]
@@ -125,6 +133,7 @@ struct MultiPhaseSolution {
 	std::string status_text;
 	int iterations = 0;
 	int starts = 0, converged_starts = 0;
+	int refined_starts = 0;        // starts taken on to the replay and mesh refinement
 	double cost = 0;               // sum of the phase costs plus switch_cost [J]
 	double T = 0;                  // total duration [s]
 	double replay_cost = 0;        // sum of the phases' CVODE replay costs plus switch_cost [J]

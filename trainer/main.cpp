@@ -40,7 +40,8 @@ void usage(FILE *f)
 		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required)\n"
 		"  --stage S         gen, fit, export or all (default: all)\n"
-		"  --samples N       training pairs (default: 11520; flight 17016; di 2000)\n"
+		"  --samples N       training pairs: gen extends the dataset to N rows, fit uses\n"
+		"                    its first N (default: 11520; flight 17016; di 2000)\n"
 		"  --jobs J          worker processes (default: number of cores)\n"
 		"  --seed S          seed of the sample stream (default: 1)\n"
 		"  --out DIR         dataset directory (default: build/datasets/<robot>)\n"
@@ -101,11 +102,11 @@ void print_solution(const Solution &s, const std::string &mode, const std::strin
 	}
 	std::printf("{\"robot\":\"%s\",\"mode\":\"%s\",\"x1\":%s,\"x2\":%s,\"converged\":%s,"
 		    "\"status\":\"%s\",\"cost_j\":%.17g,\"T_s\":%.17g,\"iterations\":%d,\"segments\":%d,"
-		    "\"starts\":%d,\"converged_starts\":%d,\"replay_error\":%s,\"replay_cost_j\":%s,"
+		    "\"starts\":%d,\"converged_starts\":%d,\"refined_starts\":%d,\"replay_error\":%s,\"replay_cost_j\":%s,"
 		    "\"solve_s\":%.6f",
 		    robot.c_str(), mode.c_str(), arr(a.data(), a.size()).c_str(),
 		    arr(b.data(), b.size()).c_str(), s.converged ? "true" : "false", s.status_text.c_str(),
-		    s.cost, s.T, s.iterations, s.segments, s.starts, s.converged_starts,
+		    s.cost, s.T, s.iterations, s.segments, s.starts, s.converged_starts, s.refined_starts,
 		    arr(&s.replay_error, 1).substr(1, arr(&s.replay_error, 1).size() - 2).c_str(),
 		    arr(&s.replay_cost, 1).substr(1, arr(&s.replay_cost, 1).size() - 2).c_str(),
 		    s.solve_seconds);

@@ -1,6 +1,7 @@
 #include "trainer/pipeline.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -19,6 +20,7 @@ struct Rows {
 	std::vector<double> x_conv, cost, x_all;
 	std::vector<bool> feasible;
 	size_t n = 0;
+	std::string sha256;   // of the bytes read: the header line and the n rows
 };
 
 std::string slurp(const std::string &path)
@@ -31,7 +33,10 @@ std::string slurp(const std::string &path)
 	return ss.str();
 }
 
-Rows read_dataset(const std::string &path, const std::string &mode)
+// Reads the header and at most max_rows rows: a dataset only grows at its
+// end, so a model fitted on its first rows stays reproducible after more are
+// generated.
+Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max_rows)
 {
 	std::string text = slurp(path);
 	std::istringstream in(text);
@@ -53,7 +58,7 @@ Rows read_dataset(const std::string &path, const std::string &mode)
 		if (cols[k] == "converged") i_conv = k;
 	}
 	Rows r;
-	for (size_t lineno = 2; std::getline(in, line); lineno++) {
+	for (size_t lineno = 2; r.n < max_rows && std::getline(in, line); lineno++) {
 		std::vector<std::string> f;
 		std::stringstream ss(line);
 		std::string c;
@@ -81,6 +86,8 @@ Rows read_dataset(const std::string &path, const std::string &mode)
 		}
 		r.n++;
 	}
+	std::streamoff end = in.tellg();
+	r.sha256 = sha256_hex(end < 0 ? text : text.substr(0, static_cast<size_t>(end)));
 	return r;
 }
 
@@ -124,7 +131,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	if (meta.find("params_sha256: " + sha256_file(robot.path)) == std::string::npos ||
 	    meta.find("robot: " + robot.robot + "\n") == std::string::npos)
 		throw std::invalid_argument(path + " was generated from another robot file than " + robot.path);
-	Rows rows = read_dataset(path, g.mode);
+	Rows rows = read_dataset(path, g.mode, g.samples);
 	const ModeParams &p = robot.mode(g.mode);
 	int nf = static_cast<int>(features(g.mode, std::vector<double>(6).data(), std::vector<double>(6).data()).size());
 	FitOptions fo;
@@ -155,7 +162,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	m.provenance = {
 		{"robot file", "trainer/params/" + robot.robot + ".yaml"},   // location-independent
 		{"robot file sha256", sha256_file(robot.path)},
-		{"dataset sha256", sha256_file(path)},
+		{"dataset sha256", rows.sha256},   // the whole file unless rows were appended since
 		{"samples", std::to_string(rows.n) + " (" + std::to_string(rows.cost.size()) + " converged)"},
 		{"seed", std::to_string(g.seed)},
 		{"held-out errors", buf},

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The committed model headers (onboard/models/): each compiles alone as
 # strict C99 and passes hylo_svr_check; its provenance matches the robot file
-# and the committed dataset (trainer/datasets/) it was fitted on; and
-# refitting one from its dataset gives the same bytes.
+# and the rows of the committed dataset (trainer/datasets/) it was fitted on
+# (the first `samples` rows: a dataset may have grown since); and refitting
+# one from its dataset gives the same bytes.
 set -u
 cd "$(dirname "$0")/../.."
 . tests/tap.sh
@@ -26,7 +27,9 @@ for h in onboard/models/*_*.h; do
   ds=trainer/datasets/$robot/$mode.csv
   want_ds=$(sed -n 's/^ \* dataset sha256: //p' "$h")
   want_rf=$(sed -n 's/^ \* robot file sha256: //p' "$h")
-  if [ -f "$ds" ] && [ "$want_ds" = "$(sha256sum "$ds" | cut -d' ' -f1)" ] &&
+  rows=$(sed -n 's/^ \* samples: \([0-9]*\).*/\1/p' "$h")
+  if [ -f "$ds" ] && [ -n "$rows" ] &&
+     [ "$want_ds" = "$(head -n $((rows + 1)) "$ds" | sha256sum | cut -d' ' -f1)" ] &&
      [ "$want_rf" = "$(sha256sum "trainer/params/$robot.yaml" | cut -d' ' -f1)" ]; then
     tap_ok "$base.h: provenance matches $ds and trainer/params/$robot.yaml"; else
     tap_not_ok "$base.h: provenance matches $ds and trainer/params/$robot.yaml" "dataset ${want_ds:-none}"; fi
@@ -39,9 +42,10 @@ case "$base" in
   *_di_neg|*_di_pos) mode=di_${base##*_di_}; robot=${base%_di_*} ;;
   *) mode=${base##*_}; robot=${base%_*} ;;
 esac
+rows=$(sed -n 's/^ \* samples: \([0-9]*\).*/\1/p' "$small")
 mkdir -p "$T/ds"
 cp "trainer/datasets/$robot/$mode.csv" "trainer/datasets/$robot/$mode.csv.meta" "$T/ds/"
-if "$B/bin/trainer" --robot "$robot" --mode "$mode" --stage fit --out "$T/ds" --quiet > "$T/fit.out" 2>&1 &&
+if "$B/bin/trainer" --robot "$robot" --mode "$mode" --stage fit --samples "$rows" --out "$T/ds" --quiet > "$T/fit.out" 2>&1 &&
    cmp -s "$T/ds/$base.h" "$small"; then
   tap_ok "refitting $base from its dataset reproduces the committed header byte for byte"; else
   tap_not_ok "refitting $base from its dataset reproduces the committed header byte for byte" "$(tail -3 "$T/fit.out")"; fi

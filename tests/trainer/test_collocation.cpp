@@ -82,6 +82,15 @@ int main()
 	      "double integrator: the CVODE replay reproduces end state and cost",
 	      std::to_string(f.replay_error));
 
+	// Training options: the three starts reach one optimum on the coarse
+	// mesh (to 1e-6), so only one is refined, to the same cost.
+	Solution t = solve_bvp("di_neg", di, a, b, training_solve_options());
+	check(f.refined_starts == 3 && t.refined_starts == 1 && t.converged &&
+		      std::fabs(t.cost - f.cost) <= 1e-6 * f.cost,
+	      "training options: starts that reach the same coarse optimum are refined once, same cost",
+	      std::to_string(f.refined_starts) + " and " + std::to_string(t.refined_starts) + " refined, " +
+		      std::to_string(t.cost) + " vs " + std::to_string(f.cost));
+
 	// A corrupted control: the replay must notice.
 	Solution bad = f;
 	for (size_t k = 0; k < bad.traj.u.size(); k++)

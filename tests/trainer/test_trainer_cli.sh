@@ -111,6 +111,21 @@ else
 fi
 grep "^fit" "$T/pipe.out" | sed 's/^/# /'
 
+# Fitting on a dataset's first rows (a dataset grows at its end): --samples
+# 200 on the 300-row file gives the bytes of a fit on a 200-row copy, and
+# the header names the hash of those rows.
+mkdir -p "$T/first" "$T/cut"
+cp "$T/pipe/di_neg.csv" "$T/pipe/di_neg.csv.meta" "$T/first/"
+head -n 201 "$T/pipe/di_neg.csv" > "$T/cut/di_neg.csv"
+cp "$T/pipe/di_neg.csv.meta" "$T/cut/"
+"$TR" --mode di_neg --robot di --stage fit --samples 200 --seed 5 --quiet --out "$T/first" > /dev/null 2>&1
+"$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/cut" > /dev/null 2>&1
+if [ -s "$T/first/di_di_neg.h" ] && cmp -s "$T/first/di_di_neg.h" "$T/cut/di_di_neg.h" &&
+   grep -q "samples: 200 " "$T/first/di_di_neg.h" &&
+   grep -q "dataset sha256: $(sha256sum < "$T/cut/di_neg.csv" | cut -d' ' -f1)" "$T/first/di_di_neg.h"; then
+  tap_ok "--stage fit --samples 200 fits the first 200 rows and names their hash"; else
+  tap_not_ok "--stage fit --samples 200 fits the first 200 rows and names their hash" "$(grep -E 'samples|dataset' "$T/first/di_di_neg.h" | head -2)"; fi
+
 # Bad datasets: a clear error and no header.
 mkdir -p "$T/bad" "$T/badmodels"
 cp "$T/pipe/di_neg.csv.meta" "$T/bad/"
