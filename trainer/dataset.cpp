@@ -118,15 +118,34 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 
 }  // namespace
 
-std::vector<double> features(const std::string &mode, const double *a, const double *b)
+// The onboard code's, so training and planning cannot disagree.
+std::vector<double> relative_coords(const std::string &mode, const double *a, const double *b)
 {
-	// The onboard code's, so training and planning cannot disagree.
 	const hylo_mode m = static_cast<hylo_mode>(mode_number(mode));
-	std::vector<double> f(hylo_feature_count(m));
-	if (f.empty())
+	std::vector<double> r(hylo_relative_count(m));
+	if (r.empty())
 		throw std::invalid_argument("features: no mode " + mode);
-	hylo_features(m, a, b, f.data());
+	hylo_relative(m, a, b, r.data());
+	return r;
+}
+
+std::vector<double> features_of_relative(const std::string &mode, const std::vector<double> &r)
+{
+	const hylo_mode m = static_cast<hylo_mode>(mode_number(mode));
+	if (r.size() != hylo_relative_count(m) || r.empty())
+		throw std::invalid_argument("features: " + std::to_string(r.size()) +
+					    " relative coordinates for mode " + mode);
+	std::vector<double> f(hylo_feature_count(m));
+	hylo_features_of_relative(m, r.data(), f.data());
 	return f;
+}
+
+int feature_count(const std::string &mode)
+{
+	unsigned n = hylo_feature_count(static_cast<hylo_mode>(mode_number(mode)));
+	if (n == 0)
+		throw std::invalid_argument("features: no mode " + mode);
+	return static_cast<int>(n);
 }
 
 std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
@@ -204,7 +223,7 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 std::vector<std::string> csv_columns(const std::string &mode)
 {
 	std::vector<std::string> c = {"index"};
-	size_t nf = features(mode, std::vector<double>(6).data(), std::vector<double>(6).data()).size();
+	size_t nf = relative_coords(mode, std::vector<double>(6).data(), std::vector<double>(6).data()).size();
 	for (size_t k = 0; k < nf; k++)
 		c.push_back("f" + std::to_string(k));
 	int d = sampled_dim(mode);
@@ -222,7 +241,7 @@ std::string csv_row(const std::string &mode, uint64_t i, const double *a, const 
 		    const Solution &s)
 {
 	std::string row = std::to_string(i);
-	for (double f : features(mode, a, b))
+	for (double f : relative_coords(mode, a, b))
 		row += "," + num(f);
 	int d = sampled_dim(mode);
 	for (int k = 0; k < d; k++)

@@ -46,8 +46,16 @@ struct GenSummary {
 	std::string path;
 };
 
-// Features of models.md section 7 for a pair of sampled states.
-std::vector<double> features(const std::string &mode, const double *x1s, const double *x2s);
+// Relative coordinates of models.md section 7 for a pair of sampled states,
+// the columns f0, f1, ... of a dataset (hylo_relative, onboard/features.h).
+std::vector<double> relative_coords(const std::string &mode, const double *x1s, const double *x2s);
+
+// The model's features of relative coordinates r (hylo_features_of_relative):
+// what the fit and the onboard planner see.
+std::vector<double> features_of_relative(const std::string &mode, const std::vector<double> &r);
+
+// Number of features of mode (throws std::invalid_argument for no mode).
+int feature_count(const std::string &mode);
 
 // Sign flips of the features that leave a mode's optimal cost unchanged, one
 // vector of +-1 per flip (the fit trains on each sample's mirror images too).

@@ -35,7 +35,8 @@ std::string slurp(const std::string &path)
 
 // Reads the header and at most max_rows rows: a dataset only grows at its
 // end, so a model fitted on its first rows stays reproducible after more are
-// generated.
+// generated. Rows store relative coordinates; the features are computed from
+// them here, so new features need no new dataset.
 Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max_rows)
 {
 	std::string text = slurp(path);
@@ -49,9 +50,9 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 		expect += (expect.empty() ? "" : ",") + c;
 	if (line != expect)
 		throw std::invalid_argument(path + ":1: not a " + mode + " dataset (unexpected header)");
-	size_t nf = 0;
+	size_t nr = 0;   // relative coordinates, f0, f1, ...
 	for (const auto &c : cols)
-		nf += c.size() > 1 && c[0] == 'f' && std::isdigit(static_cast<unsigned char>(c[1]));
+		nr += c.size() > 1 && c[0] == 'f' && std::isdigit(static_cast<unsigned char>(c[1]));
 	size_t i_cost = 0, i_conv = 0;
 	for (size_t k = 0; k < cols.size(); k++) {
 		if (cols[k] == "cost_j") i_cost = k;
@@ -68,14 +69,15 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 			throw std::invalid_argument(path + ":" + std::to_string(lineno) + ": " +
 						    std::to_string(f.size()) + " fields, expected " +
 						    std::to_string(cols.size()));
-		std::vector<double> feat(nf);
-		for (size_t k = 0; k < nf; k++) {
+		std::vector<double> rel(nr);
+		for (size_t k = 0; k < nr; k++) {
 			char *e = nullptr;
-			feat[k] = std::strtod(f[1 + k].c_str(), &e);
-			if (*e || !std::isfinite(feat[k]))
+			rel[k] = std::strtod(f[1 + k].c_str(), &e);
+			if (*e || !std::isfinite(rel[k]))
 				throw std::invalid_argument(path + ":" + std::to_string(lineno) + ": bad number '" +
 							    f[1 + k] + "'");
 		}
+		std::vector<double> feat = features_of_relative(mode, rel);
 		bool conv = f[i_conv] == "1";
 		double cost = std::strtod(f[i_cost].c_str(), nullptr);
 		r.x_all.insert(r.x_all.end(), feat.begin(), feat.end());
@@ -133,7 +135,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		throw std::invalid_argument(path + " was generated from another robot file than " + robot.path);
 	Rows rows = read_dataset(path, g.mode, g.samples);
 	const ModeParams &p = robot.mode(g.mode);
-	int nf = static_cast<int>(features(g.mode, std::vector<double>(6).data(), std::vector<double>(6).data()).size());
+	int nf = feature_count(g.mode);
 	FitOptions fo;
 	fo.seed = g.seed;
 	fo.jobs = g.jobs;

@@ -7,6 +7,10 @@
 #include <stdexcept>
 #include <system_error>
 
+extern "C" {
+#include "hylo/features.h"
+}
+
 namespace hylo::trainer {
 namespace {
 
@@ -20,11 +24,11 @@ const char *mode_enum(const std::string &mode)
 	throw std::invalid_argument("svr export: unknown mode '" + mode + "'");
 }
 
-int feature_count(const std::string &mode)
+unsigned mode_features(const std::string &mode)
 {
-	if (mode == "ground" || mode == "marine") return 5;
-	if (mode == "flight") return 9;
-	return 4;
+	if (mode == "ground" || mode == "marine") return HYLO_FEATURES_PLANAR;
+	if (mode == "flight") return HYLO_FEATURES_FLIGHT;
+	return HYLO_FEATURES_DI;
 }
 
 bool is_identifier(const std::string &s, bool upper)
@@ -122,9 +126,9 @@ void check(const SvrExport &m)
 		throw std::invalid_argument("svr export: robot name '" + m.robot +
 					    "' is not a lower-case C identifier");
 	mode_enum(m.mode);
-	if (m.n_features != feature_count(m.mode))
+	if (static_cast<unsigned>(m.n_features) != mode_features(m.mode))
 		throw std::invalid_argument("svr export: mode " + m.mode + " has " +
-					    std::to_string(feature_count(m.mode)) +
+					    std::to_string(mode_features(m.mode)) +
 					    " features, the model " + std::to_string(m.n_features));
 	check_arrays(m.n_features, m.sv, m.coef, m.feature_offset, m.feature_scale, m.gamma, m.rho,
 		     "cost model");

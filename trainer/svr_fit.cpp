@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <cstdlib>
+#include <cstdio>
 
 #include <libsvm/svm.h>
 
@@ -224,14 +226,14 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	// Cross-validation on a deterministic subset of the training split.
 	std::vector<size_t> cv(train.begin(),
 			       train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
-	struct Point { double C, gamma, eps, err; };
+	struct Point { double C, gamma, eps, err, median; };
 	std::vector<Point> grid;
 	for (double C : opt.C)
 		for (double g : opt.gamma)
 			for (double e : opt.epsilon)
-				grid.push_back({C, g, e, 0});
+				grid.push_back({C, g, e, 0, 0});
 	size_t k = static_cast<size_t>(opt.folds);
-	std::vector<double> fold_err(grid.size() * k, 0.0);
+	std::vector<std::vector<double>> fold_rel(grid.size() * k);   // per validation sample
 	parallel_for(grid.size() * k, opt.jobs, [&](size_t job) {
 		const Point &pt = grid[job / k];
 		size_t f = job % k;
@@ -242,21 +244,41 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 		svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
 		svm_model *m = svm_train(&p.prob, &par);
 		Problem v(nf, xa, val_idx, target, offset, scale);
-		double err = 0;
 		for (size_t r = 0; r < val_idx.size(); r++) {
 			double pred = std::exp(svm_predict(m, v.rows[r]) * lscale + mean);
-			err += std::fabs(pred - cost[val_idx[r]]) / cost[val_idx[r]];
+			fold_rel[job].push_back(std::fabs(pred - cost[val_idx[r]]) / cost[val_idx[r]]);
 		}
-		fold_err[job] = err / static_cast<double>(val_idx.size());
 		svm_free_and_destroy_model(&m);
 	});
 	size_t best = 0;
 	for (size_t g = 0; g < grid.size(); g++) {
-		for (size_t f = 0; f < k; f++)
-			grid[g].err += fold_err[g * k + f] / static_cast<double>(k);
+		std::vector<double> all;
+		for (size_t f = 0; f < k; f++) {
+			const std::vector<double> &rel = fold_rel[g * k + f];
+			double sum = 0;
+			for (double e : rel)
+				sum += e;
+			grid[g].err += sum / static_cast<double>(rel.size()) / static_cast<double>(k);
+			all.insert(all.end(), rel.begin(), rel.end());
+		}
+		grid[g].median = quantile(all, 0.5);
 		if (grid[g].err < grid[best].err)
 			best = g;
 	}
+	if (std::getenv("HYLO_TRAINER_DEBUG"))
+		for (const Point &pt : grid)
+			std::fprintf(stderr, "cv: C %g gamma %g epsilon %g: relative error mean %.5f, median %.5f\n",
+				     pt.C, pt.gamma, pt.eps, pt.err, pt.median);
+	// The sparse choice (large models only): the widest tube whose median
+	// error is within the budget and whose mean error is near the best; else
+	// the best.
+	size_t chosen = best;
+	for (size_t g = 0; train.size() > opt.sparse_min_train && g < grid.size(); g++)
+		if (grid[g].median <= opt.sparse_median && grid[g].err <= grid[best].err * (1 + opt.sparse_mean_slack) &&
+		    (grid[g].eps > grid[chosen].eps ||
+		     (grid[g].eps == grid[chosen].eps && grid[g].err < grid[chosen].err)))
+			chosen = g;
+	best = chosen;
 
 	// The final fit on the whole training split.
 	Problem p(nf, xa, train_all, target, offset, scale);

@@ -2,6 +2,12 @@
 #include <stddef.h>
 #include "hylo/features.h"
 
+unsigned hylo_relative_count(hylo_mode mode)
+{
+	return mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE ? HYLO_RELATIVE_PLANAR :
+	       hylo_feature_count(mode);
+}
+
 unsigned hylo_feature_count(hylo_mode mode)
 {
 	switch (mode) {
@@ -59,7 +65,7 @@ static void flight_frame(const hylo_real *tail, const hylo_real *head, hylo_real
 	*s = 0;
 }
 
-unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
+unsigned hylo_relative(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
 		       hylo_real *f)
 {
 	unsigned k;
@@ -75,7 +81,7 @@ unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 		f[2] = hylo_wrap_angle(head[3] - tail[3]);
 		f[3] = tail[2];
 		f[4] = head[2];
-		return HYLO_FEATURES_PLANAR;
+		return HYLO_RELATIVE_PLANAR;
 	}
 	case HYLO_MODE_FLIGHT: {
 		hylo_real c, s;
@@ -101,4 +107,38 @@ unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 	default:
 		return 0;
 	}
+}
+
+unsigned hylo_features_of_relative(hylo_mode mode, const hylo_real *r, hylo_real *f)
+{
+	unsigned k, n;
+
+	if (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) {
+		hylo_real s = r[1] < 0 ? -1 : 1, dy = s * r[1], dth = s * r[2];
+		hylo_real b = atan2(dy, r[0]);  /* [0, pi] */
+
+		f[0] = r[0];
+		f[1] = dy;
+		f[2] = dth;
+		f[3] = r[3];
+		f[4] = r[4];
+		f[5] = hypot(r[0], dy);
+		f[6] = b + fabs(hylo_wrap_angle(dth - b));
+		f[7] = fabs(hylo_wrap_angle(dth - 2 * b));
+		return HYLO_FEATURES_PLANAR;
+	}
+	n = hylo_feature_count(mode);
+	for (k = 0; k < n; k++)
+		f[k] = r[k];
+	return n;
+}
+
+unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
+		       hylo_real *f)
+{
+	hylo_real r[HYLO_FEATURES_FLIGHT];  /* the most relative coordinates of any mode */
+
+	if (hylo_relative(mode, tail, head, r) == 0)
+		return 0;
+	return hylo_features_of_relative(mode, r, f);
 }

@@ -1,6 +1,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+#include "hylo/features.h"
 #include "hylo/svr.h"
 
 /*
@@ -187,22 +188,24 @@ void hylo_svr_cache_reset(hylo_svr_cache *c)
 		c->n_used[k] = 0;
 }
 
-/* The groups of svr.h for nf features (planar (dx', dy', dtheta, vx1, vx2),
- * flight (dp, v1, v2), the double integrator's (p1, v1, p2, v2)); any other
- * count: one group per feature. */
+/* The groups of svr.h for nf features (planar (dx', |dy'|, s*dtheta, vx1, vx2,
+ * d, turn, arc), flight (dp, v1, v2), the double integrator's (p1, v1, p2,
+ * v2)); any other count: one group per feature. */
 static void feature_groups(hylo_svr_cache *c, uint32_t nf)
 {
-	static const uint32_t planar[5] = { 3, 0, 1, 4, 2 }, planar_begin[5] = { 0, 1, 3, 4, 5 };
+	static const uint32_t planar[8] = { 3, 0, 1, 2, 5, 6, 7, 4 }, planar_begin[4] = { 0, 1, 7, 8 };
 	static const uint32_t flight[9] = { 3, 4, 5, 0, 1, 2, 6, 7, 8 }, flight_begin[4] = { 0, 3, 6, 9 };
 	static const uint32_t di_begin[3] = { 0, 2, 4 };
 	uint32_t k;
 
 	for (k = 0; k < nf; k++)
-		c->order[k] = nf == 5 ? planar[k] : nf == 9 ? flight[k] : k;
-	c->n_groups = nf == 5 ? 4 : nf == 9 ? 3 : nf == 4 ? 2 : nf;
+		c->order[k] = nf == HYLO_FEATURES_PLANAR ? planar[k] : nf == HYLO_FEATURES_FLIGHT ? flight[k] : k;
+	c->n_groups = nf == HYLO_FEATURES_PLANAR ? 3 : nf == HYLO_FEATURES_FLIGHT ? 3 :
+		      nf == HYLO_FEATURES_DI ? 2 : nf;
 	for (k = 0; k <= c->n_groups; k++)
-		c->group_begin[k] = nf == 5 ? planar_begin[k] : nf == 9 ? flight_begin[k] :
-				    nf == 4 ? di_begin[k] : k;
+		c->group_begin[k] = nf == HYLO_FEATURES_PLANAR ? planar_begin[k] :
+				    nf == HYLO_FEATURES_FLIGHT ? flight_begin[k] :
+				    nf == HYLO_FEATURES_DI ? di_begin[k] : k;
 }
 
 /* The factor row exp(-gamma |z_G - s_G|^2) of group g at the standardized

@@ -1,5 +1,5 @@
 // Trains a small epsilon-SVR (cost) and C-SVC (feasibility) with libsvm on a
-// smooth function of the 5 planar features, exports them with the trainer's
+// smooth function of the 8 planar features, exports them with the trainer's
 // exporter as OUT_DIR/testbot_ground.h, and writes libsvm's own predictions
 // on held-out points to OUT_DIR/reference.txt (%.17g), which
 // tests/export/test_export.c compares with the onboard evaluator.
@@ -14,11 +14,14 @@
 
 #include <libsvm/svm.h>
 
+extern "C" {
+#include "hylo/features.h"
+}
 #include "trainer/svr_export.hpp"
 
 namespace {
 
-constexpr int kF = 5, kTrain = 300, kTest = 200;
+constexpr int kF = HYLO_FEATURES_PLANAR, kTrain = 300, kTest = 200;
 
 struct Rng {
 	uint64_t s;
@@ -29,13 +32,16 @@ struct Rng {
 	}
 };
 
+// The features of random relative coordinates (dx', dy', dtheta, vx1, vx2).
 void draw(Rng &r, double *x)
 {
-	x[0] = r.uniform(-4, 4);
-	x[1] = r.uniform(-4, 4);
-	x[2] = r.uniform(-3.14, 3.14);
-	x[3] = r.uniform(0, 1);
-	x[4] = r.uniform(0, 1);
+	double rel[HYLO_RELATIVE_PLANAR];
+	rel[0] = r.uniform(-4, 4);
+	rel[1] = r.uniform(-4, 4);
+	rel[2] = r.uniform(-3.14, 3.14);
+	rel[3] = r.uniform(0, 1);
+	rel[4] = r.uniform(0, 1);
+	hylo_features_of_relative(HYLO_MODE_GROUND, rel, x);
 }
 
 double cost(const double *x)
@@ -46,8 +52,8 @@ double cost(const double *x)
 
 bool feasible(const double *x) { return std::fabs(x[2]) < 2.0 || std::hypot(x[0], x[1]) > 1.5; }
 
-const double kOffset[kF] = {0, 0, 0, 0.5, 0.5};
-const double kScale[kF] = {2.3, 2.3, 1.8, 0.29, 0.29};
+const double kOffset[kF] = {0, 2, 0, 0.5, 0.5, 3, 2, 1.6};
+const double kScale[kF] = {2.3, 1.2, 1.8, 0.29, 0.29, 1.4, 1.2, 0.9};
 
 void nodes(const double *x, svm_node *n)
 {

@@ -15,11 +15,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "hylo/features.h"
 #include "testbot_ground.h"
 
 #define N_MAX 512
 
-static double x[N_MAX][5], want_cost[N_MAX], want_feas[N_MAX];
+static double x[N_MAX][HYLO_FEATURES_PLANAR], want_cost[N_MAX], want_feas[N_MAX];
 static int n;
 static hylo_svr_cache cache;
 
@@ -30,7 +31,7 @@ static void load(void)
 
 	assert_non_null(f);
 	for (n = 0; n < N_MAX; n++) {
-		for (k = 0; k < 5; k++)
+		for (k = 0; k < HYLO_FEATURES_PLANAR; k++)
 			if (fscanf(f, "%lf", &x[n][k]) != 1)
 				goto done;
 		if (fscanf(f, "%lf %lf", &want_cost[n], &want_feas[n]) != 2)
@@ -50,7 +51,7 @@ static void assert_close(double got, double want)
 static void test_header_shape(void **state)
 {
 	(void)state;
-	assert_int_equal(HYLO_MODEL_TESTBOT_GROUND_N_FEATURES, 5);
+	assert_int_equal(HYLO_MODEL_TESTBOT_GROUND_N_FEATURES, HYLO_FEATURES_PLANAR);
 	assert_int_equal(HYLO_MODEL_TESTBOT_GROUND_MODE, HYLO_MODE_GROUND);
 	assert_int_equal(hylo_model_testbot_ground.n_sv, HYLO_MODEL_TESTBOT_GROUND_N_SV);
 	assert_true(HYLO_MODEL_TESTBOT_GROUND_N_SV > 10);

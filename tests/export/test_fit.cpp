@@ -1,5 +1,5 @@
 // The model fit (trainer/svr_fit.cpp) on a smooth synthetic energy function
-// of the 5 planar features: accuracy on held-out data, determinism across
+// of 5 planar quantities: accuracy on held-out data, determinism across
 // runs and thread counts, the exported model evaluated by the onboard code,
 // and clear errors on unusable data. Prints TAP.
 #include <algorithm>
@@ -112,9 +112,27 @@ int main()
 
 	o.jobs = 2;
 	fit_cost(5, d.x, d.cost, o, b);
-	a.robot = b.robot = "fitbot";
-	a.mode = b.mode = "ground";
-	check(svr_header_text(a) == svr_header_text(b), "same data and seed, 1 or 2 threads: same header bytes");
+	check(a.sv == b.sv && a.coef == b.coef && a.rho == b.rho && a.gamma == b.gamma &&
+		      a.feature_offset == b.feature_offset && a.feature_scale == b.feature_scale &&
+		      a.label_offset == b.label_offset && a.label_scale == b.label_scale,
+	      "same data and seed, 1 or 2 threads: the same model, bit for bit");
+
+	// The widest tube within the budget: none takes the most accurate point;
+	// a loose one the widest epsilon, with fewer support vectors.
+	{
+		FitOptions t = small_grid();
+		t.epsilon = {0.005, 0.1};
+		t.sparse_median = 0;
+		t.sparse_min_train = 0;
+		SvrExport tight, loose;
+		FitReport rt = fit_cost(5, d.x, d.cost, t, tight);
+		t.sparse_median = t.sparse_mean_slack = 1e9;
+		FitReport rl = fit_cost(5, d.x, d.cost, t, loose);
+		check(rl.epsilon == 0.1 && rl.n_sv < rt.n_sv && rl.cv_mean_rel_error >= rt.cv_mean_rel_error,
+		      "sparsity budget: a loose one picks the widest tube, with fewer SVs and no better CV error",
+		      std::to_string(rt.n_sv) + " SVs at epsilon " + std::to_string(rt.epsilon) + ", " +
+			      std::to_string(rl.n_sv) + " at " + std::to_string(rl.epsilon));
+	}
 
 	// The exported model, evaluated by the onboard code, gives libsvm's fit.
 	hylo_svr_model m = view(a, 5);

@@ -48,8 +48,8 @@ void __wrap_free(void *p)
 /* A small SVR model, so that the built-in SVR path runs too. */
 #define NSV 24
 static double sv[NSV * HYLO_FEATURES_PLANAR], coef[NSV];
-static const double offset[HYLO_FEATURES_PLANAR] = { 0, 0, 0, 0.5, 0.5 };
-static const double scale[HYLO_FEATURES_PLANAR] = { 3, 3, 2, 0.5, 0.5 };
+static const double offset[HYLO_FEATURES_PLANAR] = { 0, 0, 0, 0.5, 0.5, 2, 2, 1.5 };
+static const double scale[HYLO_FEATURES_PLANAR] = { 3, 3, 2, 0.5, 0.5, 3, 2, 1 };
 static hylo_svr_model model = {
 	.name = "test_ground", .n_sv = NSV, .n_features = HYLO_FEATURES_PLANAR,
 	.gamma = 0.5, .rho = -20.0, .sv = sv, .coef = coef,

@@ -567,17 +567,17 @@ static void test_negative_costs_clamped(void **state)
 }
 
 /* A feasibility classifier that accepts an edge iff its heading change is at
- * most 1 rad: one SV at the origin, kernel exp(-dtheta^2) (the other features
- * are scaled away), rho = exp(-1). */
-static const double feas_sv[5] = { 0, 0, 0, 0, 0 };
+ * most 1 rad: one SV at the origin, kernel exp(-dtheta^2) (feature 2 is
+ * +-dtheta; the others are scaled away), rho = exp(-1). */
+static const double feas_sv[HYLO_FEATURES_PLANAR] = { 0 };
 static const double feas_coef[1] = { 1 };
-static const double feas_offset[5] = { 0, 0, 0, 0, 0 };
-static const double feas_scale[5] = { 1e9, 1e9, 1, 1e9, 1e9 };
+static const double feas_offset[HYLO_FEATURES_PLANAR] = { 0 };
+static const double feas_scale[HYLO_FEATURES_PLANAR] = { 1e9, 1e9, 1, 1e9, 1e9, 1e9, 1e9, 1e9 };
 
 static void test_feasibility_classifier(void **state)
 {
 	hylo_svr_model feas = {
-		.name = "turn_limit", .n_sv = 1, .n_features = 5, .gamma = 1.0,
+		.name = "turn_limit", .n_sv = 1, .n_features = HYLO_FEATURES_PLANAR, .gamma = 1.0,
 		.rho = 0.36787944117144233, .sv = feas_sv, .coef = feas_coef,
 		.feature_offset = feas_offset, .feature_scale = feas_scale,
 		.label_offset = 0, .label_scale = 1, .label_log = 0,

@@ -1,12 +1,13 @@
 // Writes the synthetic ground model used by the benchmarks: an RBF model with
-// 2,000 support vectors over the 5 planar features, in the exported-header
+// 2,000 support vectors over the 8 planar features, in the exported-header
 // format, so that the benchmarks exercise the exact code path of a trained
 // model without a long libsvm fit at build time.
 //
 // The model is a regularized kernel interpolation of a plausible energy
 // function (cost grows with distance, turning and speed change):
 //   c = 3 J/m * d * (1 + 0.3 |dtheta| / pi + 0.2 |vx2 - vx1|) + 0.5 J
-// at 2,000 random feature points (the support vectors), coefficients from
+// at 2,000 random relative coordinates (their features are the support
+// vectors, hylo_features_of_relative), coefficients from
 // (K + 1e-2 I) a = standardized c. Deterministic: fixed seed, own RNG.
 //
 // Usage: make_synthetic_model OUT.h
@@ -18,11 +19,14 @@
 
 #include <Eigen/Dense>
 
+extern "C" {
+#include "hylo/features.h"
+}
 #include "trainer/svr_export.hpp"
 
 namespace {
 
-constexpr int kSv = 2000, kF = 5;
+constexpr int kSv = 2000, kR = HYLO_RELATIVE_PLANAR, kF = HYLO_FEATURES_PLANAR;
 constexpr double kRadius = 10.0, kGamma = 0.3, kPi = 3.14159265358979323846;
 
 struct SplitMix {
@@ -52,30 +56,38 @@ int main(int argc, char **argv)
 		return 2;
 	}
 	try {
-		// Feature ranges: displacement in a disc of kRadius, heading change,
-		// speeds in [0, 1]; standardized as uniform variables.
-		const double lo[kF] = {-kRadius, -kRadius, -kPi, 0, 0};
-		const double hi[kF] = {kRadius, kRadius, kPi, 1, 1};
+		// Relative coordinates: displacement in a disc of kRadius, heading
+		// change, speeds in [0, 1]; features standardized by their sample
+		// mean and deviation.
+		const double lo[kR] = {-kRadius, -kRadius, -kPi, 0, 0};
+		const double hi[kR] = {kRadius, kRadius, kPi, 1, 1};
 		hylo::trainer::SvrExport m;
 		m.robot = "synthetic";
 		m.mode = "ground";
 		m.n_features = kF;
-		for (int k = 0; k < kF; k++) {
-			m.feature_offset.push_back(0.5 * (lo[k] + hi[k]));
-			m.feature_scale.push_back((hi[k] - lo[k]) / std::sqrt(12.0));
-		}
 		SplitMix rng{20261122};
 		std::vector<double> raw(kSv * kF), cost(kSv);
 		for (int i = 0; i < kSv; i++) {
-			double *f = &raw[i * kF];
+			double r[kR];
 			do {
-				for (int k = 0; k < kF; k++)
-					f[k] = rng.uniform(lo[k], hi[k]);
-			} while (std::hypot(f[0], f[1]) > kRadius);
-			cost[i] = true_cost(f);
-			for (int k = 0; k < kF; k++)
-				m.sv.push_back((f[k] - m.feature_offset[k]) / m.feature_scale[k]);
+				for (int k = 0; k < kR; k++)
+					r[k] = rng.uniform(lo[k], hi[k]);
+			} while (std::hypot(r[0], r[1]) > kRadius);
+			cost[i] = true_cost(r);
+			hylo_features_of_relative(HYLO_MODE_GROUND, r, &raw[i * kF]);
 		}
+		for (int k = 0; k < kF; k++) {
+			double mu = 0, v = 0;
+			for (int i = 0; i < kSv; i++)
+				mu += raw[i * kF + k] / kSv;
+			for (int i = 0; i < kSv; i++)
+				v += (raw[i * kF + k] - mu) * (raw[i * kF + k] - mu) / kSv;
+			m.feature_offset.push_back(mu);
+			m.feature_scale.push_back(std::sqrt(v));
+		}
+		for (int i = 0; i < kSv; i++)
+			for (int k = 0; k < kF; k++)
+				m.sv.push_back((raw[i * kF + k] - m.feature_offset[k]) / m.feature_scale[k]);
 		double mean = 0, var = 0;
 		for (double c : cost)
 			mean += c / kSv;

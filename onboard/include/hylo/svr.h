@@ -65,21 +65,21 @@ double hylo_svr_cost_floor(const hylo_svr_model *m, double distance_m);
 
 /*
  * Batch evaluation for a search expansion: the planner evaluates many edges
- * from one tail, whose features repeat values (the tail's speed, the grid of
- * head headings and speeds, a head position's displacement shared by all its
- * combinations). The RBF kernel factorizes over groups G of features,
+ * from one tail, whose features repeat values (the tail's speed, a head
+ * position's displacement and heading shared by its speeds, the grid of head
+ * speeds). The RBF kernel factorizes over groups G of features,
  *   exp(-gamma*|z - s|^2) = prod_G exp(-gamma*|z_G - s_G|^2),
- * the groups being what changes together: planar (vx1), (dx', dy'), (vx2),
- * (dtheta); flight (v1), (dp), (v2); the double integrator (p1, v1),
- * (p2, v2). The cache keeps, per group, the factor vectors (one value per SV)
- * of the last HYLO_SVR_CACHE_VALUES distinct values seen. It also keeps the
- * running products coef_i * f_G0 * f_G1 * ... of the previous prediction in
- * that group order (tail first, then the displacement, then the head's speed,
- * then its heading: the order in which the planner's edges vary least to
- * most), so that an edge differing from the previous one only in its head
- * heading costs one multiplication per SV, and a new head position one
- * exponential per SV. The product order is fixed, so results do not depend on
- * what was evaluated before.
+ * the groups being what changes together: planar (vx1), (the displacement
+ * and heading: dx', |dy'|, s*dtheta, d, turn, arc), (vx2); flight (v1),
+ * (dp), (v2); the double integrator (p1, v1), (p2, v2). The cache keeps, per
+ * group, the factor vectors (one value per SV) of the last
+ * HYLO_SVR_CACHE_VALUES distinct values seen. It also keeps the running
+ * products coef_i * f_G0 * f_G1 * ... of the previous prediction in that
+ * group order (tail first, then the head's pose, then its speed), so that an
+ * edge differing from a recent one only in its head speed or heading costs
+ * one or two multiplications per SV, and a new head pose one exponential
+ * per SV. The product order is fixed, so results do not depend on what was
+ * evaluated before.
  */
 typedef struct {
 	const hylo_svr_model *model;   /* the cache is valid for this model only */
