@@ -14,21 +14,22 @@ extern "C" {
 namespace hylo::trainer {
 namespace {
 
-const char *mode_enum(const std::string &mode)
-{
-	if (mode == "ground") return "HYLO_MODE_GROUND";
-	if (mode == "marine") return "HYLO_MODE_MARINE";
-	if (mode == "flight") return "HYLO_MODE_FLIGHT";
-	if (mode == "di_neg") return "HYLO_MODE_DI_NEG";
-	if (mode == "di_pos") return "HYLO_MODE_DI_POS";
-	throw std::invalid_argument("svr export: unknown mode '" + mode + "'");
-}
+struct ModeName {
+	const char *name, *c_name;
+	hylo_mode value;
+};
 
-unsigned mode_features(const std::string &mode)
+const ModeName &mode_enum(const std::string &mode)
 {
-	if (mode == "ground" || mode == "marine") return HYLO_FEATURES_PLANAR;
-	if (mode == "flight") return HYLO_FEATURES_FLIGHT;
-	return HYLO_FEATURES_DI;
+	static const ModeName modes[] = {{"ground", "HYLO_MODE_GROUND", HYLO_MODE_GROUND},
+					 {"marine", "HYLO_MODE_MARINE", HYLO_MODE_MARINE},
+					 {"flight", "HYLO_MODE_FLIGHT", HYLO_MODE_FLIGHT},
+					 {"di_neg", "HYLO_MODE_DI_NEG", HYLO_MODE_DI_NEG},
+					 {"di_pos", "HYLO_MODE_DI_POS", HYLO_MODE_DI_POS}};
+	for (const ModeName &m : modes)
+		if (mode == m.name)
+			return m;
+	throw std::invalid_argument("svr export: unknown mode '" + mode + "'");
 }
 
 bool is_identifier(const std::string &s, bool upper)
@@ -125,10 +126,9 @@ void check(const SvrExport &m)
 	if (!is_identifier(m.robot, false))
 		throw std::invalid_argument("svr export: robot name '" + m.robot +
 					    "' is not a lower-case C identifier");
-	mode_enum(m.mode);
-	if (static_cast<unsigned>(m.n_features) != mode_features(m.mode))
-		throw std::invalid_argument("svr export: mode " + m.mode + " has " +
-					    std::to_string(mode_features(m.mode)) +
+	const unsigned nf = hylo_feature_count(mode_enum(m.mode).value);
+	if (static_cast<unsigned>(m.n_features) != nf)
+		throw std::invalid_argument("svr export: mode " + m.mode + " has " + std::to_string(nf) +
 					    " features, the model " + std::to_string(m.n_features));
 	check_arrays(m.n_features, m.sv, m.coef, m.feature_offset, m.feature_scale, m.gamma, m.rho,
 		     "cost model");
@@ -196,7 +196,7 @@ std::string svr_header_text(const SvrExport &m)
 	out += " */\n";
 	out += "#ifndef " + mac + "_H\n#define " + mac + "_H\n\n";
 	out += "#include \"hylo/svr.h\"\n\n";
-	out += "#define " + mac + "_MODE " + mode_enum(m.mode) + "\n";
+	out += "#define " + mac + "_MODE " + mode_enum(m.mode).c_name + "\n";
 	out += "#define " + mac + "_N_SV " + std::to_string(m.coef.size()) + "\n";
 	out += "#define " + mac + "_N_FEATURES " + std::to_string(m.n_features) + "\n";
 	for (const auto &c : m.constants)
