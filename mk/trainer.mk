@@ -34,9 +34,13 @@ MULTIPHASE_TEST := $(BUILD)/test/trainer/test_multiphase
 $(MULTIPHASE_TEST): tests/trainer/test_multiphase.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+RELABEL_TEST := $(BUILD)/test/trainer/test_relabel
+$(RELABEL_TEST): tests/trainer/test_relabel.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
-ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) tests/trainer/test_trainer_cli.sh
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST)
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) tests/trainer/test_trainer_cli.sh
 
 # make models: regenerates every committed model (datasets resume; see the
 # README for the time it takes). MODEL_SAMPLES= overrides the sample counts.

@@ -321,7 +321,34 @@ struct ModeInfo {
 	// given its duration T (the start's).
 	std::function<std::vector<std::vector<double>>(const std::vector<double> &a,
 						       const std::vector<double> &b, double T)> path_guess;
+	// Set: the initial guesses of a BVP a -> b besides the straight line
+	// (solve_bvp_strategies).
+	std::function<std::vector<std::vector<std::vector<double>>>(const std::vector<double> &a,
+								    const std::vector<double> &b)> strategy_paths;
 };
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Planar modes, x = (px, py, vx, vy, theta, omega, ...): two paths through
+// the midpoint, one backing up with the start's heading, one driving forward
+// facing the goal. From the straight line alone, solves of goals behind the
+// robot often settled on driving forward and turning round, up to a third
+// above the backing-up optimum (README, Models).
+std::vector<std::vector<std::vector<double>>> planar_strategy_paths(const std::vector<double> &a,
+								    const std::vector<double> &b,
+								    const Bounds &bd, double speed)
+{
+	std::vector<double> mid = a;
+	mid[0] = 0.5 * (a[0] + b[0]);
+	mid[1] = 0.5 * (a[1] + b[1]);
+	mid[3] = mid[5] = 0;
+	std::vector<double> back = mid, face = mid;
+	back[2] = std::max(-speed, bd.x_lo[2]);
+	face[2] = std::min(speed, bd.x_hi[2]);
+	double bearing = std::atan2(b[1] - a[1], b[0] - a[0]);
+	face[4] = a[4] + std::remainder(bearing - a[4], 2 * kPi);
+	return {{a, back, b}, {a, face, b}};
+}
 
 template <class M>
 ModeInfo info_of(const M &model)
@@ -376,6 +403,13 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 			return fm.path_guess(a, b, T, 16);
 		};
 	}
+	if (mode == "ground" || mode == "marine") {
+		Bounds bd = i.bounds;
+		double speed = i.typical_speed;
+		i.strategy_paths = [bd, speed](const std::vector<double> &a, const std::vector<double> &b) {
+			return planar_strategy_paths(a, b, bd, speed);
+		};
+	}
 	return i;
 }
 
@@ -412,12 +446,21 @@ Ipopt::SmartPtr<CollocationNlp> build(const Stacked &p, double relax)
 	return new CollocationNlp(std::move(blocks), std::move(rows));
 }
 
-// Solves from each start (one set of phase setups per start): continuation
-// over the smoothing on the coarse mesh, then mesh refinement until every
-// phase's replay passes. Keeps the cheapest.
-MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
-				 const std::vector<std::vector<double>> &starts_T, double switch_cost,
-				 const SolveOptions &opt)
+// A start: every phase's duration guess, and the states phase 0's guess runs
+// through (empty: the base's).
+struct Start {
+	std::vector<double> T;
+	std::vector<std::vector<double>> path;
+};
+
+// Solves from each start: continuation over the smoothing on the coarse
+// mesh, then mesh refinement until every phase's replay passes. Keeps the
+// cheapest. With opt.refine_within finite, a start is not refined whose
+// coarse cost is that fraction above the cheaper of the best refined result
+// and incumbent (a cost already known for the problem).
+MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const std::vector<Start> &starts,
+				 double switch_cost, const SolveOptions &opt,
+				 double incumbent = std::numeric_limits<double>::infinity())
 {
 	auto t0 = std::chrono::steady_clock::now();
 	MultiPhaseSolution best;
@@ -473,9 +516,12 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
 		double cost = 0, T = 0;
 	};
-	auto coarse = [&](const std::vector<double> &Ts, Coarse &c) {
+	auto coarse = [&](const Start &st, Coarse &c) {
+		const std::vector<double> &Ts = st.T;
 		Stacked &p = c.p;
 		p = base;
+		if (!st.path.empty())
+			p.setups[0].guess = st.path;
 		for (size_t k = 0; k < p.setups.size(); k++) {
 			p.setups[k].T_guess = Ts[k];
 			const ModeInfo &i = p.info[k];
@@ -576,11 +622,11 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 	};
 	if (first_accepted || !std::isfinite(opt.refine_within)) {
 		// Each start in turn, refined as soon as it converges.
-		for (const std::vector<double> &Ts : starts_T) {
+		for (const Start &st : starts) {
 			if (best.converged && first_accepted)
 				break;
 			Coarse c;
-			bool ok = coarse(Ts, c);
+			bool ok = coarse(st, c);
 			if (!opt.derivative_test_file.empty())
 				return best;
 			if (ok)
@@ -592,9 +638,9 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		// again, nor one whose coarse cost is more than refine_within above
 		// the best refined result: refinement lowers costs by a few percent.
 		std::vector<Coarse> reached;
-		for (const std::vector<double> &Ts : starts_T) {
+		for (const Start &st : starts) {
 			Coarse c;
-			bool ok = coarse(Ts, c);
+			bool ok = coarse(st, c);
 			if (!opt.derivative_test_file.empty())
 				return best;
 			auto same = [&](const Coarse &o) {
@@ -607,7 +653,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base,
 		std::stable_sort(reached.begin(), reached.end(),
 				 [](const Coarse &a, const Coarse &b) { return a.cost < b.cost; });
 		for (Coarse &c : reached)
-			if (!best.converged || c.cost <= best.cost * (1 + opt.refine_within))
+			if (c.cost <= std::min(best.converged ? best.cost : incumbent, incumbent) * (1 + opt.refine_within))
 				refine(c);
 	}
 	if (!best.converged) {
@@ -698,31 +744,41 @@ std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::stri
 	return {b.x_lo, b.x_hi};
 }
 
-Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
-		   const double *x2s, const SolveOptions &opt)
-{
-	ModeInfo info = mode_info(mode, robot);
-	std::vector<double> a = info.full_state(x1s), b = info.full_state(x2s);
-	check_state(a, info.bounds, mode);
-	check_state(b, info.bounds, mode);
-	const Bounds &bd = info.bounds;
-	std::vector<double> guesses = opt.T_guesses;
-	if (guesses.empty()) {
-		double d = info.distance(a.data(), b.data());
-		double base = std::max(bd.T_min * 2, d / info.typical_speed);
-		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
+namespace {
+
+// The BVP x1s -> x2s of mode as a one-phase stacked problem, and its
+// duration guess for a guess path of the given length.
+struct Bvp {
+	ModeInfo info;
+	Stacked p;
+	std::vector<double> a, b;
+	double T_guess(double length) const
+	{
+		const Bounds &bd = info.bounds;
+		return std::min(std::max(bd.T_min * 2, length / info.typical_speed), bd.T_max);
 	}
-	std::vector<std::vector<double>> starts;
-	for (double T : guesses)
-		starts.push_back({std::min(std::max(T, bd.T_min), bd.T_max)});
+};
+
+Bvp bvp(const std::string &mode, const RobotParams &robot, const double *x1s, const double *x2s,
+	const SolveOptions &opt)
+{
+	Bvp v{mode_info(mode, robot), {}, {}, {}};
+	v.a = v.info.full_state(x1s);
+	v.b = v.info.full_state(x2s);
+	check_state(v.a, v.info.bounds, mode);
+	check_state(v.b, v.info.bounds, mode);
 	PhaseSetup s;
 	s.segments = opt.segments;
 	s.T_fixed = opt.T_fixed;
-	s.guess = {a, b};
-	s.first_lo = s.first_hi = a;
-	s.last_lo = s.last_hi = b;
-	Stacked p{{mode}, {info}, {s}, {}};
-	MultiPhaseSolution m = solve_stacked(robot, p, starts, 0, opt);
+	s.guess = {v.a, v.b};
+	s.first_lo = s.first_hi = v.a;
+	s.last_lo = s.last_hi = v.b;
+	v.p = Stacked{{mode}, {v.info}, {s}, {}};
+	return v;
+}
+
+Solution phase_solution(const MultiPhaseSolution &m)
+{
 	Solution out;
 	if (!m.phases.empty())
 		out = m.phases[0];
@@ -736,6 +792,50 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 	out.solve_seconds = m.solve_seconds;
 	if (!m.converged)
 		out.cost = 0;
+	return out;
+}
+
+}  // namespace
+
+Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
+		   const double *x2s, const SolveOptions &opt)
+{
+	Bvp v = bvp(mode, robot, x1s, x2s, opt);
+	const Bounds &bd = v.info.bounds;
+	std::vector<double> guesses = opt.T_guesses;
+	if (guesses.empty()) {
+		double base = std::max(bd.T_min * 2, v.info.distance(v.a.data(), v.b.data()) / v.info.typical_speed);
+		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
+	}
+	std::vector<Start> starts;
+	for (double T : guesses)
+		starts.push_back({{std::min(std::max(T, bd.T_min), bd.T_max)}, {}});
+	Solution line = phase_solution(solve_stacked(robot, v.p, starts, 0, opt));
+	if (!opt.strategy_starts)
+		return line;
+	return solve_bvp_strategies(mode, robot, x1s, x2s, opt, line);
+}
+
+Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
+			      const double *x2s, const SolveOptions &opt, const Solution &line)
+{
+	Bvp v = bvp(mode, robot, x1s, x2s, opt);
+	if (!v.info.strategy_paths)
+		return line;
+	std::vector<Start> starts;
+	for (auto &path : v.info.strategy_paths(v.a, v.b)) {
+		double length = 0;
+		for (size_t k = 1; k < path.size(); k++)
+			length += v.info.distance(path[k - 1].data(), path[k].data());
+		starts.push_back({{v.T_guess(length)}, std::move(path)});
+	}
+	double incumbent = line.converged ? line.cost : std::numeric_limits<double>::infinity();
+	Solution s = phase_solution(solve_stacked(robot, v.p, starts, 0, opt, incumbent));
+	Solution out = s.converged && (!line.converged || s.cost < line.cost) ? s : line;
+	out.starts = line.starts + s.starts;
+	out.converged_starts = line.converged_starts + s.converged_starts;
+	out.refined_starts = line.refined_starts + s.refined_starts;
+	out.solve_seconds = line.solve_seconds + s.solve_seconds;
 	return out;
 }
 
@@ -788,14 +888,14 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 							    " component " + std::to_string(t.first.component) +
 							    ", which does not exist");
 	p.rows = prob.rows;
-	std::vector<std::vector<double>> starts;
+	std::vector<Start> starts;
 	for (double f : prob.T_scales) {
-		std::vector<double> Ts;
+		Start st;
 		for (size_t k = 0; k < p.setups.size(); k++) {
 			const Bounds &bd = p.info[k].bounds;
-			Ts.push_back(std::min(std::max(f * p.setups[k].T_guess, bd.T_min), bd.T_max));
+			st.T.push_back(std::min(std::max(f * p.setups[k].T_guess, bd.T_min), bd.T_max));
 		}
-		starts.push_back(Ts);
+		starts.push_back(st);
 	}
 	return solve_stacked(robot, p, starts, prob.switch_cost, opt);
 }

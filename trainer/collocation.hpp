@@ -37,6 +37,9 @@ struct SolveOptions {
 	// generation, training_solve_options). Infinite: each start is refined.
 	// Modes that keep their first accepted start (flight) ignore it.
 	double refine_within = std::numeric_limits<double>::infinity();
+	// solve_bvp also tries the mode's other initial guesses
+	// (solve_bvp_strategies); training_solve_options sets it.
+	bool strategy_starts = false;
 	bool replay = true;               // check every solution with CVODE
 	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here
@@ -76,12 +79,24 @@ std::string mode_name(int goal_mode);
 int mode_number(const std::string &mode);
 
 // Solves the BVP x1s -> x2s (sampled coordinates, sampled_dim(mode) each) of
-// mode with the robot's parameters. Several initial guesses; keeps the
-// cheapest converged one whose replay passes, refining the mesh if needed.
+// mode with the robot's parameters. Several initial guesses (straight lines
+// of three durations; with opt.strategy_starts also solve_bvp_strategies');
+// keeps the cheapest converged one whose replay passes, refining the mesh if
+// needed.
 // Throws std::invalid_argument for an unknown mode or a boundary state
 // outside the mode's bounds.
 Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
 		   const double *x2s, const SolveOptions &opt);
+
+// The BVP's other initial guesses, where its mode has them (ground and
+// marine: through the midpoint backing up, and facing the goal; one duration
+// guess each): returns their best if it is cheaper than line, the
+// straight-line starts' result (solve_bvp without strategy_starts, or a
+// dataset row made by it), else line. Starts, refined starts and seconds
+// add up. With opt.refine_within finite, line's cost prunes their
+// refinement too.
+Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
+			      const double *x2s, const SolveOptions &opt, const Solution &line);
 
 // State and input sizes of a mode, and the full state its sampled
 // coordinates stand for (the virtual constraints of models.md section 7).

@@ -68,9 +68,11 @@ std::string read_file(const std::string &path)
 }
 
 // Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
-// time; returns rows in index order.
+// time; returns rows in index order. A sample with a straight-line result in
+// line (--relabel) gets only the other starts.
 std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
-				     uint64_t lo, uint64_t hi, uint64_t &converged)
+				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
+				     uint64_t &converged)
 {
 	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
 		uint64_t i = lo + k;
@@ -78,7 +80,8 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
 		Solution s;
 		try {
-			s = solve_bvp(opt.mode, robot, a, b, opt.solve);
+			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
+					    : solve_bvp(opt.mode, robot, a, b, opt.solve);
 		} catch (const std::exception &e) {
 			s.status_text = std::string("error: ") + e.what();
 		}
@@ -112,8 +115,73 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	// resume a v1 file.
 	if (opt.mode == "flight")
 		m << "draws: 2\n";
+	// Ground and marine labels have come from straight-line starts alone (no
+	// line) and with the backing-up and goal-facing ones (starts: 2).
+	if ((opt.mode == "ground" || opt.mode == "marine") && opt.solve.strategy_starts)
+		m << "starts: 2\n";
 	m << "segments: " << opt.solve.segments << "\nparams_sha256: " << sha256_file(robot.path) << "\n";
 	return m.str();
+}
+
+std::vector<std::string> split(const std::string &line)
+{
+	std::vector<std::string> f;
+	std::stringstream ss(line);
+	std::string c;
+	while (std::getline(ss, c, ','))
+		f.push_back(c);
+	return f;
+}
+
+// The straight-line results of --relabel's dataset, by index: its file must
+// be this stream's (robot, mode, seed, robot file and segments by its meta)
+// made without the other starts, and each row must be the sample drawn here
+// with a result that prints back to the same text.
+std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &opt)
+{
+	const std::string &path = opt.relabel;
+	GenOptions line_opt = opt;
+	line_opt.solve.strategy_starts = false;
+	line_opt.shards = 1;
+	if (read_file(path + ".meta") != meta_text(robot, line_opt))
+		throw std::runtime_error("--relabel " + path + ": its " + path + ".meta is not that of a " +
+					 robot.robot + " " + opt.mode + " dataset with seed " +
+					 std::to_string(opt.seed) + " from straight-line starts alone");
+	std::ifstream f(path);
+	std::string text;
+	std::vector<std::string> names = csv_columns(opt.mode), head;
+	if (!std::getline(f, text) || (head = split(text)) != names)
+		throw std::runtime_error("--relabel " + path + ": line 1 is not the header of a " + opt.mode + " dataset");
+	auto col = [&](const char *n) {
+		return static_cast<size_t>(std::find(names.begin(), names.end(), n) - names.begin());
+	};
+	std::vector<Solution> out;
+	for (uint64_t i = 0; std::getline(f, text); i++) {
+		std::string where = "--relabel " + path + " line " + std::to_string(i + 2);
+		std::vector<std::string> c = split(text);
+		if (c.size() != names.size())
+			throw std::runtime_error(where + ": " + std::to_string(c.size()) + " fields, not " +
+						 std::to_string(names.size()));
+		Solution s;
+		try {
+			s.cost = std::stod(c[col("cost_j")]);
+			s.T = std::stod(c[col("T_s")]);
+			s.converged = c[col("converged")] == "1";
+			s.status_text = c[col("status")];
+			s.iterations = std::stoi(c[col("iterations")]);
+			s.segments = std::stoi(c[col("segments")]);
+			s.replay_error = std::stod(c[col("replay_error")]);
+			s.replay_cost = std::stod(c[col("replay_cost_j")]);
+		} catch (const std::exception &) {
+			throw std::runtime_error(where + ": a result column is not a number");
+		}
+		double a[6] = {0}, b[6] = {0};
+		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+		if (csv_row(opt.mode, i, a, b, s) != text)
+			throw std::runtime_error(where + ": not sample " + std::to_string(i) + " of this stream");
+		out.push_back(s);
+	}
+	return out;
 }
 
 }  // namespace
@@ -283,6 +351,12 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	GenSummary sum;
 	sum.path = dataset_path(opt);
 	std::string meta_path = sum.path + ".meta", meta = meta_text(robot, opt);
+	std::vector<Solution> line;
+	if (!opt.relabel.empty()) {
+		if (opt.shards > 1 || !opt.solve.strategy_starts)
+			throw std::invalid_argument("--relabel needs an unsharded run with the other starts");
+		line = line_results(robot, opt);
+	}
 
 	// Resume: the metadata must match; keep complete rows, drop a torn tail.
 	std::string header;
@@ -334,7 +408,7 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	for (uint64_t c = next; c < hi; c += static_cast<uint64_t>(opt.chunk)) {
 		uint64_t e = std::min(hi, c + static_cast<uint64_t>(opt.chunk));
 		uint64_t conv = 0;
-		std::vector<std::string> rows = solve_chunk(robot, opt, c, e, conv);
+		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv);
 		std::string text;
 		for (const auto &r : rows)
 			text += r + "\n";

@@ -22,11 +22,14 @@ namespace hylo::trainer {
 // reproduces a row): a start is refined only if its coarse cost is within 5%
 // of the best refined one. On 40 Ambot ground pairs: 40% less solve time
 // than refining every start, costs up by 0.65% at most, less than the
-// committed rows and today's full solver differ (README, Trainer).
+// committed rows and today's full solver differ (README, Trainer). Ground
+// and marine pairs also get the backing-up and goal-facing guesses
+// (solve_bvp_strategies).
 inline SolveOptions training_solve_options()
 {
 	SolveOptions o;
 	o.refine_within = 0.05;
+	o.strategy_starts = true;
 	return o;
 }
 
@@ -37,6 +40,11 @@ struct GenOptions {
 	int shard = 1, shards = 1;         // K of N
 	int chunk = 32;                    // rows per atomic append
 	SolveOptions solve = training_solve_options();
+	// Non-empty: a dataset of the same stream labelled from straight-line
+	// starts alone; its rows are taken as those starts' results and only the
+	// other starts are solved (solve_bvp_strategies). Rows past its end are
+	// solved in full.
+	std::string relabel;
 	bool progress = true;
 };
 

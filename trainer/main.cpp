@@ -199,6 +199,8 @@ int run(int argc, char **argv)
 			po.gen.seed = static_cast<uint64_t>(integer(0));
 		} else if (a == "--out") {
 			po.gen.out_dir = val();
+		} else if (a == "--relabel") {
+			po.gen.relabel = val();
 		} else if (a == "--models-dir") {
 			po.models_dir = val();
 		} else if (a == "--segments") {

@@ -1,0 +1,142 @@
+// Relabelling a ground dataset with the backing-up and goal-facing starts
+// (trainer --relabel, GenOptions::relabel): a dataset labelled from straight
+// lines alone, relabelled, is byte for byte the dataset a fresh run with
+// every start writes; no label gets dearer and at least one cheaper; a
+// relabel file of another stream, a corrupted row or a dataset already
+// relabelled is refused with its name and line. Prints TAP.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "tests/tap.hpp"
+#include "trainer/dataset.hpp"
+#include "trainer/params.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+namespace fs = std::filesystem;
+
+std::string slurp(const std::string &path)
+{
+	std::ifstream f(path, std::ios::binary);
+	std::ostringstream ss;
+	ss << f.rdbuf();
+	return ss.str();
+}
+
+// Column c of every data row.
+std::vector<std::string> column(const std::string &csv, size_t c)
+{
+	std::vector<std::string> out;
+	std::stringstream lines(csv);
+	std::string line;
+	std::getline(lines, line);
+	while (std::getline(lines, line)) {
+		std::stringstream f(line);
+		std::string v;
+		for (size_t k = 0; k <= c && std::getline(f, v, ','); k++)
+			;
+		out.push_back(v);
+	}
+	return out;
+}
+
+// The message generate() throws, or "" if it does not.
+std::string refusal(const RobotParams &robot, const GenOptions &o)
+{
+	try {
+		generate(robot, o);
+	} catch (const std::exception &e) {
+		return e.what();
+	}
+	return "";
+}
+
+}  // namespace
+
+int main()
+{
+	const fs::path dir = fs::temp_directory_path() / ("hylo_relabel_" + std::to_string(getpid()));
+	fs::create_directories(dir);
+	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
+	GenOptions o;
+	o.mode = "ground";
+	o.samples = 8;   // sample 6's goal is behind: a backing-up start is 3.6% cheaper
+	o.jobs = 2;
+	o.progress = false;
+
+	GenOptions line = o;
+	line.solve.strategy_starts = false;
+	line.out_dir = (dir / "line").string();
+	GenOptions full = o;
+	full.out_dir = (dir / "full").string();
+	GenOptions re = o;
+	re.out_dir = (dir / "re").string();
+	re.relabel = (dir / "line" / "ground.csv").string();
+	generate(ambot, line);
+	generate(ambot, full);
+	GenSummary rs = generate(ambot, re);
+
+	std::string a = slurp(full.out_dir + "/ground.csv"), b = slurp(re.out_dir + "/ground.csv");
+	check(rs.done == 8 && !a.empty() && a == b &&
+		      slurp(full.out_dir + "/ground.csv.meta") == slurp(re.out_dir + "/ground.csv.meta"),
+	      "relabelled straight-line dataset == a fresh dataset with every start, byte for byte",
+	      std::to_string(a.size()) + " vs " + std::to_string(b.size()) + " bytes");
+	check(slurp(re.out_dir + "/ground.csv.meta").find("starts: 2\n") != std::string::npos &&
+		      slurp(line.out_dir + "/ground.csv.meta").find("starts:") == std::string::npos,
+	      "the meta tells the two labelers apart (starts: 2)");
+
+	std::vector<std::string> names = csv_columns("ground");
+	size_t cost = static_cast<size_t>(std::find(names.begin(), names.end(), "cost_j") - names.begin());
+	size_t conv = static_cast<size_t>(std::find(names.begin(), names.end(), "converged") - names.begin());
+	std::string la = slurp(line.out_dir + "/ground.csv");
+	std::vector<std::string> lc = column(la, cost), fc = column(a, cost), lv = column(la, conv), fv = column(a, conv);
+	int cheaper = 0, dearer = 0;
+	for (size_t k = 0; k < lc.size() && k < fc.size(); k++) {
+		if (lv[k] == "1" && (fv[k] != "1" || std::stod(fc[k]) > std::stod(lc[k])))
+			dearer++;
+		if (lv[k] == "1" && fv[k] == "1" && std::stod(fc[k]) < 0.99 * std::stod(lc[k]))
+			cheaper++;
+	}
+	check(lc.size() == 8 && dearer == 0 && cheaper >= 1,
+	      "every start: no label dearer, at least one >1% cheaper than straight lines alone",
+	      std::to_string(cheaper) + " cheaper, " + std::to_string(dearer) + " dearer");
+
+	// Refusals: the relabelled dataset itself (its meta says starts: 2), a
+	// row that is not this stream's sample, another seed.
+	GenOptions again = o;
+	again.out_dir = (dir / "again").string();
+	again.relabel = full.out_dir + "/ground.csv";
+	std::string why = refusal(ambot, again);
+	check(why.find("straight-line starts alone") != std::string::npos,
+	      "relabelling a dataset that already has every start is refused", why);
+
+	fs::create_directories(dir / "bad");
+	std::string corrupt = la;
+	size_t row3 = corrupt.find("\n3,");
+	corrupt.replace(row3 + 3, 1, corrupt[row3 + 3] == '1' ? "2" : "1");
+	std::ofstream(dir / "bad" / "ground.csv", std::ios::binary) << corrupt;
+	fs::copy_file(line.out_dir + "/ground.csv.meta", dir / "bad" / "ground.csv.meta");
+	GenOptions bad = o;
+	bad.out_dir = (dir / "bad_out").string();
+	bad.relabel = (dir / "bad" / "ground.csv").string();
+	why = refusal(ambot, bad);
+	check(why.find("ground.csv line 5: not sample 3") != std::string::npos,
+	      "a relabel row that is not the stream's sample is refused with its line", why);
+
+	GenOptions seed = o;
+	seed.seed = 2;
+	seed.out_dir = (dir / "seed_out").string();
+	seed.relabel = re.relabel;
+	why = refusal(ambot, seed);
+	check(why.find("seed 2") != std::string::npos, "a relabel file of another seed is refused", why);
+
+	fs::remove_all(dir);
+	return tap_finish();
+}
