@@ -351,11 +351,32 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	GenSummary sum;
 	sum.path = dataset_path(opt);
 	std::string meta_path = sum.path + ".meta", meta = meta_text(robot, opt);
+	// A dataset of this stream labelled from straight lines alone is
+	// relabelled in place: it is moved to <file>.straight and relabelled
+	// from there (resumable), and removed once every row of it is done.
+	GenOptions ro = opt;
+	const std::string straight = sum.path + ".straight";
+	if (ro.relabel.empty() && ro.shards == 1 && ro.solve.strategy_starts) {
+		GenOptions lo_opt = opt;
+		lo_opt.solve.strategy_starts = false;
+		if (meta_text(robot, lo_opt) != meta && read_file(meta_path) == meta_text(robot, lo_opt)) {
+			if (access(straight.c_str(), F_OK) == 0)
+				throw std::runtime_error(straight + " exists already; remove it or " + sum.path);
+			if (rename((meta_path).c_str(), (straight + ".meta").c_str()) != 0 ||
+			    rename(sum.path.c_str(), straight.c_str()) != 0)
+				throw std::runtime_error("cannot move " + sum.path + " to " + straight);
+			if (opt.progress)
+				std::fprintf(stderr, "%s: labelled from straight lines alone; relabelling it (the old rows are in %s)\n",
+					     sum.path.c_str(), straight.c_str());
+		}
+		if (access(straight.c_str(), F_OK) == 0)
+			ro.relabel = straight;
+	}
 	std::vector<Solution> line;
-	if (!opt.relabel.empty()) {
-		if (opt.shards > 1 || !opt.solve.strategy_starts)
+	if (!ro.relabel.empty()) {
+		if (ro.shards > 1 || !ro.solve.strategy_starts)
 			throw std::invalid_argument("--relabel needs an unsharded run with the other starts");
-		line = line_results(robot, opt);
+		line = line_results(robot, ro);
 	}
 
 	// Resume: the metadata must match; keep complete rows, drop a torn tail.
@@ -436,6 +457,10 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	if (opt.progress && tty)
 		std::fprintf(stderr, "\n");
 	close(fd);
+	if (ro.relabel == straight && hi >= line.size()) {
+		std::remove(straight.c_str());
+		std::remove((straight + ".meta").c_str());
+	}
 	sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	return sum;
 }

@@ -445,6 +445,8 @@ SolveOptions smoothing_solve_options()
 double graph_path_cost(const RobotParams &robot, const std::vector<Waypoint> &plan, const TakeoffLanding &costs,
 		       const SolveOptions &opt)
 {
+	SolveOptions edge_opt = opt;
+	edge_opt.strategy_starts = true;
 	double sum = 0;
 	for (size_t i = 1; i < plan.size(); i++) {
 		const Waypoint &a = plan[i - 1], &b = plan[i];
@@ -457,7 +459,7 @@ double graph_path_cost(const RobotParams &robot, const std::vector<Waypoint> &pl
 			continue;
 		}
 		std::vector<double> xa = sampled(a), xb = sampled(b);
-		Solution s = solve_bvp(ma, robot, xa.data(), xb.data(), opt);
+		Solution s = solve_bvp(ma, robot, xa.data(), xb.data(), edge_opt);
 		if (!s.converged)
 			return std::numeric_limits<double>::infinity();
 		sum += s.cost;

@@ -100,7 +100,8 @@ MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypo
 SolveOptions smoothing_solve_options();
 
 // Exact cost of the plan's own path: every edge solved on its own as a
-// single-phase problem, plus the switching costs. Infinity if an edge fails.
+// single-phase problem (opt with the strategy starts too, as the training
+// labels), plus the switching costs. Infinity if an edge fails.
 double graph_path_cost(const RobotParams &robot, const std::vector<Waypoint> &plan,
 		       const TakeoffLanding &costs, const SolveOptions &opt);
 

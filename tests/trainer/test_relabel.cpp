@@ -1,8 +1,8 @@
 // Relabelling a ground dataset with the backing-up and goal-facing starts
 // (trainer --relabel, GenOptions::relabel): a dataset labelled from straight
 // lines alone, relabelled, is byte for byte the dataset a fresh run with
-// every start writes; no label gets dearer and at least one cheaper; a
-// relabel file of another stream, a corrupted row or a dataset already
+// every start writes, and so is one relabelled in place by a plain run; no
+// label gets dearer and at least one cheaper; a relabel file of another stream, a corrupted row or a dataset already
 // relabelled is refused with its name and line. Prints TAP.
 #include <algorithm>
 #include <filesystem>
@@ -107,6 +107,19 @@ int main()
 	check(lc.size() == 8 && dearer == 0 && cheaper >= 1,
 	      "every start: no label dearer, at least one >1% cheaper than straight lines alone",
 	      std::to_string(cheaper) + " cheaper, " + std::to_string(dearer) + " dearer");
+
+	// In place: a run over a straight-line dataset relabels it (moved to
+	// ground.csv.straight meanwhile, removed when done).
+	fs::create_directories(dir / "inplace");
+	fs::copy_file(line.out_dir + "/ground.csv", dir / "inplace" / "ground.csv");
+	fs::copy_file(line.out_dir + "/ground.csv.meta", dir / "inplace" / "ground.csv.meta");
+	GenOptions inplace = o;
+	inplace.out_dir = (dir / "inplace").string();
+	inplace.progress = false;
+	generate(ambot, inplace);
+	check(slurp(inplace.out_dir + "/ground.csv") == a && !fs::exists(dir / "inplace" / "ground.csv.straight") &&
+		      !fs::exists(dir / "inplace" / "ground.csv.straight.meta"),
+	      "a run over a straight-line dataset relabels it in place, the same bytes as a fresh run");
 
 	// Refusals: the relabelled dataset itself (its meta says starts: 2), a
 	// row that is not this stream's sample, another seed.
