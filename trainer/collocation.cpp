@@ -746,17 +746,18 @@ std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::stri
 
 namespace {
 
-// The BVP x1s -> x2s of mode as a one-phase stacked problem, and its
-// duration guess for a guess path of the given length.
+// The duration guess of a phase whose guess path has the given length (not
+// clamped to T_max).
+double duration_guess(const ModeInfo &info, double length)
+{
+	return std::max(info.bounds.T_min * 2, length / info.typical_speed);
+}
+
+// The BVP x1s -> x2s of mode as a one-phase stacked problem.
 struct Bvp {
 	ModeInfo info;
 	Stacked p;
 	std::vector<double> a, b;
-	double T_guess(double length) const
-	{
-		const Bounds &bd = info.bounds;
-		return std::min(std::max(bd.T_min * 2, length / info.typical_speed), bd.T_max);
-	}
 };
 
 Bvp bvp(const std::string &mode, const RobotParams &robot, const double *x1s, const double *x2s,
@@ -795,31 +796,9 @@ Solution phase_solution(const MultiPhaseSolution &m)
 	return out;
 }
 
-}  // namespace
-
-Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
-		   const double *x2s, const SolveOptions &opt)
+// solve_bvp_strategies on a built problem.
+Solution add_strategies(const RobotParams &robot, const Bvp &v, const SolveOptions &opt, const Solution &line)
 {
-	Bvp v = bvp(mode, robot, x1s, x2s, opt);
-	const Bounds &bd = v.info.bounds;
-	std::vector<double> guesses = opt.T_guesses;
-	if (guesses.empty()) {
-		double base = std::max(bd.T_min * 2, v.info.distance(v.a.data(), v.b.data()) / v.info.typical_speed);
-		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
-	}
-	std::vector<Start> starts;
-	for (double T : guesses)
-		starts.push_back({{std::min(std::max(T, bd.T_min), bd.T_max)}, {}});
-	Solution line = phase_solution(solve_stacked(robot, v.p, starts, 0, opt));
-	if (!opt.strategy_starts)
-		return line;
-	return solve_bvp_strategies(mode, robot, x1s, x2s, opt, line);
-}
-
-Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
-			      const double *x2s, const SolveOptions &opt, const Solution &line)
-{
-	Bvp v = bvp(mode, robot, x1s, x2s, opt);
 	if (!v.info.strategy_paths)
 		return line;
 	std::vector<Start> starts;
@@ -827,7 +806,7 @@ Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot,
 		double length = 0;
 		for (size_t k = 1; k < path.size(); k++)
 			length += v.info.distance(path[k - 1].data(), path[k].data());
-		starts.push_back({{v.T_guess(length)}, std::move(path)});
+		starts.push_back({{std::min(duration_guess(v.info, length), v.info.bounds.T_max)}, std::move(path)});
 	}
 	double incumbent = line.converged ? line.cost : std::numeric_limits<double>::infinity();
 	Solution s = phase_solution(solve_stacked(robot, v.p, starts, 0, opt, incumbent));
@@ -837,6 +816,31 @@ Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot,
 	out.refined_starts = line.refined_starts + s.refined_starts;
 	out.solve_seconds = line.solve_seconds + s.solve_seconds;
 	return out;
+}
+
+}  // namespace
+
+Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
+		   const double *x2s, const SolveOptions &opt)
+{
+	Bvp v = bvp(mode, robot, x1s, x2s, opt);
+	const Bounds &bd = v.info.bounds;
+	std::vector<double> guesses = opt.T_guesses;
+	if (guesses.empty()) {
+		double base = duration_guess(v.info, v.info.distance(v.a.data(), v.b.data()));
+		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
+	}
+	std::vector<Start> starts;
+	for (double T : guesses)
+		starts.push_back({{std::min(std::max(T, bd.T_min), bd.T_max)}, {}});
+	Solution line = phase_solution(solve_stacked(robot, v.p, starts, 0, opt));
+	return opt.strategy_starts ? add_strategies(robot, v, opt, line) : line;
+}
+
+Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
+			      const double *x2s, const SolveOptions &opt, const Solution &line)
+{
+	return add_strategies(robot, bvp(mode, robot, x1s, x2s, opt), opt, line);
 }
 
 MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhaseProblem &prob,
@@ -874,8 +878,7 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 		double length = 0;
 		for (size_t i = 1; i < ps.guess.size(); i++)
 			length += info.distance(ps.guess[i - 1].data(), ps.guess[i].data());
-		s.T_guess = ps.T_guess > 0 ? ps.T_guess
-					   : std::max(info.bounds.T_min * 2, length / info.typical_speed);
+		s.T_guess = ps.T_guess > 0 ? ps.T_guess : duration_guess(info, length);
 		p.modes.push_back(ps.mode);
 		p.info.push_back(std::move(info));
 		p.setups.push_back(std::move(s));

@@ -91,14 +91,10 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 		if (rows[k].empty())
 			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
 	// Count converged rows from their "converged" column.
-	std::vector<std::string> names = csv_columns(opt.mode);
-	size_t col = static_cast<size_t>(std::find(names.begin(), names.end(), "converged") - names.begin());
+	size_t col = csv_column(opt.mode, "converged");
 	for (const auto &r : rows) {
-		std::stringstream ss(r);
-		std::string c;
-		for (size_t k = 0; std::getline(ss, c, ','); k++)
-			if (k == col && c == "1")
-				converged++;
+		std::vector<std::string> f = csv_fields(r);
+		converged += col < f.size() && f[col] == "1";
 	}
 	return rows;
 }
@@ -123,55 +119,52 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	return m.str();
 }
 
-std::vector<std::string> split(const std::string &line)
-{
-	std::vector<std::string> f;
-	std::stringstream ss(line);
-	std::string c;
-	while (std::getline(ss, c, ','))
-		f.push_back(c);
-	return f;
-}
-
 // The straight-line results of --relabel's dataset, by index: its file must
 // be this stream's (robot, mode, seed, robot file and segments by its meta)
 // made without the other starts, and each row must be the sample drawn here
 // with a result that prints back to the same text.
+// The meta of a dataset of opt's stream labelled from straight lines alone.
+std::string straight_meta_text(const RobotParams &robot, const GenOptions &opt)
+{
+	GenOptions line_opt = opt;
+	line_opt.solve.strategy_starts = false;
+	return meta_text(robot, line_opt);
+}
+
 std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &opt)
 {
 	const std::string &path = opt.relabel;
-	GenOptions line_opt = opt;
-	line_opt.solve.strategy_starts = false;
-	line_opt.shards = 1;
-	if (read_file(path + ".meta") != meta_text(robot, line_opt))
+	if (read_file(path + ".meta") != straight_meta_text(robot, opt))
 		throw std::runtime_error("--relabel " + path + ": its " + path + ".meta is not that of a " +
 					 robot.robot + " " + opt.mode + " dataset with seed " +
 					 std::to_string(opt.seed) + " from straight-line starts alone");
 	std::ifstream f(path);
 	std::string text;
-	std::vector<std::string> names = csv_columns(opt.mode), head;
-	if (!std::getline(f, text) || (head = split(text)) != names)
+	std::vector<std::string> names = csv_columns(opt.mode);
+	if (!std::getline(f, text) || csv_fields(text) != names)
 		throw std::runtime_error("--relabel " + path + ": line 1 is not the header of a " + opt.mode + " dataset");
-	auto col = [&](const char *n) {
-		return static_cast<size_t>(std::find(names.begin(), names.end(), n) - names.begin());
-	};
+	const std::string &m = opt.mode;
+	const size_t i_cost = csv_column(m, "cost_j"), i_T = csv_column(m, "T_s"),
+		     i_conv = csv_column(m, "converged"), i_status = csv_column(m, "status"),
+		     i_iter = csv_column(m, "iterations"), i_seg = csv_column(m, "segments"),
+		     i_err = csv_column(m, "replay_error"), i_rcost = csv_column(m, "replay_cost_j");
 	std::vector<Solution> out;
 	for (uint64_t i = 0; std::getline(f, text); i++) {
 		std::string where = "--relabel " + path + " line " + std::to_string(i + 2);
-		std::vector<std::string> c = split(text);
+		std::vector<std::string> c = csv_fields(text);
 		if (c.size() != names.size())
 			throw std::runtime_error(where + ": " + std::to_string(c.size()) + " fields, not " +
 						 std::to_string(names.size()));
 		Solution s;
 		try {
-			s.cost = std::stod(c[col("cost_j")]);
-			s.T = std::stod(c[col("T_s")]);
-			s.converged = c[col("converged")] == "1";
-			s.status_text = c[col("status")];
-			s.iterations = std::stoi(c[col("iterations")]);
-			s.segments = std::stoi(c[col("segments")]);
-			s.replay_error = std::stod(c[col("replay_error")]);
-			s.replay_cost = std::stod(c[col("replay_cost_j")]);
+			s.cost = std::stod(c[i_cost]);
+			s.T = std::stod(c[i_T]);
+			s.converged = c[i_conv] == "1";
+			s.status_text = c[i_status];
+			s.iterations = std::stoi(c[i_iter]);
+			s.segments = std::stoi(c[i_seg]);
+			s.replay_error = std::stod(c[i_err]);
+			s.replay_cost = std::stod(c[i_rcost]);
 		} catch (const std::exception &) {
 			throw std::runtime_error(where + ": a result column is not a number");
 		}
@@ -291,8 +284,10 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 std::vector<std::string> csv_columns(const std::string &mode)
 {
 	std::vector<std::string> c = {"index"};
-	size_t nf = relative_coords(mode, std::vector<double>(6).data(), std::vector<double>(6).data()).size();
-	for (size_t k = 0; k < nf; k++)
+	unsigned nr = hylo_relative_count(static_cast<hylo_mode>(mode_number(mode)));
+	if (nr == 0)
+		throw std::invalid_argument("features: no mode " + mode);
+	for (unsigned k = 0; k < nr; k++)
 		c.push_back("f" + std::to_string(k));
 	int d = sampled_dim(mode);
 	for (int k = 0; k < d; k++)
@@ -303,6 +298,25 @@ std::vector<std::string> csv_columns(const std::string &mode)
 			      "replay_error", "replay_cost_j"})
 		c.push_back(s);
 	return c;
+}
+
+size_t csv_column(const std::string &mode, const std::string &name)
+{
+	std::vector<std::string> names = csv_columns(mode);
+	auto it = std::find(names.begin(), names.end(), name);
+	if (it == names.end())
+		throw std::invalid_argument("a " + mode + " dataset has no column " + name);
+	return static_cast<size_t>(it - names.begin());
+}
+
+std::vector<std::string> csv_fields(const std::string &row)
+{
+	std::vector<std::string> f;
+	std::stringstream ss(row);
+	std::string c;
+	while (std::getline(ss, c, ','))
+		f.push_back(c);
+	return f;
 }
 
 std::string csv_row(const std::string &mode, uint64_t i, const double *a, const double *b,
@@ -357,12 +371,11 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	GenOptions ro = opt;
 	const std::string straight = sum.path + ".straight";
 	if (ro.relabel.empty() && ro.shards == 1 && ro.solve.strategy_starts) {
-		GenOptions lo_opt = opt;
-		lo_opt.solve.strategy_starts = false;
-		if (meta_text(robot, lo_opt) != meta && read_file(meta_path) == meta_text(robot, lo_opt)) {
+		std::string straight_meta = straight_meta_text(robot, opt);
+		if (straight_meta != meta && read_file(meta_path) == straight_meta) {
 			if (access(straight.c_str(), F_OK) == 0)
 				throw std::runtime_error(straight + " exists already; remove it or " + sum.path);
-			if (rename((meta_path).c_str(), (straight + ".meta").c_str()) != 0 ||
+			if (rename(meta_path.c_str(), (straight + ".meta").c_str()) != 0 ||
 			    rename(sum.path.c_str(), straight.c_str()) != 0)
 				throw std::runtime_error("cannot move " + sum.path + " to " + straight);
 			if (opt.progress)

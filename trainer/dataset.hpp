@@ -78,6 +78,13 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, doub
 // The CSV column names, in order.
 std::vector<std::string> csv_columns(const std::string &mode);
 
+// Index of the column called name in csv_columns(mode); throws
+// std::invalid_argument if there is none.
+size_t csv_column(const std::string &mode, const std::string &name);
+
+// The comma-separated fields of one CSV row.
+std::vector<std::string> csv_fields(const std::string &row);
+
 // One CSV row (without the newline) for sample i.
 std::string csv_row(const std::string &mode, uint64_t i, const double *x1s, const double *x2s,
 		    const Solution &s);

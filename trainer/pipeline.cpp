@@ -42,7 +42,7 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 	std::string text = slurp(path);
 	std::istringstream in(text);
 	std::string line;
-	std::vector<std::string> cols = csv_columns(mode), header;
+	std::vector<std::string> cols = csv_columns(mode);
 	if (!std::getline(in, line))
 		throw std::invalid_argument(path + " is empty");
 	std::string expect;
@@ -53,18 +53,10 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 	size_t nr = 0;   // relative coordinates, f0, f1, ...
 	for (const auto &c : cols)
 		nr += c.size() > 1 && c[0] == 'f' && std::isdigit(static_cast<unsigned char>(c[1]));
-	size_t i_cost = 0, i_conv = 0;
-	for (size_t k = 0; k < cols.size(); k++) {
-		if (cols[k] == "cost_j") i_cost = k;
-		if (cols[k] == "converged") i_conv = k;
-	}
+	const size_t i_cost = csv_column(mode, "cost_j"), i_conv = csv_column(mode, "converged");
 	Rows r;
 	for (size_t lineno = 2; r.n < max_rows && std::getline(in, line); lineno++) {
-		std::vector<std::string> f;
-		std::stringstream ss(line);
-		std::string c;
-		while (std::getline(ss, c, ','))
-			f.push_back(c);
+		std::vector<std::string> f = csv_fields(line);
 		if (f.size() != cols.size())
 			throw std::invalid_argument(path + ":" + std::to_string(lineno) + ": " +
 						    std::to_string(f.size()) + " fields, expected " +
