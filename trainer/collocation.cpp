@@ -221,7 +221,10 @@ void single_threaded_blas()
 		reinterpret_cast<set_threads_fn>(sym)(1);
 }
 
-Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm = false)
+// permuting_scaling: Ipopt's mumps_permuting_scaling (MUMPS ICNTL(6); 7
+// lets MUMPS choose, 0 skips the permutation and scaling).
+Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm = false,
+						   int permuting_scaling = 7)
 {
 	single_threaded_blas();
 	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
@@ -230,6 +233,7 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool 
 	ok = ok && app->Options()->SetNumericValue("tol", opt.tol);
 	ok = ok && app->Options()->SetIntegerValue("max_iter", opt.max_iter);
 	ok = ok && app->Options()->SetStringValue("linear_solver", "mumps");
+	ok = ok && app->Options()->SetIntegerValue("mumps_permuting_scaling", permuting_scaling);
 	ok = ok && app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
 	if (opt.objective_scale != 1)
 		ok = ok && app->Options()->SetNumericValue("obj_scaling_factor", opt.objective_scale);
@@ -317,6 +321,7 @@ struct ModeInfo {
 	bool first_accepted = false;  // keep the first start that passes, try no more
 	int step_max_iter = 0;        // > 0: a continuation step's iteration limit; a start
 				      // whose step fails is given up
+	int mumps_permuting_scaling = 7;  // see make_app
 	// Set: the initial guess of a phase guessed as a straight line a -> b,
 	// given its duration T (the start's).
 	std::function<std::vector<std::vector<double>>(const std::vector<double> &a,
@@ -392,7 +397,13 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 	// iteration steps seen going 30 -> 10. Every start of a flight edge
 	// tried ended within 0.02% of the others (their meshes differ), so the
 	// first start whose replay passes is kept.
+	// MUMPS's column permutation and scaling (MC64) cost more than they
+	// save on a flight BVP's KKT system (80-160 segments x 20 unknowns): without
+	// them the dataset's first 16 samples took 2.2x less CPU; of its first
+	// 100 all converged as before and 98 labels agreed to 1e-8 (the other
+	// two to 0.08%, different refined meshes). Ground samples saved nothing.
 	if (mode == "flight") {
+		i.mumps_permuting_scaling = 0;
 		i.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
 		i.min_segments = 80;
 		i.max_step_s = 0.02;
@@ -482,6 +493,11 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	}
 	std::sort(levels.begin(), levels.end(), std::greater<double>());
 	levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+	// MUMPS's permutation and scaling as the mode sets it in single-mode
+	// BVPs (the training samples, where it was measured); multi-phase
+	// problems keep it: without it the fixed DFDFD sequence on the 30 m
+	// chasm (hylo-casestudies) failed after 407 s, with it it converges.
+	const int permuting_scaling = base.info.size() == 1 ? base.info[0].mumps_permuting_scaling : 7;
 	// A continuation or refinement step's options: the tightest iteration
 	// limit a phase's mode sets.
 	SolveOptions step_opt = opt;
@@ -500,7 +516,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 		nlp = build(p, relax);
 		if (!start.empty())
 			nlp->warm_start(start);
-		auto app = make_app(o, warm);
+		auto app = make_app(o, warm, permuting_scaling);
 		Ipopt::ApplicationReturnStatus st = app->OptimizeTNLP(nlp);
 		int it = Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : 0;
 		if (debug)
