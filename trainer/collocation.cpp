@@ -221,10 +221,11 @@ void single_threaded_blas()
 		reinterpret_cast<set_threads_fn>(sym)(1);
 }
 
-// permuting_scaling: Ipopt's mumps_permuting_scaling (MUMPS ICNTL(6); 7
-// lets MUMPS choose, 0 skips the permutation and scaling).
-Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm = false,
-						   int permuting_scaling = 7)
+// Ipopt's mumps_permuting_scaling (MUMPS ICNTL(6)): Ipopt's default lets
+// MUMPS choose; 0 skips the column permutation and scaling (MC64).
+constexpr int kMumpsChoosesPermutingScaling = 7;
+
+Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm, int permuting_scaling)
 {
 	single_threaded_blas();
 	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
@@ -321,7 +322,7 @@ struct ModeInfo {
 	bool first_accepted = false;  // keep the first start that passes, try no more
 	int step_max_iter = 0;        // > 0: a continuation step's iteration limit; a start
 				      // whose step fails is given up
-	int mumps_permuting_scaling = 7;  // see make_app
+	int mumps_permuting_scaling = kMumpsChoosesPermutingScaling;
 	// Set: the initial guess of a phase guessed as a straight line a -> b,
 	// given its duration T (the start's).
 	std::function<std::vector<std::vector<double>>(const std::vector<double> &a,
@@ -497,7 +498,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	// BVPs (the training samples, where it was measured); multi-phase
 	// problems keep it: without it the fixed DFDFD sequence on the 30 m
 	// chasm (hylo-casestudies) failed after 407 s, with it it converges.
-	const int permuting_scaling = base.info.size() == 1 ? base.info[0].mumps_permuting_scaling : 7;
+	const int permuting_scaling = base.info.size() == 1 ? base.info[0].mumps_permuting_scaling
+								 : kMumpsChoosesPermutingScaling;
 	// A continuation or refinement step's options: the tightest iteration
 	// limit a phase's mode sets.
 	SolveOptions step_opt = opt;
