@@ -32,11 +32,24 @@ from matplotlib import cm, colors  # noqa: E402
 BIN = os.environ.get("BUILD", "build") + "/bin"
 
 
+def fitted_samples(robot, mode):
+    """The committed model's sample count: its fit used the dataset's first
+    that many rows (the dataset may have grown since)."""
+    header = f"onboard/models/{robot}_{mode}.h"
+    with open(header) as f:
+        for line in f:
+            if line.startswith(" * samples: "):
+                return int(line.split()[2])
+    sys.exit(f"{header}: no ' * samples: ' line")
+
+
 def training_rows(robot, mode, n):
-    """n converged rows spread evenly over the dataset (deterministic)."""
+    """n converged rows spread evenly over the rows the committed model was
+    fitted on (deterministic)."""
     path = f"trainer/datasets/{robot}/{mode}.csv"
+    samples = fitted_samples(robot, mode)
     with open(path) as f:
-        rows = [r for r in csv.DictReader(f) if r["converged"] == "1"]
+        rows = [r for k, r in zip(range(samples), csv.DictReader(f)) if r["converged"] == "1"]
     if not rows:
         sys.exit(f"{path}: no converged rows")
     step = max(1, len(rows) // n)
