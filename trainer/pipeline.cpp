@@ -139,6 +139,8 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	m.cost_floor_per_m = floor_per_m(g.mode, p);
 	m.cost_floor_j = floor_j(g.mode, p);
 	m.max_distance_m = p.sampling.max_distance_m;
+	m.speed_min_mps = p.sampling.speed_min_mps;
+	m.speed_max_mps = p.sampling.speed_max_mps;
 	std::ostringstream acc;
 	ClassifierReport crep;
 	bool have_classifier = false;

@@ -141,10 +141,13 @@ void check(const SvrExport &m)
 	require_finite(m.cost_floor_per_m, "cost_floor_per_m");
 	require_finite(m.cost_floor_j, "cost_floor_j");
 	require_finite(m.max_distance_m, "max_distance_m");
+	require_finite(m.speed_min_mps, "speed_min_mps");
+	require_finite(m.speed_max_mps, "speed_max_mps");
 	if (!(m.gamma > 0) || !(m.label_scale > 0) || m.cost_floor_per_m < 0 || m.cost_floor_j < 0 ||
-	    m.max_distance_m < 0)
+	    m.max_distance_m < 0 || m.speed_min_mps > m.speed_max_mps)
 		throw std::invalid_argument("svr export: gamma and label_scale must be > 0, "
-					    "cost floors and max_distance_m >= 0");
+					    "cost floors and max_distance_m >= 0, "
+					    "speed_min_mps <= speed_max_mps");
 	for (const auto &c : m.constants) {
 		if (!is_identifier(c.key, true))
 			throw std::invalid_argument("svr export: constant '" + c.key +
@@ -226,6 +229,8 @@ std::string svr_header_text(const SvrExport &m)
 	out += "\t.cost_floor_per_m = " + format_double(m.cost_floor_per_m) + ",\n";
 	out += "\t.cost_floor_j = " + format_double(m.cost_floor_j) + ",\n";
 	out += "\t.max_distance_m = " + format_double(m.max_distance_m) + ",\n";
+	out += "\t.speed_min_mps = " + format_double(m.speed_min_mps) + ",\n";
+	out += "\t.speed_max_mps = " + format_double(m.speed_max_mps) + ",\n";
 	out += "\t.provenance = " + c_string(prov) + ",\n";
 	out += "};\n\n";
 	if (m.feasibility) {

@@ -40,6 +40,7 @@ struct SvrExport {
 	double label_offset = 0, label_scale = 1;
 	bool label_log = false;
 	double cost_floor_per_m = 0, cost_floor_j = 0, max_distance_m = 0;
+	double speed_min_mps = 0, speed_max_mps = 0;   // both 0: any speed
 	// Provenance lines "key: value", in the order given (sample count, seed,
 	// hashes, errors, version). Written into a comment and a string.
 	std::vector<std::pair<std::string, std::string>> provenance;

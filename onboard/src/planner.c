@@ -237,6 +237,8 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 {
 	unsigned k, dim;
 	const char *other;
+	const hylo_svr_model *model;
+	hylo_real speed;
 
 	if (!hylo_mode_valid(mode) || hylo_robot_mode_index(pl->robot, (hylo_mode)mode) < 0)
 		return hylo_fail(&pl->reason, HYLO_E_WRONG_MODE,
@@ -247,6 +249,14 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 		if (!isfinite(xs[k]))
 			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
 					 "%s coordinate %u is %g", what, k, xs[k]);
+	/* The model's costs from a speed it never saw are extrapolations. */
+	model = pl->robot->modes[hylo_robot_mode_index(pl->robot, (hylo_mode)mode)].model;
+	speed = hylo_state_speed((hylo_mode)mode, xs);
+	if (model && !hylo_svr_speed_trained(model, speed))
+		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
+				 "%s speed %g m/s is outside the %s model's training range [%g, %g] m/s",
+				 what, speed, hylo_mode_str((hylo_mode)mode), model->speed_min_mps,
+				 model->speed_max_mps);
 	*p = state_point(&pl->map, (hylo_mode)mode, xs);
 	if (hylo_domain_contains(&pl->map, (hylo_mode)mode, *p))
 		return HYLO_OK;

@@ -118,6 +118,31 @@ static int grid_has_zero(const hylo_real *v, uint32_t n)
 	return 0;
 }
 
+/* Every speed of a grid inside the training range of each model of the
+ * robot's modes that the grid serves (planar: speeds_mps, flight:
+ * air_speeds_mps): costs from speeds a model never saw are extrapolations. */
+static hylo_status check_grid_trained(const hylo_robot *robot, const char *name,
+				      const hylo_real *v, uint32_t n, int flight_grid,
+				      hylo_reason *r)
+{
+	uint32_t k, i;
+
+	for (k = 0; k < robot->n_modes; k++) {
+		const hylo_svr_model *model = robot->modes[k].model;
+		hylo_mode mode = robot->modes[k].mode;
+
+		if (!model || (flight_grid ? mode != HYLO_MODE_FLIGHT : !is_planar(mode)))
+			continue;
+		for (i = 0; i < n; i++)
+			if (!hylo_svr_speed_trained(model, v[i]))
+				return hylo_fail(r, HYLO_E_BAD_VALUE,
+						 "%s[%u] = %g m/s is outside the %s model's training range [%g, %g] m/s",
+						 name, (unsigned)i, v[i], hylo_mode_str(mode),
+						 model->speed_min_mps, model->speed_max_mps);
+	}
+	return HYLO_OK;
+}
+
 static hylo_status check_sampling(const hylo_robot *robot, const hylo_sampling *s,
 				  hylo_reason *r)
 {
@@ -144,6 +169,10 @@ static hylo_status check_sampling(const hylo_robot *robot, const hylo_sampling *
 		st = check_grid("headings_rad", s->headings, s->n_headings, planar || flight, 0, r);
 	if (st == HYLO_OK)
 		st = check_grid("air_speeds_mps", s->air_speeds, s->n_air_speeds, flight, 1, r);
+	if (st == HYLO_OK)
+		st = check_grid_trained(robot, "speeds_mps", s->speeds, s->n_speeds, 0, r);
+	if (st == HYLO_OK)
+		st = check_grid_trained(robot, "air_speeds_mps", s->air_speeds, s->n_air_speeds, 1, r);
 	if (st != HYLO_OK)
 		return st;
 	if (planar && s->n_speeds * s->n_headings > HYLO_MAX_COMBOS)

@@ -111,6 +111,11 @@ hylo_status hylo_svr_check(const hylo_svr_model *m, hylo_reason *r)
 	if (!(m->max_distance_m >= 0) || !isfinite(m->max_distance_m))
 		return hylo_fail(r, HYLO_E_BAD_VALUE, "svr model %s: max_distance_m %g is not >= 0",
 				 name, m->max_distance_m);
+	if (!isfinite(m->speed_min_mps) || !isfinite(m->speed_max_mps) ||
+	    !(m->speed_min_mps <= m->speed_max_mps))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: speed range [%g, %g] m/s is not an interval",
+				 name, m->speed_min_mps, m->speed_max_mps);
 	for (k = 0; k < m->n_features; k++)
 		if (!isfinite(m->feature_offset[k]) || !(m->feature_scale[k] > 0) ||
 		    !isfinite(m->feature_scale[k]))
@@ -163,6 +168,17 @@ static void standardize(const hylo_svr_model *m, const double *x, double *z)
 double hylo_svr_cost_floor(const hylo_svr_model *m, double distance_m)
 {
 	return m->cost_floor_j + m->cost_floor_per_m * distance_m;
+}
+
+int hylo_svr_speed_trained(const hylo_svr_model *m, double speed)
+{
+	/* Rounding slack: a flight speed at the bound, given by its components,
+	 * comes back from sqrt a few ulps off. */
+	double slack = 1e-9 * (fabs(m->speed_min_mps) + fabs(m->speed_max_mps));
+
+	if (m->speed_min_mps == 0 && m->speed_max_mps == 0)
+		return !isnan(speed);
+	return speed >= m->speed_min_mps - slack && speed <= m->speed_max_mps + slack;
 }
 
 double hylo_svr_predict(const hylo_svr_model *m, const double *x)

@@ -1,5 +1,7 @@
 #include "hylo/types.h"
 
+#include <math.h>
+
 static const unsigned mode_dims[HYLO_MODE_COUNT] = {
 	[HYLO_MODE_GROUND] = 4,
 	[HYLO_MODE_MARINE] = 4,
@@ -30,4 +32,20 @@ unsigned hylo_mode_dim(hylo_mode mode)
 const char *hylo_mode_str(hylo_mode mode)
 {
 	return hylo_mode_valid((int)mode) ? mode_names[mode] : "invalid";
+}
+
+hylo_real hylo_state_speed(hylo_mode mode, const hylo_real *xs)
+{
+	switch (mode) {
+	case HYLO_MODE_GROUND:
+	case HYLO_MODE_MARINE:
+		return xs[2];
+	case HYLO_MODE_FLIGHT:
+		return sqrt(xs[3] * xs[3] + xs[4] * xs[4] + xs[5] * xs[5]);
+	case HYLO_MODE_DI_NEG:
+	case HYLO_MODE_DI_POS:
+		return xs[1];
+	default:
+		return 0;
+	}
 }

@@ -35,6 +35,19 @@ for h in onboard/models/*_*.h; do
     tap_not_ok "$base.h: provenance matches $ds and trainer/params/$robot.yaml" "dataset ${want_ds:-none}"; fi
 done
 [ "$n" -gt 0 ] || tap_not_ok "there are committed models"
+# Each cost model carries its parameter file's training speed range, and
+# hylo-cost flags an edge from a speed outside it.
+grep -q '^	.speed_max_mps = 8,$' onboard/models/drivocopter_flight.h &&
+  grep -q '^	.speed_max_mps = 1.2,$' onboard/models/ambot_ground.h &&
+  grep -q '^	.speed_min_mps = -1,$' onboard/models/di_di_pos.h &&
+  tap_ok "the headers carry their training speed ranges" ||
+  tap_not_ok "the headers carry their training speed ranges"
+out=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,0,0,0 3,0,0,8,0,0 2>&1)
+far=$("$B/bin/hylo-cost" --robot drivocopter --mode flight 0,0,0,0,0,0 3,0,0,12,0,0 2>&1)
+if [[ $out == *'"beyond_training_range":false'* && $far == *"X2's speed 12 m/s is outside the training range [0, 8] m/s"* ]] &&
+   "$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,0,0,0 3,0,0,12,0,0 | grep -q '"beyond_training_range":true'; then
+  tap_ok "hylo-cost flags a speed outside the flight model's training range"; else
+  tap_not_ok "hylo-cost flags a speed outside the flight model's training range" "$out $far"; fi
 # Refit the smallest model from its committed dataset: the same bytes.
 small=$(ls -S onboard/models/*_*.h | tail -1)
 base=$(basename "$small" .h)

@@ -638,6 +638,71 @@ static void expect(hylo_status want, hylo_status got, const hylo_plan *p)
 	assert_int_equal(p->n_waypoints, 0);
 }
 
+/* Speeds outside a model's training range: the planner refuses start and
+ * goal states and sampling grids with such speeds, naming them, and plans as
+ * before within the range. A constant cost model (no SVs: cost exp(-rho))
+ * carries the range. */
+static void test_speed_range(void **state)
+{
+	static const double zeros[HYLO_FEATURES_FLIGHT] = { 0 };
+	static const double ones[HYLO_FEATURES_FLIGHT] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+	static const hylo_real fast_air[] = { 0.0, 4.0, 4.5 };
+	static const hylo_real backing[] = { -0.5, 0.0, 0.5 };
+	hylo_svr_model ground = {
+		.name = "const_ground", .n_features = HYLO_FEATURES_PLANAR, .gamma = 1.0,
+		.rho = -2.302585092994046, .feature_offset = zeros, .feature_scale = ones,
+		.label_scale = 1, .label_log = 1, .speed_min_mps = 0, .speed_max_mps = 1.0,
+	};
+	hylo_svr_model flight = ground;
+	tu_map river, chasm;
+	hylo_goal g;
+
+	(void)state;
+	flight.name = "const_flight";
+	flight.n_features = HYLO_FEATURES_FLIGHT;
+	flight.speed_max_mps = 4.0;
+	robots[0].modes[0].model = &ground;
+	robots[1].modes[1].model = &flight;
+	init_planner(planner);
+	tu_river(&river);
+	tu_chasm(&chasm);
+	set_scene(planner, &river);
+	g = tu_goal_river();   /* speeds 0, 0.5, 1.0: inside [0, 1] */
+	plan_ok(planner, &g, plan);
+	g.start[2] = 1.5;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "start speed 1.5 m/s is outside the ground model's training range [0, 1]"));
+	g = tu_goal_river();
+	g.goal[2] = -0.25;   /* backing up: never trained */
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "goal speed -0.25"));
+	g = tu_goal_river();
+	g.speeds = backing;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "speeds_mps[0] = -0.5 m/s"));
+	/* No range declared (both bounds 0): any speed. */
+	ground.speed_max_mps = 0;
+	g = tu_goal_river();
+	g.speeds = backing;
+	g.start[2] = 1.5;
+	plan_ok(planner, &g, plan);
+
+	/* Flight: the grid of air speeds against |v|'s range. */
+	set_scene(planner, &chasm);
+	g = tu_goal_chasm();   /* air speeds 0 and 4: inside [0, 4] */
+	plan_ok(planner, &g, plan);
+	g.air_speeds = fast_air;
+	g.n_air_speeds = 3;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "air_speeds_mps[2] = 4.5 m/s is outside the flight model's"));
+
+	robots[0].modes[0].model = NULL;
+	robots[1].modes[1].model = NULL;
+	init_planner(planner);
+	tu_map_free(&river);
+	tu_map_free(&chasm);
+}
+
 /* After any bad request the planner still answers a good one correctly. */
 static void still_serves(tu_map *m, const hylo_goal *g, double want)
 {
@@ -830,6 +895,7 @@ int main(void)
 		cmocka_unit_test(test_determinism),
 		cmocka_unit_test(test_negative_costs_clamped),
 		cmocka_unit_test(test_feasibility_classifier),
+		cmocka_unit_test(test_speed_range),
 		cmocka_unit_test(test_bad_input),
 		cmocka_unit_test(test_msg_status),
 	};

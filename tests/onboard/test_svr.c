@@ -163,11 +163,45 @@ static void test_exponential_against_libm(void **state)
 	}
 }
 
+/* The training speed range: its bounds with rounding slack, NaN never
+ * inside, "any" when both bounds are 0, and a bad range refused by check. */
+static void test_speed_range(void **state)
+{
+	hylo_svr_model m = random_model(3, 9, 0.5);
+	const hylo_real at_bound[6] = { 0, 0, 0, 8 * cos(0.3), 8 * sin(0.3), 0 };
+	const hylo_real climbing[6] = { 0, 0, 0, 3, 0, 4 };
+	const hylo_real backing[4] = { 0, 0, -0.5, 1 };
+	const hylo_real di[2] = { 0.3, -0.7 };
+
+	(void)state;
+	assert_true(hylo_state_speed(HYLO_MODE_FLIGHT, climbing) == 5);
+	assert_true(hylo_state_speed(HYLO_MODE_GROUND, backing) == -0.5);
+	assert_true(hylo_state_speed(HYLO_MODE_MARINE, backing) == -0.5);
+	assert_true(hylo_state_speed(HYLO_MODE_DI_NEG, di) == -0.7);
+	m.speed_min_mps = 0;
+	m.speed_max_mps = 8;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	assert_true(hylo_svr_speed_trained(&m, hylo_state_speed(HYLO_MODE_FLIGHT, at_bound)));
+	assert_true(hylo_svr_speed_trained(&m, 0));
+	assert_false(hylo_svr_speed_trained(&m, 8.001));
+	assert_false(hylo_svr_speed_trained(&m, -0.001));
+	assert_false(hylo_svr_speed_trained(&m, NAN));
+	m.speed_max_mps = 0;   /* no range: any speed, but not NaN */
+	assert_true(hylo_svr_speed_trained(&m, -100));
+	assert_false(hylo_svr_speed_trained(&m, NAN));
+	m.speed_min_mps = 2;
+	m.speed_max_mps = 1;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_E_BAD_VALUE);
+	m.speed_max_mps = INFINITY;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_E_BAD_VALUE);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_batch_matches_one_at_a_time),
 		cmocka_unit_test(test_exponential_against_libm),
+		cmocka_unit_test(test_speed_range),
 	};
 
 	return cmocka_run_group_tests_name("svr", tests, NULL, NULL);

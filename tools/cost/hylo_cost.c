@@ -19,7 +19,8 @@ static void usage(FILE *f)
 		"Prints the predicted energy of the edge X1 -> X2 (sampled coordinates of mode M,\n"
 		"comma-separated, models.md section 7: ground/marine px,py,vx,theta;\n"
 		"flight px,py,pz,vx,vy,vz; di_neg/di_pos p,v) and whether the mode's\n"
-		"feasibility classifier, if any, predicts a solution.\n"
+		"feasibility classifier, if any, predicts a solution. Notes when the displacement\n"
+		"or a speed lies outside the model's training range (JSON: beyond_training_range).\n"
 		"\n"
 		"  --robot R    robot (ambot, drivocopter, di, ...; see hylo-planner --list-robots)\n"
 		"  --mode M     ground, marine, flight, di_neg or di_pos\n"
@@ -55,7 +56,8 @@ int main(int argc, char **argv)
 	uint32_t n, k;
 	hylo_reason reason;
 	const hylo_mode_model *mm = NULL;
-	double cost, floor_cost, dist, feas = NAN;
+	double cost, floor_cost, dist, feas = NAN, speeds[2];
+	int far, slow_or_fast[2];
 
 	for (i = 1; i < argc; i++) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -113,6 +115,11 @@ int main(int argc, char **argv)
 			      (x2[2] - x1[2]) * (x2[2] - x1[2]))
 		       : sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]));
 	floor_cost = hylo_svr_cost_floor(mm->model, dist);
+	far = mm->model->max_distance_m > 0 && dist > mm->model->max_distance_m;
+	speeds[0] = hylo_state_speed((hylo_mode)mode, x1);
+	speeds[1] = hylo_state_speed((hylo_mode)mode, x2);
+	for (i = 0; i < 2; i++)
+		slow_or_fast[i] = !hylo_svr_speed_trained(mm->model, speeds[i]);
 	if (mm->feasibility)
 		feas = hylo_svr_predict(mm->feasibility, f);
 	if (json) {
@@ -124,7 +131,7 @@ int main(int argc, char **argv)
 		else
 			printf("null");
 		printf(",\"beyond_training_range\":%s}\n",
-		       mm->model->max_distance_m > 0 && dist > mm->model->max_distance_m ? "true" : "false");
+		       far || slow_or_fast[0] || slow_or_fast[1] ? "true" : "false");
 		return 0;
 	}
 	printf("%s %s: predicted cost %.6g J", robot, mode_name, cost);
@@ -135,8 +142,12 @@ int main(int argc, char **argv)
 		printf("feasibility: %s (decision %.4g)\n", feas >= 0 ? "feasible" : "infeasible", feas);
 	else
 		printf("feasibility: no classifier in this model\n");
-	if (mm->model->max_distance_m > 0 && dist > mm->model->max_distance_m)
+	if (far)
 		printf("note: displacement %.3g m is beyond the training range %.3g m\n", dist,
 		       mm->model->max_distance_m);
+	for (i = 0; i < 2; i++)
+		if (slow_or_fast[i])
+			printf("note: X%d's speed %.3g m/s is outside the training range [%.3g, %.3g] m/s\n",
+			       i + 1, speeds[i], mm->model->speed_min_mps, mm->model->speed_max_mps);
 	return 0;
 }

@@ -37,6 +37,8 @@ typedef struct {
 	double cost_floor_per_m;       /* every true cost is >= this * displacement [J/m] ... */
 	double cost_floor_j;           /* ... + this [J] (e.g. drain power * shortest time), >= 0 */
 	double max_distance_m;         /* training displacements reach this far [m]; 0 = any */
+	double speed_min_mps;          /* training speeds span [speed_min_mps, speed_max_mps] */
+	double speed_max_mps;          /* (hylo_state_speed); both 0 = any */
 	const char *provenance;        /* samples, seed, hashes, errors, version; may be NULL */
 } hylo_svr_model;
 
@@ -58,6 +60,11 @@ double hylo_svr_decision(const hylo_svr_model *m, const double *z);
  * transform. Not clamped. No allocation; safe in a control loop.
  */
 double hylo_svr_predict(const hylo_svr_model *m, const double *x);
+
+/** 1 when speed (hylo_state_speed) lies in m's training speed range (to
+ * 1e-9 relative), or m declares none (both bounds 0); 0 otherwise, and for
+ * NaN. */
+int hylo_svr_speed_trained(const hylo_svr_model *m, double speed);
 
 /** The floor the planner raises m's prediction for an edge of length
  * distance_m to: cost_floor_j + cost_floor_per_m * distance_m [J]. */

@@ -38,4 +38,9 @@ const char *hylo_mode_str(hylo_mode mode);
 /* 1 when mode is one of the five real modes. */
 int hylo_mode_valid(int mode);
 
+/* The speed of x^s that a cost model's training range bounds: ground and
+ * marine vx (signed), flight |v|, double integrator v (signed); 0 for an
+ * invalid mode. */
+hylo_real hylo_state_speed(hylo_mode mode, const hylo_real *xs);
+
 #endif
