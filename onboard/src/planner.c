@@ -239,8 +239,9 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 	const char *other;
 	const hylo_svr_model *model;
 	hylo_real speed;
+	int idx = hylo_robot_mode_index(pl->robot, (hylo_mode)mode);
 
-	if (!hylo_mode_valid(mode) || hylo_robot_mode_index(pl->robot, (hylo_mode)mode) < 0)
+	if (!hylo_mode_valid(mode) || idx < 0)
 		return hylo_fail(&pl->reason, HYLO_E_WRONG_MODE,
 				 "%s mode %d (%s) is not a mode of robot %s", what, mode,
 				 hylo_mode_str((hylo_mode)mode), pl->robot->name);
@@ -250,7 +251,7 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
 					 "%s coordinate %u is %g", what, k, xs[k]);
 	/* The model's costs from a speed it never saw are extrapolations. */
-	model = pl->robot->modes[hylo_robot_mode_index(pl->robot, (hylo_mode)mode)].model;
+	model = pl->robot->modes[idx].model;
 	speed = hylo_state_speed((hylo_mode)mode, xs);
 	if (model && !hylo_svr_speed_trained(model, speed))
 		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
