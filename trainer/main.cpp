@@ -2,6 +2,8 @@
 // see --help. Exit codes: 0 done, 1 failure while running (I/O, a worker),
 // 2 bad usage or input (unknown mode or robot, malformed vector, a state out
 // of bounds, an unusable output directory or dataset).
+#include <malloc.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -271,6 +273,12 @@ int run(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+	// Keep freed memory in the heap. MUMPS allocates and frees its
+	// workspace at every factorization; with glibc's defaults each one was
+	// mapped afresh and zeroed page by page, 11% of a flight generator's CPU
+	// time in the kernel (perf). Same labels, about 10% faster (README).
+	mallopt(M_MMAP_THRESHOLD, 256 << 20);
+	mallopt(M_TRIM_THRESHOLD, 512 << 20);
 	try {
 		return run(argc, argv);
 	} catch (const Usage &e) {
