@@ -8,3 +8,14 @@ $(BENCH_PLAN): tools/bench/bench_plan.cpp $(ONBOARD_LIB) $(BUILD)/gen/bench/synt
 	$(CXX) $(CXX17_FLAGS) -Wno-deprecated-declarations $(ONBOARD_INC) -I$(BUILD)/gen $< $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_PLAN)
+
+# Plan latency on the committed scenes with the committed models, against the
+# algorithm hylo's search replaced, on the same roadmap (tools/bench/bench_scenes.cpp).
+BENCH_SCENES := $(BUILD)/bench/bin/bench_scenes
+
+$(BENCH_SCENES): tools/bench/bench_scenes.cpp $(BUILD)/obj/tools/scene/scene.o \
+		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
+
+BENCH_TARGETS += $(BENCH_SCENES)

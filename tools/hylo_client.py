@@ -31,7 +31,7 @@ MODES = {"ground": 1, "marine": 2, "flight": 3, "di_neg": 4, "di_pos": 5}
 MODE_NAMES = {v: k for k, v in MODES.items()}
 TERRAIN = {"obstacle": 0, "ground": 1, "water": 2}
 STATUS = ["ok", "no map", "no path", "bad request", "over capacity",
-          "budget exhausted", "map replaced", "no model"]
+          "budget exhausted", "map replaced", "no model", "not proven optimal"]
 
 
 def scene_messages(path, request_id):
@@ -88,6 +88,7 @@ def scene_messages(path, request_id):
         setattr(q, key, values)
         setattr(q, count, len(values))
     q.max_expansions = int(gs.get("max_expansions", 0))
+    q.suboptimality = float(gs.get("suboptimality", 0))
     return m, q
 
 
@@ -100,13 +101,16 @@ def print_plan(p, as_json):
             "waypoints": [{"mode": MODE_NAMES.get(p.mode[k], "?"), "state": list(p.state[k]),
                            "cost_j": p.cost_j[k], "guard": p.guard[k]}
                           for k in range(p.n_waypoints)],
+            "suboptimality": p.suboptimality, "lower_bound_j": p.lower_bound_j,
             "n_nodes": p.n_nodes, "n_edges_evaluated": p.n_edges_evaluated,
-            "plan_ms": p.plan_ms}))
+            "n_edges_cached": p.n_edges_cached, "plan_ms": p.plan_ms}))
         return
     print("plan %d for map %d (%s): %s" % (p.request_id, p.map_id, p.robot, STATUS[p.status]))
-    if p.status != 0:
+    if p.status not in (0, 8):
         print("  reason: " + p.reason)
         return
+    if p.status == 8:
+        print("  " + p.reason)
     print("  energy %.6g J over %d waypoints; modes %s" % (
         p.total_cost_j, p.n_waypoints,
         " > ".join(MODE_NAMES.get(m, "?") for m in p.mode_sequence)))

@@ -142,7 +142,7 @@ private:
 
 	void smooth(const hylo::plan_t &p, hylo::traj_t &t)
 	{
-		if (p.status != hylo::plan_t::STATUS_OK)
+		if (p.status != hylo::plan_t::STATUS_OK && p.status != hylo::plan_t::STATUS_NOT_PROVEN)
 			return fail(t, p.status, "the plan has no path to smooth (plan status " +
 							 std::to_string(p.status) + ": " + p.reason + ")");
 		auto m = maps_.find(p.map_id);

@@ -48,6 +48,7 @@ void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 	g->air_speeds = msg->air_speeds_mps;
 	g->time_budget_ms = msg->time_budget_ms;
 	g->max_expansions = msg->max_expansions < 0 ? UINT64_MAX : (uint64_t)msg->max_expansions;
+	g->suboptimality = msg->suboptimality;
 }
 
 int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome)
@@ -57,6 +58,8 @@ int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome)
 			return HYLO_PLAN_T_STATUS_OK;
 		if (outcome == HYLO_BUDGET_EXHAUSTED)
 			return HYLO_PLAN_T_STATUS_BUDGET_EXHAUSTED;
+		if (outcome == HYLO_FOUND_UNPROVEN)
+			return HYLO_PLAN_T_STATUS_NOT_PROVEN;
 		return HYLO_PLAN_T_STATUS_NO_PATH;
 	}
 	if (status >= HYLO_E_CAP_CELLS && status <= HYLO_E_CAP_ROBOTS)
@@ -86,6 +89,8 @@ void hylo_msg_plan(const hylo_plan *plan, int64_t utime, hylo_plan_msg_buf *buf,
 	msg->reason = (char *)plan->reason.text;
 	msg->robot = (char *)plan->robot;
 	msg->total_cost_j = plan->total_cost;
+	msg->suboptimality = plan->suboptimality;
+	msg->lower_bound_j = plan->lower_bound;
 	msg->n_waypoints = (int32_t)n;
 	for (k = 0; k < n; k++) {
 		buf->mode[k] = (int8_t)plan->mode[k];
@@ -103,6 +108,7 @@ void hylo_msg_plan(const hylo_plan *plan, int64_t utime, hylo_plan_msg_buf *buf,
 	msg->n_nodes = (int32_t)plan->n_nodes;
 	msg->n_edges = (int64_t)plan->n_edges;
 	msg->n_edges_evaluated = (int64_t)plan->n_edges_evaluated;
+	msg->n_edges_cached = (int64_t)plan->n_edges_cached;
 	msg->n_expansions = (int64_t)plan->n_expansions;
 	msg->n_clamped = (int64_t)plan->n_clamped;
 	msg->plan_ms = plan->plan_ms;

@@ -142,7 +142,7 @@ hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
 	skip(&w, 8L * n, "headings_rad");
 	n = get_count(&w, "n_air_speeds");
 	skip(&w, 8L * n, "air_speeds_mps");
-	skip(&w, 8 + 4, "time_budget_ms, max_expansions");
+	skip(&w, 8 + 4 + 8, "time_budget_ms, max_expansions, suboptimality");
 	return finish(&w);
 }
 

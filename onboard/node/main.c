@@ -80,6 +80,7 @@ int main(int argc, char **argv)
 	hylo_planner_config cfg;
 	hylo_reason reason;
 	hylo_planner *planner;
+	size_t workspace;
 	hylo_plan *plan;
 	hylo_plan_msg_buf *buf;
 	hylo_node node;
@@ -127,19 +128,20 @@ int main(int argc, char **argv)
 	}
 
 	/* All memory the planner will ever use, allocated once. */
-	planner = malloc(sizeof *planner);
-	plan = malloc(sizeof *plan);
-	buf = malloc(sizeof *buf);
-	if (!planner || !plan || !buf) {
-		fprintf(stderr, "hylo-planner: cannot allocate the %zu-byte workspace\n",
-			sizeof *planner + sizeof *plan + sizeof *buf);
-		return 1;
-	}
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = n_robots;
 	cfg.clock = clock_ms;
-	st = hylo_planner_init(planner, &cfg);
+	workspace = hylo_planner_size(&cfg);
+	planner = malloc(workspace);
+	plan = malloc(sizeof *plan);
+	buf = malloc(sizeof *buf);
+	if (!planner || !plan || !buf) {
+		fprintf(stderr, "hylo-planner: cannot allocate the %zu-byte workspace\n",
+			workspace + sizeof *plan + sizeof *buf);
+		return 1;
+	}
+	st = hylo_planner_init(planner, workspace, &cfg);
 	if (st != HYLO_OK) {
 		fprintf(stderr, "hylo-planner: %s\n", hylo_planner_reason(planner));
 		return 1;
@@ -167,7 +169,7 @@ int main(int argc, char **argv)
 	node.goal_limit = once ? 1 : 0;
 	if (verbose) {
 		fprintf(stderr, "hylo-planner: listening on %sHYLO_MAP, %sHYLO_GOAL; workspace %zu bytes\n",
-			prefix, prefix, sizeof *planner);
+			prefix, prefix, workspace);
 		list_robots(robots, n_robots);
 	}
 

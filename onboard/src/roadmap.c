@@ -51,6 +51,33 @@ void hylo_roadmap_state(const hylo_roadmap *rm, uint32_t i, uint32_t c, hylo_rea
 	}
 }
 
+uint32_t hylo_roadmap_class_count(const hylo_roadmap *rm, hylo_mode mode)
+{
+	if (is_planar(mode))
+		return rm->sampling.n_speeds;
+	if (mode == HYLO_MODE_FLIGHT)
+		return rm->sampling.n_air_speeds;
+	return 1;
+}
+
+uint32_t hylo_roadmap_class(const hylo_roadmap *rm, hylo_mode mode, uint32_t c)
+{
+	if (is_planar(mode))
+		return c / rm->sampling.n_headings;
+	if (mode == HYLO_MODE_FLIGHT)
+		return rm->air_class[c];
+	return 0;
+}
+
+hylo_real hylo_roadmap_class_speed(const hylo_roadmap *rm, hylo_mode mode, uint32_t k)
+{
+	if (is_planar(mode))
+		return rm->sampling.speeds[k];
+	if (mode == HYLO_MODE_FLIGHT)
+		return rm->sampling.air_speeds[k];
+	return 0;
+}
+
 int hylo_roadmap_at_rest(const hylo_roadmap *rm, hylo_mode mode, uint32_t c)
 {
 	if (is_planar(mode))
@@ -207,6 +234,7 @@ static hylo_status make_air_velocities(hylo_roadmap *rm, hylo_reason *r)
 			rm->air_velocity[n][0] = sp == 0 ? 0 : sp * cos(s->headings[k]);
 			rm->air_velocity[n][1] = sp == 0 ? 0 : sp * sin(s->headings[k]);
 			rm->air_velocity[n][2] = 0;
+			rm->air_class[n] = (uint8_t)i;
 			n++;
 		}
 	}

@@ -80,6 +80,81 @@ static void heap_push(hylo_search *s, uint32_t v, hylo_real f)
 	heap_up(s, i);
 }
 
+/* Deferred groups: smaller key first, then the one whose tail is deeper (larger
+ * g), then smaller tail id and group number. */
+static int defer_less(const hylo_search *s, uint32_t i, uint32_t j)
+{
+	uint32_t a = s->defer_node[i], b = s->defer_node[j];
+
+	if (s->defer_key[i] != s->defer_key[j])
+		return s->defer_key[i] < s->defer_key[j];
+	if (s->g[a] != s->g[b])
+		return s->g[a] > s->g[b];
+	if (a != b)
+		return a < b;
+	return s->defer_group[i] < s->defer_group[j];
+}
+
+static void defer_swap(hylo_search *s, uint32_t i, uint32_t j)
+{
+	uint32_t u = s->defer_node[i], grp = s->defer_group[i];
+	hylo_real k = s->defer_key[i];
+
+	s->defer_node[i] = s->defer_node[j];
+	s->defer_group[i] = s->defer_group[j];
+	s->defer_key[i] = s->defer_key[j];
+	s->defer_node[j] = u;
+	s->defer_group[j] = grp;
+	s->defer_key[j] = k;
+}
+
+int hylo_search_defer(hylo_search *s, uint32_t u, uint32_t group, hylo_real key)
+{
+	uint32_t i;
+
+	if (!s || s->n_deferred >= HYLO_MAX_DEFERRED || isnan(key))
+		return 0;
+	i = s->n_deferred++;
+	s->defer_node[i] = u;
+	s->defer_group[i] = group;
+	s->defer_key[i] = key;
+	s->stats.deferred++;
+	/* Each step halves i: at most log2(HYLO_MAX_DEFERRED) steps. */
+	while (i > 0 && defer_less(s, i, (i - 1) / 2)) {
+		defer_swap(s, i, (i - 1) / 2);
+		i = (i - 1) / 2;
+	}
+	return 1;
+}
+
+/* Removes the first deferred group into *u, *group. */
+static void defer_pop(hylo_search *s, uint32_t *u, uint32_t *group)
+{
+	uint32_t i = 0;
+
+	*u = s->defer_node[0];
+	*group = s->defer_group[0];
+	s->n_deferred--;
+	if (s->n_deferred == 0)
+		return;
+	s->defer_node[0] = s->defer_node[s->n_deferred];
+	s->defer_group[0] = s->defer_group[s->n_deferred];
+	s->defer_key[0] = s->defer_key[s->n_deferred];
+	/* Each step at least doubles i. */
+	for (;;) {
+		uint32_t l = 2 * i + 1, r = l + 1, m = i;
+
+		if (l < s->n_deferred && defer_less(s, l, m))
+			m = l;
+		if (r < s->n_deferred && defer_less(s, r, m))
+			m = r;
+		if (m == i)
+			break;
+		defer_swap(s, i, m);
+		i = m;
+	}
+}
+
 static uint32_t heap_pop(hylo_search *s)
 {
 	uint32_t v = s->heap[0];
@@ -116,10 +191,14 @@ static void reset(hylo_search *s, uint32_t n_nodes)
 
 	s->n_nodes = n_nodes;
 	s->heap_size = 0;
+	s->n_deferred = 0;
+	s->weight = 1;
 	s->stats.expansions = 0;
 	s->stats.edges_evaluated = 0;
 	s->stats.pushes = 0;
 	s->stats.decrease_keys = 0;
+	s->stats.deferred = 0;
+	s->stats.resolved = 0;
 	for (i = 0; i < n_nodes; i++) {
 		s->g[i] = INFINITY;
 		s->parent[i] = HYLO_NO_NODE;
@@ -132,6 +211,9 @@ static hylo_status check_args(const hylo_graph *g, uint32_t start, uint32_t goal
 {
 	if (!g->expand)
 		return hylo_fail(r, HYLO_E_NULL, "hylo_search_run: graph has no expand callback");
+	if (!(g->weight >= 1) || !isfinite(g->weight))
+		return hylo_fail(r, HYLO_E_BAD_VALUE, "search: weight %g must be finite and >= 1",
+				 g->weight);
 	if (g->n_nodes > HYLO_MAX_NODES)
 		return hylo_fail(r, HYLO_E_CAP_NODES,
 				 "search: %lu nodes, more than HYLO_MAX_NODES = %lu",
@@ -197,28 +279,37 @@ static hylo_status relax(hylo_search *s, const hylo_graph *g, uint32_t goal, uin
 	s->g[v] = ng;
 	s->parent[v] = u;
 	if (s->heap_pos[v] == SEARCH_UNSEEN) {
-		heap_push(s, v, ng + h);
+		heap_push(s, v, ng + s->weight * h);
 		s->stats.pushes++;
 	} else {
-		s->heap_f[s->heap_pos[v]] = ng + h;
+		s->heap_f[s->heap_pos[v]] = ng + s->weight * h;
 		heap_up(s, s->heap_pos[v]);
 		s->stats.decrease_keys++;
 	}
 	return HYLO_OK;
 }
 
-static hylo_status expand(hylo_search *s, const hylo_graph *g, uint32_t goal, uint32_t u,
-			  hylo_reason *r)
+/* Expands node u, or resolves its deferred group (group != HYLO_NO_NODE),
+ * and relaxes the successors it returns. */
+static hylo_status successors(hylo_search *s, const hylo_graph *g, uint32_t goal, uint32_t u,
+			      uint32_t group, hylo_reason *r)
 {
 	uint32_t k, n = 0;
 	hylo_status st;
 
-	/* An empty reason after a failure means expand gave none. */
+	/* An empty reason after a failure means the callback gave none. */
 	r->text[0] = '\0';
-	st = g->expand(g->ctx, s, u, s->heads, s->costs, HYLO_MAX_SUCCESSORS, &n, r);
+	if (group == HYLO_NO_NODE)
+		st = g->expand(g->ctx, s, u, s->heads, s->costs, HYLO_MAX_SUCCESSORS, &n, r);
+	else if (g->resolve)
+		st = g->resolve(g->ctx, s, u, group, s->heads, s->costs, HYLO_MAX_SUCCESSORS, &n, r);
+	else
+		st = hylo_fail(r, HYLO_E_NULL, "search: node %lu deferred a group, and the graph has no resolve callback",
+			       (unsigned long)u);
 	if (st != HYLO_OK) {
 		if (r->text[0] == '\0')
-			hylo_fail(r, st, "search: expand of node %lu failed: %s", (unsigned long)u,
+			hylo_fail(r, st, "search: %s of node %lu failed: %s",
+				  group == HYLO_NO_NODE ? "expand" : "resolve", (unsigned long)u,
 				  hylo_status_str(st));
 		return st;
 	}
@@ -243,9 +334,10 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, uint32_t goa
 	hylo_status st;
 	uint32_t u;
 
-	/* Each pass closes one node, so at most n_nodes + 1 passes. */
+	/* Each pass closes one node or resolves one deferred group; a node
+	 * defers at most HYLO_MAX_SUCCESSORS groups when it is closed. */
 	for (;;) {
-		if (s->heap_size == 0) {
+		if (s->heap_size == 0 && s->n_deferred == 0) {
 			*outcome = HYLO_NO_PATH;
 			return HYLO_OK;
 		}
@@ -265,13 +357,23 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, uint32_t goa
 				return HYLO_OK;
 			}
 		}
+		if (s->n_deferred > 0 && (s->heap_size == 0 || s->defer_key[0] <= s->heap_f[0])) {
+			uint32_t group;
+
+			defer_pop(s, &u, &group);
+			s->stats.resolved++;
+			st = successors(s, g, goal, u, group, r);
+			if (st != HYLO_OK)
+				return st;
+			continue;
+		}
 		u = heap_pop(s);
 		s->stats.expansions++;
 		if (u == goal) {
 			*outcome = HYLO_FOUND;
 			return HYLO_OK;
 		}
-		st = expand(s, g, goal, u, r);
+		st = successors(s, g, goal, u, HYLO_NO_NODE, r);
 		if (st != HYLO_OK)
 			return st;
 	}
@@ -303,6 +405,7 @@ hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
 			return hylo_fail(r, HYLO_E_BAD_VALUE, "search: clock returned %g", t0);
 	}
 	reset(s, g->n_nodes);
+	s->weight = g->weight;
 	st = heuristic(g, start, &h, r);
 	if (st != HYLO_OK)
 		return st;
@@ -310,13 +413,31 @@ hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
 		s->heap_pos[start] = SEARCH_DEAD;
 	} else {
 		s->g[start] = 0;
-		heap_push(s, start, h);
+		heap_push(s, start, s->weight * h);
 		s->stats.pushes++;
 	}
 	st = search_loop(s, g, goal, budget, t0, outcome, r);
 	if (st == HYLO_OK)
 		hylo_reason_clear(r);
 	return st;
+}
+
+hylo_real hylo_search_weight(const hylo_search *s)
+{
+	return s ? s->weight : 1;
+}
+
+hylo_real hylo_search_min_key(const hylo_search *s)
+{
+	hylo_real k = INFINITY;
+
+	if (!s)
+		return k;
+	if (s->heap_size > 0)
+		k = s->heap_f[0];
+	if (s->n_deferred > 0 && s->defer_key[0] < k)
+		k = s->defer_key[0];
+	return k;
 }
 
 int hylo_search_closed(const hylo_search *s, uint32_t v)

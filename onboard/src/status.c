@@ -33,6 +33,7 @@ static const char *const outcome_names[HYLO_OUTCOME_COUNT] = {
 	[HYLO_FOUND] = "found",
 	[HYLO_NO_PATH] = "no path",
 	[HYLO_BUDGET_EXHAUSTED] = "budget exhausted",
+	[HYLO_FOUND_UNPROVEN] = "found, not proven optimal (the budget ran out)",
 };
 
 const char *hylo_status_str(hylo_status s)

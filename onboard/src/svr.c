@@ -189,6 +189,34 @@ double hylo_svr_predict(const hylo_svr_model *m, const double *x)
 	return label_of(m, hylo_svr_decision(m, z));
 }
 
+/* Feature groups of a model with nf features (see feature_groups). */
+static uint32_t group_count(uint32_t nf)
+{
+	return nf == HYLO_FEATURES_PLANAR || nf == HYLO_FEATURES_FLIGHT ? 3 : nf == HYLO_FEATURES_DI ? 2 : nf;
+}
+
+/* Doubles per support vector: factor rows, the SV's features, running products. */
+static size_t doubles_per_sv(uint32_t nf)
+{
+	return (size_t)group_count(nf) * HYLO_SVR_CACHE_VALUES + nf + group_count(nf);
+}
+
+size_t hylo_svr_cache_size(const hylo_svr_model *m)
+{
+	if (!m || m->n_features == 0 || m->n_features > HYLO_MAX_FEATURES)
+		return 0;
+	return doubles_per_sv(m->n_features) * m->n_sv * sizeof(double);
+}
+
+void hylo_svr_cache_attach(hylo_svr_cache *c, double *mem, size_t bytes)
+{
+	if (!c)
+		return;
+	c->mem = mem;
+	c->mem_doubles = mem ? bytes / sizeof(double) : 0;
+	hylo_svr_cache_reset(c);
+}
+
 void hylo_svr_cache_reset(hylo_svr_cache *c)
 {
 	uint32_t k;
@@ -196,6 +224,7 @@ void hylo_svr_cache_reset(hylo_svr_cache *c)
 	if (!c)
 		return;
 	c->model = NULL;
+	c->factor = c->sv_col = c->prefix = NULL;
 	c->n_groups = 0;
 	c->clock = 0;
 	c->hits = c->misses = 0;
@@ -216,8 +245,7 @@ static void feature_groups(hylo_svr_cache *c, uint32_t nf)
 
 	for (k = 0; k < nf; k++)
 		c->order[k] = nf == HYLO_FEATURES_PLANAR ? planar[k] : nf == HYLO_FEATURES_FLIGHT ? flight[k] : k;
-	c->n_groups = nf == HYLO_FEATURES_PLANAR ? 3 : nf == HYLO_FEATURES_FLIGHT ? 3 :
-		      nf == HYLO_FEATURES_DI ? 2 : nf;
+	c->n_groups = group_count(nf);
 	for (k = 0; k <= c->n_groups; k++)
 		c->group_begin[k] = nf == HYLO_FEATURES_PLANAR ? planar_begin[k] :
 				    nf == HYLO_FEATURES_FLIGHT ? flight_begin[k] :
@@ -239,7 +267,7 @@ static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint
 		if (k == w) {
 			c->last_use[g][j] = ++c->clock;
 			c->hits++;
-			return c->factor[g][j];
+			return &c->factor[((size_t)g * HYLO_SVR_CACHE_VALUES + j) * m->n_sv];
 		}
 	}
 	if (c->n_used[g] < HYLO_SVR_CACHE_VALUES) {
@@ -253,13 +281,13 @@ static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint
 	for (k = 0; k < w; k++)
 		c->value[g][slot][k] = v[k];
 	c->last_use[g][slot] = ++c->clock;
-	row = c->factor[g][slot];
+	row = &c->factor[((size_t)g * HYLO_SVR_CACHE_VALUES + slot) * m->n_sv];
 	for (i = 0; i < m->n_sv; i += 2) {  /* an odd last one is paired with itself */
 		uint32_t i1 = i + 1 < m->n_sv ? i + 1 : i;
 		hylo_v2 d2 = { 0, 0 }, e;
 
 		for (k = 0; k < w; k++) {
-			const double *col = c->sv_col[c->order[b + k]];
+			const double *col = &c->sv_col[(size_t)c->order[b + k] * m->n_sv];
 			hylo_v2 d = { v[k] - col[i], v[k] - col[i1] };
 
 			d2 += d * d;
@@ -320,13 +348,14 @@ static double cached_decision(const hylo_svr_model *m, hylo_svr_cache *c, const 
 	}
 	for (; level + 1 < ng; level++) {
 		row = factor_row(m, c, level, &v[c->group_begin[level]]);
-		multiply(c->prefix[level], level == 0 ? m->coef : c->prefix[level - 1], row, n);
+		multiply(&c->prefix[(size_t)level * n], level == 0 ? m->coef : &c->prefix[(size_t)(level - 1) * n],
+			 row, n);
 		for (k = c->group_begin[level]; k < c->group_begin[level + 1]; k++)
 			c->prefix_value[k] = v[k];
 	}
 	c->n_prefix = ng - 1;
 	row = factor_row(m, c, ng - 1, &v[c->group_begin[ng - 1]]);
-	return dot(ng == 1 ? m->coef : c->prefix[ng - 2], row, n) - m->rho;
+	return dot(ng == 1 ? m->coef : &c->prefix[(size_t)(ng - 2) * n], row, n) - m->rho;
 }
 
 hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
@@ -340,13 +369,19 @@ hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
 		return HYLO_E_CAP_SV;
 	if (c->model != m) {
 		uint32_t i;
+		size_t ng = group_count(m->n_features);
 
+		if (hylo_svr_cache_size(m) > c->mem_doubles * sizeof(double))
+			return HYLO_E_CAP_SV;
 		hylo_svr_cache_reset(c);
 		c->model = m;
+		c->factor = c->mem;
+		c->sv_col = c->factor + ng * HYLO_SVR_CACHE_VALUES * m->n_sv;
+		c->prefix = c->sv_col + (size_t)m->n_features * m->n_sv;
 		feature_groups(c, m->n_features);
 		for (k = 0; k < m->n_features; k++)
 			for (i = 0; i < m->n_sv; i++)
-				c->sv_col[k][i] = m->sv[(size_t)i * m->n_features + k];
+				c->sv_col[(size_t)k * m->n_sv + i] = m->sv[(size_t)i * m->n_features + k];
 	}
 	for (e = 0; e < n; e++) {
 		double z[HYLO_MAX_FEATURES];

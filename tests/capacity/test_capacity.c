@@ -128,7 +128,7 @@ static int setup(void **state)
 	hylo_planner_config cfg;
 
 	(void)state;
-	pl = malloc(sizeof *pl);
+	pl = malloc(TU_PLANNER_BYTES);
 	plan = malloc(sizeof *plan);
 	if (!pl || !plan)
 		return -1;
@@ -136,7 +136,7 @@ static int setup(void **state)
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = TU_N_ROBOTS;
-	if (hylo_planner_init(pl, &cfg) != HYLO_OK)
+	if (hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		return -1;
 	tu_river(&river);
 	tu_di(&di);

@@ -23,6 +23,7 @@
 static double x[N_MAX][HYLO_FEATURES_PLANAR], want_cost[N_MAX], want_feas[N_MAX];
 static int n;
 static hylo_svr_cache cache;
+static double cache_mem[1 << 18];
 
 static void load(void)
 {
@@ -104,5 +105,11 @@ int main(void)
 		cmocka_unit_test(test_feasibility_matches_libsvm),
 	};
 
+	if (hylo_svr_cache_size(&hylo_model_testbot_ground) > sizeof cache_mem ||
+	    hylo_svr_cache_size(&hylo_model_testbot_ground_feasibility) > sizeof cache_mem) {
+		fprintf(stderr, "test_export: the test models outgrew the cache memory\n");
+		return 1;
+	}
+	hylo_svr_cache_attach(&cache, cache_mem, sizeof cache_mem);
 	return cmocka_run_group_tests_name("export", tests, NULL, NULL);
 }

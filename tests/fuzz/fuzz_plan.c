@@ -30,7 +30,7 @@ static void init(void)
 
 	if (planner)
 		return;
-	planner = malloc(sizeof *planner);
+	planner = malloc(TU_PLANNER_BYTES);
 	plan = malloc(sizeof *plan);
 	if (!planner || !plan)
 		abort();
@@ -38,7 +38,7 @@ static void init(void)
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = TU_N_ROBOTS;
-	if (hylo_planner_init(planner, &cfg) != HYLO_OK)
+	if (hylo_planner_init(planner, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		abort();
 }
 

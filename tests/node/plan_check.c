@@ -39,7 +39,8 @@ int main(int argc, char **argv)
 	int want_len[MAX_PLANS], n_want = 0, n_got = 0, bad = 0;
 	hylo_planner_config cfg;
 	hylo_plan_msg_buf *buf = malloc(sizeof *buf);
-	hylo_planner *pl = malloc(sizeof *pl);
+	hylo_planner *pl;
+	size_t size;
 	hylo_plan *plan = malloc(sizeof *plan);
 	lcm_eventlog_t *in, *out;
 	lcm_eventlog_event_t *ev;
@@ -55,7 +56,9 @@ int main(int argc, char **argv)
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &reason);
-	if (!buf || !pl || !plan || hylo_planner_init(pl, &cfg) != HYLO_OK)
+	size = hylo_planner_size(&cfg);
+	pl = malloc(size);
+	if (!buf || !pl || !plan || hylo_planner_init(pl, size, &cfg) != HYLO_OK)
 		return 2;
 	in = lcm_eventlog_create(argv[1], "r");
 	out = lcm_eventlog_create(argv[2], "r");

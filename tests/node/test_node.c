@@ -162,8 +162,9 @@ static void assert_same_as_library(const hylo_plan_t *got, const tu_map *m, cons
 		assert_int_equal(got->guard[k], ref_plan->guard[k]);
 	}
 	assert_int_equal(got->n_modes, ref_plan->n_modes);
-	assert_true(got->n_edges_evaluated == (int64_t)ref_plan->n_edges_evaluated);
-	assert_true(got->n_expansions == (int64_t)ref_plan->n_expansions);
+	/* The reference starts with an empty edge cache; the node may have kept
+	 * costs from earlier goals on this map. */
+	assert_true(got->n_edges_evaluated <= (int64_t)ref_plan->n_edges_evaluated);
 }
 
 static void test_end_to_end(void **state)
@@ -421,8 +422,8 @@ static int setup(void **state)
 	hylo_planner_config cfg;
 
 	(void)state;
-	planner = malloc(sizeof *planner);
-	reference = malloc(sizeof *reference);
+	planner = malloc(TU_PLANNER_BYTES);
+	reference = malloc(TU_PLANNER_BYTES);
 	plan = malloc(sizeof *plan);
 	ref_plan = malloc(sizeof *ref_plan);
 	buf = malloc(sizeof *buf);
@@ -433,8 +434,8 @@ static int setup(void **state)
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = TU_N_ROBOTS;
-	if (hylo_planner_init(planner, &cfg) != HYLO_OK ||
-	    hylo_planner_init(reference, &cfg) != HYLO_OK)
+	if (hylo_planner_init(planner, TU_PLANNER_BYTES, &cfg) != HYLO_OK ||
+	    hylo_planner_init(reference, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		return -1;
 	if (hylo_node_init(&node, lcm, lcm, "", planner, plan, buf, NULL, 0) != 0)
 		return -1;

@@ -105,7 +105,7 @@ static void run_scenes(hylo_planner *pl, hylo_plan *plan, tu_map *maps, int n_ma
 
 static void test_planner_never_allocates(void **state)
 {
-	hylo_planner *pl = malloc(sizeof *pl);
+	hylo_planner *pl = malloc(TU_PLANNER_BYTES);
 	hylo_plan *plan = malloc(sizeof *plan);
 	hylo_robot robots[TU_N_ROBOTS];
 	hylo_planner_config cfg;
@@ -131,7 +131,7 @@ static void test_planner_never_allocates(void **state)
 
 	calls = 0;
 	armed = 1;
-	assert_int_equal(hylo_planner_init(pl, &cfg), HYLO_OK);
+	assert_int_equal(hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg), HYLO_OK);
 	run_scenes(pl, plan, maps, 3);
 	armed = 0;
 	assert_int_equal(calls, 0);

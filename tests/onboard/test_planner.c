@@ -31,7 +31,7 @@ static void init_planner(hylo_planner *pl)
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = TU_N_ROBOTS;
-	assert_int_equal(hylo_planner_init(pl, &cfg), HYLO_OK);
+	assert_int_equal(hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg), HYLO_OK);
 }
 
 static void set_scene(hylo_planner *pl, tu_map *m)
@@ -480,10 +480,26 @@ static void assert_same_plan(const hylo_plan *a, const hylo_plan *b)
 	assert_memory_equal(ba, bb, na);
 }
 
+/* The same plan, whatever the edge cache held before: equal but for the
+ * counts of evaluated and cached edges. */
+static void assert_same_plan_but_counts(hylo_plan *a, hylo_plan *b)
+{
+	uint64_t ea = a->n_edges_evaluated, ca = a->n_edges_cached;
+	uint64_t eb = b->n_edges_evaluated, cb = b->n_edges_cached;
+
+	a->n_edges_evaluated = b->n_edges_evaluated = 0;
+	a->n_edges_cached = b->n_edges_cached = 0;
+	assert_same_plan(a, b);
+	a->n_edges_evaluated = ea;
+	a->n_edges_cached = ca;
+	b->n_edges_evaluated = eb;
+	b->n_edges_cached = cb;
+}
+
 static void test_roadmap_reuse(void **state)
 {
 	tu_map m;
-	hylo_goal g1 = tu_goal_river(), g2 = tu_goal_river();
+	hylo_goal g1 = tu_goal_river(), g2 = tu_goal_river(), g3 = tu_goal_river();
 
 	(void)state;
 	tu_river(&m);
@@ -493,27 +509,42 @@ static void test_roadmap_reuse(void **state)
 	g2.goal[0] = 1;
 	g2.goal[1] = 2;
 	g2.goal[3] = TU_PI;
+	g3.goal[1] += 1.5;
 	set_scene(planner, &m);
 	plan_ok(planner, &g1, plan);
 	assert_int_equal(plan->roadmap_reused, 0);
-	plan_ok(planner, &g2, plan);
+	/* A nearby goal on the same map: the roadmap and most edge costs are
+	 * reused, and the plan is the one a fresh planner returns. */
+	plan_ok(planner, &g3, plan);
 	assert_int_equal(plan->roadmap_reused, 1);
-	/* The same as planning g2 on a fresh planner. */
 	init_planner(planner2);
 	set_scene(planner2, &m);
-	plan_ok(planner2, &g2, plan2);
+	plan_ok(planner2, &g3, plan2);
 	assert_int_equal(plan2->roadmap_reused, 0);
 	plan2->roadmap_reused = 1;
-	assert_same_plan(plan, plan2);
+	assert_true(plan->n_edges_cached > 0);
+	assert_true(plan->n_edges_evaluated < plan2->n_edges_evaluated / 2);
+	assert_same_plan_but_counts(plan, plan2);
+	/* The way back (other edges: costs depend on the direction). */
+	plan_ok(planner, &g2, plan);
+	plan_ok(planner2, &g2, plan2);
+	assert_same_plan_but_counts(plan, plan2);
 	/* Back to g1: the old goal's links are gone. */
 	plan_ok(planner, &g1, plan);
 	plan_ok(planner2, &g1, plan2);
-	assert_same_plan(plan, plan2);
-	/* Other options or a new map rebuild. */
+	assert_true(plan->n_edges_evaluated <= plan2->n_edges_evaluated);
+	assert_same_plan_but_counts(plan, plan2);
+	/* Other options or a new map rebuild, and empty the cache: the same
+	 * counts as a fresh planner's. */
 	g1.seed = 99;
 	plan_ok(planner, &g1, plan);
 	assert_int_equal(plan->roadmap_reused, 0);
+	init_planner(planner2);
+	set_scene(planner2, &m);
+	plan_ok(planner2, &g1, plan2);
+	assert_true(plan->n_edges_evaluated == plan2->n_edges_evaluated);
 	set_scene(planner, &m);
+	g1.seed = 1;
 	plan_ok(planner, &g1, plan);
 	assert_int_equal(plan->roadmap_reused, 0);
 	tu_map_free(&m);
@@ -617,7 +648,7 @@ static void test_feasibility_classifier(void **state)
 		memset(&cfg, 0, sizeof cfg);
 		cfg.robots = robots;
 		cfg.n_robots = TU_N_ROBOTS;
-		assert_int_equal(hylo_planner_init(planner, &cfg), HYLO_E_BAD_VALUE);
+		assert_int_equal(hylo_planner_init(planner, TU_PLANNER_BYTES, &cfg), HYLO_E_BAD_VALUE);
 		assert_non_null(strstr(hylo_planner_reason(planner), "feasibility"));
 	}
 	robots[0].modes[0].feasibility = NULL;
@@ -722,7 +753,7 @@ static void test_bad_input(void **state)
 
 	(void)state;
 	tu_river(&river);
-	assert_int_equal(hylo_planner_init(NULL, NULL), HYLO_E_NULL);
+	assert_int_equal(hylo_planner_init(NULL, 0, NULL), HYLO_E_NULL);
 	assert_int_equal(hylo_planner_set_map(planner, NULL), HYLO_E_NULL);
 	assert_int_equal(hylo_planner_plan(planner, NULL, plan), HYLO_E_NULL);
 	assert_int_equal(hylo_planner_plan(planner, &good, NULL), HYLO_E_NULL);
@@ -796,12 +827,18 @@ static void test_bad_input(void **state)
 	g.n_headings = HYLO_MAX_COMBOS / HYLO_MAX_GRID + 1;
 	expect(HYLO_E_CAP_COMBOS, hylo_planner_plan(planner, &g, plan), plan);
 
-	/* The expansion budget runs out: a valid request, outcome says so. */
+	/* The expansion budget runs out: a valid request; the greedy walk's
+	 * plan comes back, not proven optimal. */
 	g = good;
 	g.max_expansions = 3;
 	assert_int_equal(hylo_planner_plan(planner, &g, plan), HYLO_OK);
-	assert_int_equal(plan->outcome, HYLO_BUDGET_EXHAUSTED);
+	assert_int_equal(plan->outcome, HYLO_FOUND_UNPROVEN);
 	assert_int_equal(plan->n_expansions, 3);
+	assert_true(plan->n_waypoints >= 2);
+	/* Dijkstra has no walk: no plan at all. */
+	g.algorithm = HYLO_DIJKSTRA;
+	assert_int_equal(hylo_planner_plan(planner, &g, plan), HYLO_OK);
+	assert_int_equal(plan->outcome, HYLO_BUDGET_EXHAUSTED);
 	assert_int_equal(plan->n_waypoints, 0);
 	still_serves(&river, &good, want);
 
@@ -861,8 +898,8 @@ static void test_msg_status(void **state)
 static int setup(void **state)
 {
 	(void)state;
-	planner = malloc(sizeof *planner);
-	planner2 = malloc(sizeof *planner2);
+	planner = malloc(TU_PLANNER_BYTES);
+	planner2 = malloc(TU_PLANNER_BYTES);
 	plan = malloc(sizeof *plan);
 	plan2 = malloc(sizeof *plan2);
 	if (!planner || !planner2 || !plan || !plan2)

@@ -182,7 +182,7 @@ static uint32_t count_closed(const hylo_search *s, uint32_t n)
 	return c;
 }
 
-static hylo_status csr_expand(void *ctx, const hylo_search *s, uint32_t u, uint32_t *heads,
+static hylo_status csr_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
 			      hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
 	tgraph *t = ctx;
@@ -338,7 +338,7 @@ static void check_path(const tgraph *t, const hylo_search *s)
 
 static void run_query(tgraph *t, int h_mode, int skip_closed, run_result *o)
 {
-	hylo_graph g;
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
 	hylo_budget b = no_budget();
 	hylo_reason r;
 	hylo_status st;
@@ -472,7 +472,7 @@ typedef struct {
 	uint32_t n_calls;
 } small_graph;
 
-static hylo_status small_expand(void *ctx, const hylo_search *s, uint32_t u, uint32_t *heads,
+static hylo_status small_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
 				hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
 	small_graph *sg = ctx;
@@ -507,7 +507,7 @@ static void add_edge(small_graph *sg, uint32_t a, uint32_t b, double c)
 static hylo_status run_small(small_graph *sg, uint32_t n, uint32_t start, uint32_t goal,
 			     hylo_outcome *out, hylo_reason *r)
 {
-	hylo_graph g;
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
 	hylo_budget b = no_budget();
 
 	g.n_nodes = n;
@@ -756,7 +756,7 @@ typedef struct {
 	uint32_t skip;           /* chain_expand: also an edge u -> u + skip */
 } chain_ctx;
 
-static hylo_status chain_expand(void *ctx, const hylo_search *s, uint32_t u, uint32_t *heads,
+static hylo_status chain_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
 				hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
 	chain_ctx *c = ctx;
@@ -780,7 +780,7 @@ static hylo_status chain_expand(void *ctx, const hylo_search *s, uint32_t u, uin
 
 static hylo_graph chain_graph(chain_ctx *c, uint32_t n)
 {
-	hylo_graph g;
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
 
 	memset(c, 0, sizeof *c);
 	c->n = n;
@@ -900,7 +900,7 @@ static void test_time_budget(void **state)
  * g(v) <= g(u) + c(u, v) on every edge and a tight parent edge.
  * One node more is refused.
  */
-static hylo_status big_expand(void *ctx, const hylo_search *s, uint32_t u, uint32_t *heads,
+static hylo_status big_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
 			      hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
 	const uint32_t N = HYLO_MAX_NODES;
@@ -995,7 +995,7 @@ typedef struct {
 } fill_ctx;
 
 /* Fills every one of the cap slots, then reports cap or cap + 1. */
-static hylo_status fill_expand(void *ctx, const hylo_search *s, uint32_t u, uint32_t *heads,
+static hylo_status fill_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
 			       hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
 	fill_ctx *f = ctx;
@@ -1019,7 +1019,7 @@ static hylo_status fill_expand(void *ctx, const hylo_search *s, uint32_t u, uint
 static void test_capacity_successors(void **state)
 {
 	fill_ctx f = { 0, 0 };
-	hylo_graph g;
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
 	hylo_budget b = no_budget();
 	hylo_outcome out;
 	hylo_reason r;
@@ -1070,7 +1070,7 @@ typedef struct {
 	int with_reason;
 } err_ctx;
 
-static hylo_status err_expand(void *ctx, const hylo_search *s, uint32_t u, uint32_t *heads,
+static hylo_status err_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
 			      hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
 	const err_ctx *e = ctx;
@@ -1217,7 +1217,7 @@ static void test_bad_input(void **state)
  */
 static void test_determinism(void **state)
 {
-	hylo_graph g;
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
 	hylo_budget b = no_budget();
 	hylo_outcome o1, o2;
 	hylo_reason r;

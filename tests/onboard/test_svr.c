@@ -34,6 +34,7 @@ static double sv[MAX_SV_TEST * HYLO_MAX_FEATURES], coef[MAX_SV_TEST];
 static double offset[HYLO_MAX_FEATURES], scale[HYLO_MAX_FEATURES];
 static double x[BATCH][HYLO_MAX_FEATURES], flat[BATCH * HYLO_MAX_FEATURES], got[BATCH];
 static hylo_svr_cache cache;
+static double cache_mem[MAX_SV_TEST * HYLO_MAX_FEATURES * (HYLO_SVR_CACHE_VALUES + 2)];
 
 static hylo_svr_model random_model(uint32_t n_sv, uint32_t nf, double gamma)
 {
@@ -204,5 +205,6 @@ int main(void)
 		cmocka_unit_test(test_speed_range),
 	};
 
+	hylo_svr_cache_attach(&cache, cache_mem, sizeof cache_mem);
 	return cmocka_run_group_tests_name("svr", tests, NULL, NULL);
 }

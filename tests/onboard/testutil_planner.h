@@ -17,6 +17,10 @@
 
 #define TU_PI 3.14159265358979323846
 
+/* Workspace for the test robots: their models are small; this leaves room
+ * for the feasibility classifiers some tests add. */
+#define TU_PLANNER_BYTES (sizeof(hylo_planner) + ((size_t)1 << 22))
+
 typedef struct {
 	int32_t nx, ny;
 	double res, ox, oy, ceiling, max_step;

@@ -190,10 +190,11 @@ int main(int argc, char **argv)
 	hylo_planner_config cfg{};
 	cfg.robots = robots;
 	cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &reason);
-	auto *pl = static_cast<hylo_planner *>(std::malloc(sizeof(hylo_planner)));
+	size_t size = hylo_planner_size(&cfg);
+	auto *pl = static_cast<hylo_planner *>(std::malloc(size));
 	auto *plan = static_cast<hylo_plan *>(std::malloc(sizeof(hylo_plan)));
 	auto *buf = static_cast<hylo_plan_msg_buf *>(std::malloc(sizeof(hylo_plan_msg_buf)));
-	if (!pl || !plan || !buf || hylo_planner_init(pl, &cfg) != HYLO_OK)
+	if (!pl || !plan || !buf || hylo_planner_init(pl, size, &cfg) != HYLO_OK)
 		return 1;
 	hylo_map_view view;
 	hylo_msg_map_view(&m.map, &view);

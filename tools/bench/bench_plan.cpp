@@ -299,14 +299,14 @@ int main(int argc, char **argv)
 	std::memset(&cfg, 0, sizeof cfg);
 	cfg.robots = &robot;
 	cfg.n_robots = 1;
-	auto pl = std::unique_ptr<hylo_planner>(new hylo_planner);
+	size_t size = hylo_planner_size(&cfg);
+	std::vector<double> mem(size / sizeof(double) + 1);
+	hylo_planner *pl = reinterpret_cast<hylo_planner *>(mem.data());
 	auto plan = std::unique_ptr<hylo_plan>(new hylo_plan);
 	Scene scene;
 	hylo_map_view view = scene.view();
 
-	std::printf("workspace: %zu bytes (sizeof(hylo_planner) at the default capacities)\n",
-		    sizeof(hylo_planner));
-	add("workspace_bytes", double(sizeof(hylo_planner)), "bytes");
+	std::printf("workspace: %zu bytes (hylo_planner_size at the default capacities)\n", size);
 	std::printf("%8s %8s %10s %10s %10s %10s %10s %11s %11s %8s %10s\n", "target", "nodes",
 		    "edges", "evaluated", "hylo ms", "reused ms", "ref ms", "ref eval ms",
 		    "hylo cost", "speedup", "cost diff");
@@ -317,10 +317,10 @@ int main(int argc, char **argv)
 		double spacing = 3.0;
 		for (int it = 0; it < 6; it++) {
 			hylo_goal g = make_goal(spacing);
-			if (hylo_planner_init(pl.get(), &cfg) != HYLO_OK ||
-			    hylo_planner_set_map(pl.get(), &view) != HYLO_OK ||
-			    hylo_planner_plan(pl.get(), &g, plan.get()) != HYLO_OK) {
-				std::fprintf(stderr, "bench_plan: %s\n", hylo_planner_reason(pl.get()));
+			if (hylo_planner_init(pl, size, &cfg) != HYLO_OK ||
+			    hylo_planner_set_map(pl, &view) != HYLO_OK ||
+			    hylo_planner_plan(pl, &g, plan.get()) != HYLO_OK) {
+				std::fprintf(stderr, "bench_plan: %s\n", hylo_planner_reason(pl));
 				return 1;
 			}
 			spacing *= std::sqrt(double(plan->n_nodes) / target);
@@ -329,11 +329,11 @@ int main(int argc, char **argv)
 		std::vector<double> times, reused;
 		for (int rep = 0; rep < 5; rep++) {
 			auto t0 = Clock::now();
-			hylo_planner_set_map(pl.get(), &view);
-			hylo_planner_plan(pl.get(), &g, plan.get());
+			hylo_planner_set_map(pl, &view);
+			hylo_planner_plan(pl, &g, plan.get());
 			times.push_back(ms_since(t0));
 			t0 = Clock::now();
-			hylo_planner_plan(pl.get(), &g, plan.get());
+			hylo_planner_plan(pl, &g, plan.get());
 			reused.push_back(ms_since(t0));
 		}
 		if (plan->status != HYLO_OK || plan->outcome != HYLO_FOUND) {
@@ -344,7 +344,7 @@ int main(int argc, char **argv)
 		std::vector<double> ref_ms;
 		Reference ref;
 		for (int rep = 0; rep < reps; rep++) {
-			ref = run_reference(pl.get(), models);
+			ref = run_reference(pl, models);
 			ref_ms.push_back(ref.ms);
 		}
 		double hylo_ms = median(times), ref_med = median(ref_ms);

@@ -220,6 +220,12 @@ static int bench(const hylo_svr_model *m, hylo_mode mode, const char *suffix)
 	int i;
 
 	model = m;
+	free(cache.mem);
+	hylo_svr_cache_attach(&cache, malloc(hylo_svr_cache_size(m)), hylo_svr_cache_size(m));
+	if (!cache.mem) {
+		fprintf(stderr, "bench_svr: cannot allocate the SVR cache\n");
+		exit(1);
+	}
 	make_edges(mode);
 	for (e = 0; e < N_EDGES; e++)
 		for (k = 0; k < nf; k++)

@@ -168,22 +168,26 @@ hylo_goal goal_of(const Scene &sc)
 	return q;
 }
 
-// One planner workspace (tens of MB: allocated once) planning for one robot.
+// One planner workspace (allocated for the robot it plans for) planning for one robot.
 struct Planner {
-	std::unique_ptr<hylo_planner> pl{new hylo_planner};
+	std::vector<double> mem;   // hylo_planner_size bytes, aligned for double
 	std::unique_ptr<hylo_plan> plan{new hylo_plan};
+
+	hylo_planner *pl() { return reinterpret_cast<hylo_planner *>(mem.data()); }
 
 	void plan_on(const hylo_robot &robot, const Scene &sc, const hylo_goal &g)
 	{
 		hylo_planner_config cfg{};
 		cfg.robots = &robot;
 		cfg.n_robots = 1;
-		if (hylo_planner_init(pl.get(), &cfg) != HYLO_OK)
-			throw std::runtime_error(std::string("planner: ") + hylo_planner_reason(pl.get()));
+		size_t size = hylo_planner_size(&cfg);
+		mem.assign(size / sizeof(double) + 1, 0.0);
+		if (hylo_planner_init(pl(), size, &cfg) != HYLO_OK)
+			throw std::runtime_error(std::string("planner: ") + hylo_planner_reason(pl()));
 		hylo_map_view v = map_view(sc);
-		if (hylo_planner_set_map(pl.get(), &v) != HYLO_OK)
-			throw std::runtime_error(sc.path + ": " + hylo_planner_reason(pl.get()));
-		if (hylo_planner_plan(pl.get(), &g, plan.get()) != HYLO_OK ||
+		if (hylo_planner_set_map(pl(), &v) != HYLO_OK)
+			throw std::runtime_error(sc.path + ": " + hylo_planner_reason(pl()));
+		if (hylo_planner_plan(pl(), &g, plan.get()) != HYLO_OK ||
 		    plan->outcome != HYLO_FOUND)
 			throw std::runtime_error(sc.path + ": no plan: " + std::string(plan->reason.text));
 	}

@@ -28,7 +28,7 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
 
 int main(void)
 {
-	hylo_planner *pl = malloc(sizeof *pl);
+	hylo_planner *pl = malloc(TU_PLANNER_BYTES);
 	hylo_plan *plan = malloc(sizeof *plan);
 	hylo_robot robots[TU_N_ROBOTS];
 	hylo_planner_config cfg;
@@ -46,7 +46,7 @@ int main(void)
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = TU_N_ROBOTS;
-	if (hylo_planner_init(pl, &cfg) != HYLO_OK)
+	if (hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		return 1;
 	tu_river(&maps[0]);
 	tu_chasm(&maps[1]);

@@ -20,7 +20,8 @@ static volatile sig_atomic_t stop_requested;
 static int json, waypoints;
 static long count;
 static const char *status_names[] = { "ok", "no map", "no path", "bad request", "over capacity",
-				      "budget exhausted", "map replaced", "no model" };
+				      "budget exhausted", "map replaced", "no model",
+				       "not proven optimal" };
 static const char *mode_names[] = { "none", "ground", "marine", "flight", "di_neg", "di_pos" };
 
 static void on_signal(int sig)
@@ -31,7 +32,7 @@ static void on_signal(int sig)
 
 static const char *status_str(int s)
 {
-	return s >= 0 && s < 8 ? status_names[s] : "unknown";
+	return s >= 0 && s < (int)(sizeof status_names / sizeof *status_names) ? status_names[s] : "unknown";
 }
 
 static const char *mode_str(int m)
@@ -77,6 +78,10 @@ static void print_plan_json(const hylo_plan_t *p)
 	jstr(p->robot);
 	printf(",\"total_cost_j\":");
 	jnum(p->total_cost_j);
+	printf(",\"suboptimality\":");
+	jnum(p->suboptimality);
+	printf(",\"lower_bound_j\":");
+	jnum(p->lower_bound_j);
 	printf(",\"mode_sequence\":[");
 	for (k = 0; k < p->n_modes; k++)
 		printf("%s\"%s\"", k ? "," : "", mode_str(p->mode_sequence[k]));
@@ -93,9 +98,9 @@ static void print_plan_json(const hylo_plan_t *p)
 		printf(",\"guard\":%d}", p->guard[k]);
 	}
 	printf("],\"n_nodes\":%d,\"n_edges\":%lld,\"n_edges_evaluated\":%lld,"
-	       "\"n_expansions\":%lld,\"n_clamped\":%lld,\"plan_ms\":",
+	       "\"n_edges_cached\":%lld,\"n_expansions\":%lld,\"n_clamped\":%lld,\"plan_ms\":",
 	       p->n_nodes, (long long)p->n_edges, (long long)p->n_edges_evaluated,
-	       (long long)p->n_expansions, (long long)p->n_clamped);
+	       (long long)p->n_edges_cached, (long long)p->n_expansions, (long long)p->n_clamped);
 	jnum(p->plan_ms);
 	printf("}\n");
 }
@@ -106,15 +111,21 @@ static void print_plan_text(const hylo_plan_t *p)
 
 	printf("plan %lld (map %lld, %s): %s", (long long)p->request_id, (long long)p->map_id,
 	       p->robot[0] ? p->robot : "-", status_str(p->status));
-	if (p->status == HYLO_PLAN_T_STATUS_OK) {
-		printf(", %.6g J, %d waypoints, modes ", p->total_cost_j, p->n_waypoints);
+	if (p->status == HYLO_PLAN_T_STATUS_OK || p->status == HYLO_PLAN_T_STATUS_NOT_PROVEN) {
+		printf(", %.6g J", p->total_cost_j);
+		if (p->suboptimality > 1)
+			printf(" (at most %g x the optimum)", p->suboptimality);
+		if (p->status == HYLO_PLAN_T_STATUS_NOT_PROVEN && p->lower_bound_j > 0)
+			printf(" (the optimum is at least %.6g J)", p->lower_bound_j);
+		printf(", %d waypoints, modes ", p->n_waypoints);
 		for (k = 0; k < p->n_modes; k++)
 			printf("%s%s", k ? " > " : "", mode_str(p->mode_sequence[k]));
 	} else {
 		printf(" (%s)", p->reason);
 	}
-	printf("; %d nodes, %lld edges, %lld evaluated, %.2f ms\n", p->n_nodes,
-	       (long long)p->n_edges, (long long)p->n_edges_evaluated, p->plan_ms);
+	printf("; %d nodes, %lld edges, %lld evaluated, %lld cached, %.2f ms\n", p->n_nodes,
+	       (long long)p->n_edges, (long long)p->n_edges_evaluated,
+	       (long long)p->n_edges_cached, p->plan_ms);
 	if (waypoints)
 		for (k = 0; k < p->n_waypoints; k++)
 			printf("  %3d %-7s (%10.4f %10.4f %10.4f %10.4f %10.4f %10.4f) %12.6g J%s\n", k,

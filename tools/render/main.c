@@ -93,7 +93,8 @@ static int parse_camera(const char *s, view_options *o)
 static const hylo_roadmap *rebuild_roadmap(const input_set *in, int quiet)
 {
 	static hylo_robot robots[HYLO_MAX_ROBOTS];
-	static hylo_planner pl;
+	static hylo_planner *pl;
+	size_t size;
 	static hylo_plan plan;
 	hylo_planner_config cfg;
 	hylo_map_view view;
@@ -112,16 +113,19 @@ static const hylo_roadmap *rebuild_roadmap(const input_set *in, int quiet)
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = robots;
 	cfg.n_robots = n;
-	if (n == 0 || hylo_planner_init(&pl, &cfg) != HYLO_OK)
+	size = hylo_planner_size(&cfg);
+	if (!pl)
+		pl = malloc(size);
+	if (n == 0 || !pl || hylo_planner_init(pl, size, &cfg) != HYLO_OK)
 		return NULL;
 	hylo_msg_map_view(in->map, &view);
 	hylo_msg_goal_view(in->goal, &goal);
-	if (hylo_planner_set_map(&pl, &view) == HYLO_OK)
-		hylo_planner_plan(&pl, &goal, &plan);
-	rm = hylo_planner_roadmap(&pl);
+	if (hylo_planner_set_map(pl, &view) == HYLO_OK)
+		hylo_planner_plan(pl, &goal, &plan);
+	rm = hylo_planner_roadmap(pl);
 	if (!rm && !quiet)
 		fprintf(stderr, "hylo-render: note: the roadmap could not be rebuilt (%s); nodes and "
-		        "edges are not drawn\n", hylo_planner_reason(&pl));
+		        "edges are not drawn\n", hylo_planner_reason(pl));
 	return rm;
 }
 

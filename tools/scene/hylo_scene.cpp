@@ -88,6 +88,7 @@ hylo::goal_t goal_message(const Scene &sc, int64_t request_id)
 	m.n_air_speeds = static_cast<int32_t>(g.air_speeds_mps.size());
 	m.air_speeds_mps = g.air_speeds_mps;
 	m.time_budget_ms = g.time_budget_ms;
+	m.suboptimality = g.suboptimality;
 	m.max_expansions = g.max_expansions;
 	return m;
 }

@@ -170,7 +170,7 @@ Goal goal(const Ctx &c, const YAML::Node &n)
 {
 	c.keys(n, "goal", {"start", "goal", "algorithm", "seed", "spacing_m", "air_spacing_m",
 			   "guard_spacing_m", "connect_radius_m", "air_connect_radius_m",
-			   "speeds_mps", "headings_rad", "air_speeds_mps", "time_budget_ms",
+			   "speeds_mps", "headings_rad", "air_speeds_mps", "time_budget_ms", "suboptimality",
 			   "max_expansions"});
 	Goal g;
 	g.start = state(c, c.need(n, "start", "goal"), "start");
@@ -198,6 +198,11 @@ Goal goal(const Ctx &c, const YAML::Node &n)
 		g.air_speeds_mps = c.numbers(n["air_speeds_mps"], "air_speeds_mps", 0, 1024);
 	if (n["time_budget_ms"])
 		g.time_budget_ms = c.non_negative(n["time_budget_ms"], "time_budget_ms");
+	if (n["suboptimality"]) {
+		g.suboptimality = c.non_negative(n["suboptimality"], "suboptimality");
+		if (g.suboptimality != 0 && g.suboptimality < 1)
+			c.fail(n["suboptimality"], "suboptimality must be 0 (the optimum) or >= 1");
+	}
 	if (n["max_expansions"])
 		g.max_expansions = static_cast<int32_t>(
 			c.integer(n["max_expansions"], "max_expansions", 0, INT32_MAX));

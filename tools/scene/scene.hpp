@@ -30,6 +30,7 @@ struct Goal {
 	double connect_radius_m = 0, air_connect_radius_m = 0;
 	std::vector<double> speeds_mps, headings_rad, air_speeds_mps;
 	double time_budget_ms = 0;
+	double suboptimality = 0;        // w >= 1, 0: the optimum
 	int32_t max_expansions = 0;
 };
 

@@ -2,7 +2,10 @@
  * Compile-time capacities of the onboard planner. Every one can be overridden
  * with -D; the workspace (struct hylo_planner) grows with them. Exceeding a
  * capacity at run time returns a status naming it (HYLO_E_CAP_*), never an
- * out-of-bounds write.
+ * out-of-bounds write. The defaults hold every committed scene several times
+ * over (the largest roadmap: 1,248 positions, 10,560 nodes, 32,336 adjacency
+ * entries, 170,488 successor groups) in about 12 MB, plus the SVR caches'
+ * memory sized by the models (hylo_planner_size).
  */
 #ifndef HYLO_CONFIG_H
 #define HYLO_CONFIG_H
@@ -14,17 +17,17 @@
 
 /* Sampled positions of all modes, guard copies, start and goal. */
 #ifndef HYLO_MAX_POSITIONS
-#define HYLO_MAX_POSITIONS 32768
+#define HYLO_MAX_POSITIONS 8192
 #endif
 
 /* Graph nodes: positions times their velocity/heading combinations. */
 #ifndef HYLO_MAX_NODES
-#define HYLO_MAX_NODES 262144
+#define HYLO_MAX_NODES 65536
 #endif
 
 /* Position adjacency entries (an undirected neighbour pair counts twice). */
 #ifndef HYLO_MAX_ADJACENCY
-#define HYLO_MAX_ADJACENCY 1048576
+#define HYLO_MAX_ADJACENCY 262144
 #endif
 
 /* Entries of each sampling grid (speeds, headings, flight speeds). */
@@ -42,6 +45,22 @@
 #define HYLO_MAX_SUCCESSORS 16384
 #endif
 
+/* Groups of successors the search may defer at once (lazy edge
+ * evaluation); when full, successors are evaluated at once instead. */
+#ifndef HYLO_MAX_DEFERRED
+#define HYLO_MAX_DEFERRED 65536
+#endif
+
+/* The edge-cost cache (hylo/edgecache.h): successor groups (a node and one
+ * neighbouring position) of one roadmap, and costs kept. A roadmap with more
+ * groups is planned without the cache. */
+#ifndef HYLO_MAX_GROUPS
+#define HYLO_MAX_GROUPS 262144
+#endif
+#ifndef HYLO_MAX_CACHED_COSTS
+#define HYLO_MAX_CACHED_COSTS 262144
+#endif
+
 /* Waypoints of one plan. */
 #ifndef HYLO_MAX_WAYPOINTS
 #define HYLO_MAX_WAYPOINTS 4096
@@ -52,21 +71,21 @@
 #define HYLO_MAX_BUCKETS 262144
 #endif
 
-/* Support vectors of one SVR model, and features of one model. The largest
- * committed model, drivocopter_flight, has 8,852; each SV of capacity costs
- * 1,440 bytes (default features and cache values) in each of the planner's
- * four SVR caches (svr.h). */
+/* Support vectors of one SVR model (a sanity limit: the caches' memory is
+ * sized by the loaded models; the largest committed one, drivocopter_flight,
+ * has 8,852), and features of one model. */
 #ifndef HYLO_MAX_SV
-#define HYLO_MAX_SV 12288
+#define HYLO_MAX_SV 65536
 #endif
 #ifndef HYLO_MAX_FEATURES
 #define HYLO_MAX_FEATURES 9
 #endif
 
 /* Distinct values per feature group kept by the SVR batch evaluator's kernel-factor
- * cache (see svr.h). Memory: HYLO_MAX_FEATURES * this * HYLO_MAX_SV doubles. */
+ * cache (see svr.h). Memory per model: (groups * this + features + groups)
+ * doubles per support vector (hylo_svr_cache_size). */
 #ifndef HYLO_SVR_CACHE_VALUES
-#define HYLO_SVR_CACHE_VALUES 18
+#define HYLO_SVR_CACHE_VALUES 8
 #endif
 
 /* Robots known to one planner, and length of names and reasons. */
@@ -80,6 +99,7 @@
 typedef char hylo_check_nodes_cover_positions[(HYLO_MAX_NODES >= HYLO_MAX_POSITIONS) ? 1 : -1];
 typedef char hylo_check_combos_cover_grid[(HYLO_MAX_COMBOS >= HYLO_MAX_GRID) ? 1 : -1];
 typedef char hylo_check_successors_cover_combos[(HYLO_MAX_SUCCESSORS >= HYLO_MAX_COMBOS) ? 1 : -1];
+typedef char hylo_check_grid_fits_u8[(HYLO_MAX_GRID <= 256) ? 1 : -1];
 typedef char hylo_check_positions_fit_u32[(HYLO_MAX_NODES < 0x7fffffffL) ? 1 : -1];
 
 #endif

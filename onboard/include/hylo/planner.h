@@ -1,22 +1,27 @@
 /*
  * hylo onboard planner: the public API.
  *
- *   static hylo_planner pl;              // one workspace, fixed size (sizeof)
  *   hylo_planner_config cfg = { robots, n_robots, clock, clock_ctx };
- *   hylo_planner_init(&pl, &cfg);        // once, at start-up
- *   hylo_planner_set_map(&pl, &map);     // each new map
- *   hylo_planner_plan(&pl, &goal, &plan); // each goal; reuses the roadmap
+ *   size_t n = hylo_planner_size(&cfg);  // bytes for these robots' models
+ *   hylo_planner *pl = malloc(n);        // once, at start-up (or static storage)
+ *   hylo_planner_init(pl, n, &cfg);
+ *   hylo_planner_set_map(pl, &map);      // each new map
+ *   hylo_planner_plan(pl, &goal, &plan); // each goal; reuses the roadmap and
+ *                                        // the edge costs of earlier goals
  *
- * The workspace holds every array the planner uses; its capacities are the
- * compile-time constants of hylo/config.h. No function here allocates,
- * recurses or touches the OS (time comes from an optional clock callback).
- * Not thread-safe: one planner per thread.
+ * The workspace holds every array the planner uses: the struct (capacities
+ * are the compile-time constants of hylo/config.h) followed by the SVR
+ * evaluators' memory, sized by the largest robot's models. No function here
+ * allocates, recurses or touches the OS (time comes from an optional clock
+ * callback). Not thread-safe: one planner per thread.
  */
 #ifndef HYLO_PLANNER_H
 #define HYLO_PLANNER_H
 
+#include <stddef.h>
 #include <stdint.h>
 #include "hylo/config.h"
+#include "hylo/edgecache.h"
 #include "hylo/map.h"
 #include "hylo/roadmap.h"
 #include "hylo/robot.h"
@@ -48,10 +53,15 @@ typedef struct {
 	const hylo_real *air_speeds;    /* n_air_speeds [m/s] */
 	hylo_real time_budget_ms;       /* 0: no limit (needs a clock otherwise) */
 	uint64_t max_expansions;        /* 0: no limit */
+	hylo_real suboptimality;        /* w >= 1: a plan costing at most w times the
+	                                 * optimum will do (weighted A*); 0 or 1: the optimum */
 } hylo_goal;
 
 /* The answer to one goal. status says whether the request was valid;
- * when it is HYLO_OK, outcome says what the search found. */
+ * when it is HYLO_OK, outcome says what the search found: HYLO_FOUND (the
+ * optimum, or at most suboptimality times it), HYLO_FOUND_UNPROVEN (the
+ * budget ran out: the best complete plan found, lower_bound says how good
+ * it is when known), HYLO_NO_PATH or HYLO_BUDGET_EXHAUSTED (no plan). */
 typedef struct {
 	hylo_status status;
 	hylo_outcome outcome;
@@ -60,6 +70,8 @@ typedef struct {
 	int64_t map_id;
 	char robot[HYLO_NAME_LEN];
 	hylo_real total_cost;           /* predicted energy [J] */
+	hylo_real suboptimality;        /* w the plan was made with: total_cost <= w * optimum */
+	hylo_real lower_bound;          /* a lower bound of the optimum [J], 0 when unknown */
 	uint32_t n_waypoints;
 	uint8_t mode[HYLO_MAX_WAYPOINTS];
 	hylo_real state[HYLO_MAX_WAYPOINTS][HYLO_XS_DIM];
@@ -70,7 +82,8 @@ typedef struct {
 	/* statistics */
 	uint32_t n_nodes;
 	uint64_t n_edges;
-	uint64_t n_edges_evaluated;
+	uint64_t n_edges_evaluated;     /* edge costs computed for this goal */
+	uint64_t n_edges_cached;        /* edge costs found in the cache (earlier goals, same roadmap) */
 	uint64_t n_expansions;
 	uint64_t n_clamped;             /* costs raised to the floor (negative ones included) */
 	uint64_t n_negative;            /* of those, predictions below 0 */
@@ -86,8 +99,9 @@ typedef struct {
 	void *clock_ctx;
 } hylo_planner_config;
 
-/* The workspace. Its fields are private; it is visible so that the caller
- * can place it (static storage, or one allocation at start-up). */
+/* The workspace's head. Its fields are private; it is visible so that the
+ * caller can place it: hylo_planner_size() bytes (static storage, or one
+ * allocation at start-up); the SVR caches' memory follows the struct. */
 typedef struct {
 	hylo_planner_config cfg;
 	hylo_robot robots[HYLO_MAX_ROBOTS];
@@ -102,9 +116,10 @@ typedef struct {
 	hylo_roadmap roadmap;
 	hylo_roadmap_ws build_ws;
 	hylo_search search;
+	hylo_edge_cache cache;          /* costs evaluated on this roadmap */
 	hylo_svr_cache svr_cache[2];    /* one per mode of the robot */
 	hylo_svr_cache feas_cache[2];   /* the same for the feasibility classifiers */
-	hylo_real feas_d[HYLO_MAX_SUCCESSORS];
+	hylo_real feas_d[HYLO_MAX_COMBOS];
 	/* the current request */
 	uint32_t start_pos, goal_pos;   /* position ids of start and goal */
 	hylo_real start_xs[HYLO_XS_DIM], goal_xs[HYLO_XS_DIM];
@@ -113,27 +128,44 @@ typedef struct {
 	uint32_t goal_adj[HYLO_MAX_SUCCESSORS];
 	int start_goal_linked;          /* a direct start -> goal edge exists */
 	uint8_t links_goal[HYLO_MAX_POSITIONS];
-	hylo_real h_pos[HYLO_MAX_POSITIONS + 2];  /* heuristic per position */
-	/* expansion scratch */
-	hylo_real head_xs[HYLO_MAX_SUCCESSORS][HYLO_XS_DIM];
-	hylo_real features[HYLO_MAX_SUCCESSORS * HYLO_MAX_FEATURES];
-	hylo_real head_dist[HYLO_MAX_SUCCESSORS];
+	/* the heuristic on (position, speed class): abstract node abs_base[i] + k */
+	uint32_t abs_base[HYLO_MAX_POSITIONS + 3];
+	uint32_t abs_pos[HYLO_MAX_NODES];
+	hylo_real h_abs[HYLO_MAX_NODES];
+	uint32_t n_abs;
+	hylo_real weight;               /* the goal's suboptimality w */
+	/* scratch of one evaluation (the combinations of one position) */
+	hylo_real head_xs[HYLO_MAX_COMBOS][HYLO_XS_DIM];
+	hylo_real features[HYLO_MAX_COMBOS * HYLO_MAX_FEATURES];
 	uint32_t path[HYLO_MAX_WAYPOINTS];
-	uint64_t n_clamped, n_negative, n_infeasible;
+	hylo_real path_cost[HYLO_MAX_WAYPOINTS];
+	uint64_t n_clamped, n_negative, n_infeasible, n_evaluated, n_cached;
 	int heuristic_pass;             /* 1 while computing h_pos */
 	int use_heuristic;
-	/* A*'s upper bound (a greedy walk's path cost) and its bookkeeping */
+	/* A*'s upper bound (a greedy walk's path cost) and its path */
 	hylo_real bound;
-	uint64_t n_walk_evaluated;
+	uint32_t walk_len;
+	uint32_t walk_path[HYLO_MAX_WAYPOINTS];
+	hylo_real walk_cost[HYLO_MAX_WAYPOINTS];
 	uint32_t walk_heads[HYLO_MAX_SUCCESSORS];
 	hylo_real walk_costs[HYLO_MAX_SUCCESSORS];
+	/* scratch of one group's evaluation */
+	uint32_t eval_idx[HYLO_MAX_COMBOS];
 } hylo_planner;
 
 /**
- * Prepares the workspace for the given robots (copied). Errors: HYLO_E_NULL,
- * HYLO_E_CAP_ROBOTS, and hylo_robot_check's errors. Does not allocate.
+ * Bytes a workspace for the robots of cfg needs: sizeof(hylo_planner) plus
+ * the SVR caches of the robot whose models need the most. Does not allocate.
  */
-hylo_status hylo_planner_init(hylo_planner *pl, const hylo_planner_config *cfg);
+size_t hylo_planner_size(const hylo_planner_config *cfg);
+
+/**
+ * Prepares the workspace pl of size bytes (aligned for double) for the given
+ * robots (copied). Errors: HYLO_E_NULL, HYLO_E_CAP_ROBOTS, HYLO_E_CAP_SV
+ * (size is less than hylo_planner_size(cfg); the reason names the largest
+ * model), and hylo_robot_check's errors. Does not allocate.
+ */
+hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_config *cfg);
 
 /**
  * Ingests a map (copied; the view may be freed afterwards) and invalidates
@@ -161,5 +193,24 @@ const char *hylo_planner_reason(const hylo_planner *pl);
 /** The roadmap of the current map and the last goal's sampling options, or
  * NULL when none has been built (for tools that draw it). */
 const hylo_roadmap *hylo_planner_roadmap(const hylo_planner *pl);
+
+/**
+ * Costs of the edges from node tail to heads[0 .. n) of the last goal's
+ * graph (roadmap nodes, then start rm->n_nodes and goal rm->n_nodes + 1),
+ * with the weights the search uses: the model's prediction raised to the
+ * edge's lower bound, +inf where the feasibility classifier drops the edge,
+ * the switch cost on a switch edge. Every head must be a successor of tail
+ * (HYLO_E_BAD_VALUE otherwise). Does not use or fill the cache; no
+ * allocation. For references and tests (an exhaustive search).
+ */
+hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint32_t *heads,
+                                    uint32_t n, hylo_real *costs);
+
+/**
+ * The successors of node tail in the last goal's graph into heads (capacity
+ * HYLO_MAX_SUCCESSORS), their number into *n, with nothing pruned. For
+ * references and tests. No allocation.
+ */
+hylo_status hylo_planner_successors(hylo_planner *pl, uint32_t tail, uint32_t *heads, uint32_t *n);
 
 #endif

@@ -66,6 +66,7 @@ typedef struct {
 	uint32_t n_guards;                 /* guard samples (each has two copies) */
 	uint32_t n_air_velocities;         /* flight velocity combinations */
 	hylo_real air_velocity[HYLO_MAX_COMBOS][3];
+	uint8_t air_class[HYLO_MAX_COMBOS];  /* index of each flight velocity's speed in air_speeds */
 	hylo_position pos[HYLO_MAX_POSITIONS];
 	uint32_t adjacency[HYLO_MAX_ADJACENCY];
 	uint32_t n_adjacency;
@@ -102,6 +103,20 @@ void hylo_roadmap_state(const hylo_roadmap *rm, uint32_t i, uint32_t c, hylo_rea
 /** 1 when combination c of a position of mode is at rest (speed 0): the
  * only combinations with takeoff/landing switch edges. */
 int hylo_roadmap_at_rest(const hylo_roadmap *rm, hylo_mode mode, uint32_t c);
+
+/*
+ * Speed classes: the combinations of a position that share a speed (ground
+ * and marine: an entry of speeds; flight: of air_speeds; the double
+ * integrator: one class). The A* heuristic works on (position, class).
+ */
+/** Number of speed classes of a sampled position of mode (>= 1). */
+uint32_t hylo_roadmap_class_count(const hylo_roadmap *rm, hylo_mode mode);
+
+/** Speed class of combination c of a position of mode. */
+uint32_t hylo_roadmap_class(const hylo_roadmap *rm, hylo_mode mode, uint32_t c);
+
+/** Speed of class k of mode [m/s] (the double integrator: 0). */
+hylo_real hylo_roadmap_class_speed(const hylo_roadmap *rm, hylo_mode mode, uint32_t k);
 
 /** Connection radius of mode under the roadmap's options. */
 hylo_real hylo_roadmap_radius(const hylo_roadmap *rm, hylo_mode mode);

@@ -1,9 +1,14 @@
 /*
- * Best-first shortest-path search over an implicit graph: Dijkstra, or A*
- * with a consistent heuristic. Edges are produced lazily by an expand
- * callback when their tail is expanded, so edge costs are computed only for
- * expanded nodes. Binary heap with decrease-key (heap size <= nodes).
- * Deterministic: ties in f are broken by larger g, then smaller node id.
+ * Best-first shortest-path search over an implicit graph: Dijkstra, A* with
+ * a consistent heuristic, or weighted A* (f = g + w h, cost at most w times
+ * the optimum). Edges are produced by an expand callback when their tail is
+ * expanded; expand may also defer a group of successors with a lower bound
+ * of the f-value any of them could get (hylo_search_defer), and the search
+ * asks for their costs (resolve) only when that bound comes first, so edge
+ * costs are computed only where they could matter (lazy evaluation). Binary
+ * heaps: nodes with decrease-key (size <= nodes), deferred groups (size <=
+ * HYLO_MAX_DEFERRED). Deterministic: ties in f are broken by larger g, then
+ * smaller node id; a deferred group comes before a node of equal key.
  */
 #ifndef HYLO_SEARCH_H
 #define HYLO_SEARCH_H
@@ -20,12 +25,22 @@ typedef struct hylo_search hylo_search;
 /*
  * Successors of node u: writes up to cap (heads[i], costs[i]) pairs and their
  * number to *n. It may leave out heads that are already closed
- * (hylo_search_closed), which is what makes evaluation lazy. Costs must be
- * finite and >= 0. Returns HYLO_OK or an error, which stops the search.
+ * (hylo_search_closed), and it may defer groups of heads instead
+ * (hylo_search_defer). Costs must be finite and >= 0. Returns HYLO_OK or an
+ * error, which stops the search.
  */
-typedef hylo_status (*hylo_expand_fn)(void *ctx, const hylo_search *s, uint32_t u,
+typedef hylo_status (*hylo_expand_fn)(void *ctx, hylo_search *s, uint32_t u,
                                       uint32_t *heads, hylo_real *costs,
                                       uint32_t cap, uint32_t *n, hylo_reason *r);
+
+/*
+ * The successors of a group that expand of node u deferred (group is the
+ * caller's own number for it), written as expand writes them. Called at most
+ * once per deferred group, after u was closed.
+ */
+typedef hylo_status (*hylo_resolve_fn)(void *ctx, hylo_search *s, uint32_t u, uint32_t group,
+                                       uint32_t *heads, hylo_real *costs, uint32_t cap,
+                                       uint32_t *n, hylo_reason *r);
 
 /* Lower bound on the cost from u to the goal; must be consistent
  * (h(u) <= c(u, v) + h(v)) for A* to return the optimum. */
@@ -37,8 +52,10 @@ typedef double (*hylo_clock_fn)(void *ctx);
 typedef struct {
 	uint32_t n_nodes;              /* node ids are 0 .. n_nodes-1, <= HYLO_MAX_NODES */
 	hylo_expand_fn expand;
+	hylo_resolve_fn resolve;       /* NULL when expand never defers */
 	hylo_heuristic_fn heuristic;   /* NULL: Dijkstra */
-	void *ctx;                     /* passed to expand and heuristic */
+	hylo_real weight;              /* f = g + weight * h, >= 1 (1: the optimum) */
+	void *ctx;                     /* passed to expand, resolve and heuristic */
 } hylo_graph;
 
 typedef struct {
@@ -50,9 +67,11 @@ typedef struct {
 
 typedef struct {
 	uint64_t expansions;           /* nodes expanded (popped and closed) */
-	uint64_t edges_evaluated;      /* successor costs returned by expand */
+	uint64_t edges_evaluated;      /* successor costs returned by expand and resolve */
 	uint64_t pushes;               /* heap insertions */
 	uint64_t decrease_keys;        /* improved open nodes */
+	uint64_t deferred;             /* groups deferred by expand */
+	uint64_t resolved;             /* of those, resolved (the rest never came first) */
 } hylo_search_stats;
 
 struct hylo_search {
@@ -63,7 +82,12 @@ struct hylo_search {
 	uint32_t parent[HYLO_MAX_NODES];     /* predecessor on the best path, HYLO_NO_NODE */
 	uint32_t heap_pos[HYLO_MAX_NODES];   /* position in heap, or a closed/unseen mark */
 	uint32_t heap[HYLO_MAX_NODES];       /* node ids, a binary min-heap on heap_f */
-	hylo_real heap_f[HYLO_MAX_NODES];    /* f = g + h of heap[i] */
+	hylo_real heap_f[HYLO_MAX_NODES];    /* f = g + w h of heap[i] */
+	uint32_t n_deferred;                 /* deferred groups waiting: a min-heap on defer_key */
+	uint32_t defer_node[HYLO_MAX_DEFERRED];
+	uint32_t defer_group[HYLO_MAX_DEFERRED];
+	hylo_real defer_key[HYLO_MAX_DEFERRED];
+	hylo_real weight;                    /* of the current run */
 	uint32_t heads[HYLO_MAX_SUCCESSORS]; /* scratch for expand */
 	hylo_real costs[HYLO_MAX_SUCCESSORS];
 };
@@ -79,6 +103,22 @@ struct hylo_search {
 hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
                             uint32_t goal, const hylo_budget *budget,
                             hylo_outcome *outcome, hylo_reason *r);
+
+/**
+ * For expand of node u: defers a group of u's successors (group: the caller's
+ * number, passed back to resolve) whose f-values will all be at least key.
+ * Returns 1, or 0 when HYLO_MAX_DEFERRED groups are waiting already: then
+ * expand must return those successors itself. No allocation.
+ */
+int hylo_search_defer(hylo_search *s, uint32_t u, uint32_t group, hylo_real key);
+
+/** The search's weight w (f = g + w h) of the current run. */
+hylo_real hylo_search_weight(const hylo_search *s);
+
+/** The least key still waiting (node or deferred group), +inf when none: a
+ * lower bound of the optimum while an A* (w = 1) run is under way or after
+ * it ran out of budget. */
+hylo_real hylo_search_min_key(const hylo_search *s);
 
 /** 1 when v has been expanded (its cost is final). */
 int hylo_search_closed(const hylo_search *s, uint32_t v);

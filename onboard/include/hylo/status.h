@@ -41,7 +41,9 @@ typedef enum {
 typedef enum {
 	HYLO_FOUND = 0,             /* a path was found; it is optimal on the graph */
 	HYLO_NO_PATH,               /* the goal is unreachable in the graph */
-	HYLO_BUDGET_EXHAUSTED,      /* the time or expansion budget ran out first */
+	HYLO_BUDGET_EXHAUSTED,      /* the time or expansion budget ran out before any path was found */
+	HYLO_FOUND_UNPROVEN,        /* the budget ran out after a path was found: the best found,
+	                             * not proven optimal (the plan gives a lower bound when known) */
 	HYLO_OUTCOME_COUNT
 } hylo_outcome;
 

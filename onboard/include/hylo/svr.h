@@ -97,22 +97,38 @@ typedef struct {
 	uint32_t clock;                /* for least-recently-used replacement */
 	uint32_t last_use[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES];
 	double value[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES][HYLO_MAX_FEATURES];
-	double factor[HYLO_MAX_FEATURES][HYLO_SVR_CACHE_VALUES][HYLO_MAX_SV];
-	double sv_col[HYLO_MAX_FEATURES][HYLO_MAX_SV];  /* the model's SVs, feature-major */
 	uint32_t n_prefix;             /* valid running-product levels (groups) */
 	double prefix_value[HYLO_MAX_FEATURES];  /* the features of those levels, in order */
-	double prefix[HYLO_MAX_FEATURES][HYLO_MAX_SV];
 	uint64_t hits, misses;         /* statistics */
+	/* The caller's memory (hylo_svr_cache_attach), laid out for the model:
+	 * factor rows [group][value][sv], the SVs feature-major [feature][sv],
+	 * running products [group][sv]. */
+	double *mem;
+	size_t mem_doubles;
+	double *factor;
+	double *sv_col;
+	double *prefix;
 } hylo_svr_cache;
 
-/** Empties the cache (required before first use and when the model changes). */
+/** Bytes of memory a cache needs for model m (sized by its support vectors
+ * and feature groups); 0 for NULL. */
+size_t hylo_svr_cache_size(const hylo_svr_model *m);
+
+/**
+ * Gives cache c its memory: mem (aligned for double) of bytes bytes, enough
+ * for any model whose hylo_svr_cache_size is at most bytes. Empties the
+ * cache. No allocation.
+ */
+void hylo_svr_cache_attach(hylo_svr_cache *c, double *mem, size_t bytes);
+
+/** Empties the cache (its memory stays attached). */
 void hylo_svr_cache_reset(hylo_svr_cache *c);
 
 /**
  * Costs of n raw feature vectors x (n x n_features, row-major) into cost[n],
  * each equal to hylo_svr_predict to within about 1e-14 relative. Resets the
  * cache itself when c->model differs from m. Errors: HYLO_E_NULL,
- * HYLO_E_CAP_SV. No allocation.
+ * HYLO_E_CAP_SV (the cache's memory is too small for m). No allocation.
  */
 hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
                                    const double *x, uint32_t n, double *cost);

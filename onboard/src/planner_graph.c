@@ -1,0 +1,573 @@
+#include <math.h>
+#include <string.h>
+
+#include "hylo/features.h"
+#include "planner_internal.h"
+
+/*
+ * Edge costs and the search's callbacks. An edge costs the model's
+ * prediction raised to the edge bound (floor and envelope,
+ * hylo_planner_edge_bound); A* evaluates edges lazily: expand hands the
+ * search each neighbouring position's still-unknown edges as one deferred
+ * group with the least f-value any of them could get, and resolve evaluates
+ * the group when that value comes first. Known costs come from the edge
+ * cache. Edges that cannot beat the greedy walk's path are never evaluated.
+ */
+
+/* Pruning against the walk's cost keeps paths within this relative rounding
+ * slack of it. */
+#define BOUND_SLACK 1e-9
+
+double hylo_planner_now(const hylo_planner *pl)
+{
+	return pl->cfg.clock ? pl->cfg.clock(pl->cfg.clock_ctx) : 0.0;
+}
+
+const hylo_mode_model *hylo_planner_mode_model(const hylo_planner *pl, hylo_mode mode)
+{
+	int k = hylo_robot_mode_index(pl->robot, mode);
+
+	return k < 0 ? NULL : &pl->robot->modes[k];
+}
+
+static hylo_real floor_per_m(const hylo_mode_model *mm)
+{
+	return mm->model ? mm->model->cost_floor_per_m : mm->cost_floor_per_m;
+}
+
+static hylo_real floor_j(const hylo_mode_model *mm)
+{
+	return mm->model ? mm->model->cost_floor_j : mm->cost_floor_j;
+}
+
+static int is_terminal(const hylo_planner *pl, uint32_t i)
+{
+	return i == pl->start_pos || i == pl->goal_pos;
+}
+
+void hylo_planner_node_state(const hylo_planner *pl, uint32_t i, uint32_t c, hylo_real *xs)
+{
+	if (i == pl->start_pos)
+		memcpy(xs, pl->start_xs, sizeof pl->start_xs);
+	else if (i == pl->goal_pos)
+		memcpy(xs, pl->goal_xs, sizeof pl->goal_xs);
+	else
+		hylo_roadmap_state(&pl->roadmap, i, c, xs);
+}
+
+uint32_t hylo_planner_node_class(const hylo_planner *pl, uint32_t i, uint32_t c)
+{
+	return is_terminal(pl, i) ? 0
+				  : hylo_roadmap_class(&pl->roadmap, (hylo_mode)pl->roadmap.pos[i].mode, c);
+}
+
+uint32_t hylo_planner_class_count(const hylo_planner *pl, uint32_t i)
+{
+	return is_terminal(pl, i) ? 1
+				  : hylo_roadmap_class_count(&pl->roadmap, (hylo_mode)pl->roadmap.pos[i].mode);
+}
+
+const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint32_t *n)
+{
+	const hylo_position *p = &pl->roadmap.pos[i];
+
+	if (i == pl->start_pos) {
+		*n = pl->n_start_adj;
+		return pl->start_adj;
+	}
+	if (i == pl->goal_pos) {
+		*n = 0;
+		return pl->start_adj;
+	}
+	*n = p->adj_end - p->adj_begin;
+	return &pl->roadmap.adjacency[p->adj_begin];
+}
+
+/* A state of class k at position i that stands for all of the class's
+ * combinations in the envelope, which depends on positions and speeds only. */
+static void class_state(const hylo_planner *pl, uint32_t i, uint32_t k, hylo_real *xs)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_position *p = &rm->pos[i];
+	hylo_real speed;
+
+	if (is_terminal(pl, i) || !(p->mode == HYLO_MODE_GROUND || p->mode == HYLO_MODE_MARINE ||
+				    p->mode == HYLO_MODE_FLIGHT)) {
+		hylo_planner_node_state(pl, i, 0, xs);
+		return;
+	}
+	memset(xs, 0, HYLO_XS_DIM * sizeof *xs);
+	speed = hylo_roadmap_class_speed(rm, (hylo_mode)p->mode, k);
+	xs[0] = p->p.x;
+	xs[1] = p->p.y;
+	if (p->mode == HYLO_MODE_FLIGHT) {
+		xs[2] = p->p.z;
+		xs[3] = speed;
+	} else {
+		xs[2] = speed;
+	}
+}
+
+/* The model's envelope for the edge a -> b (0 until models carry one). */
+static hylo_real envelope(const hylo_mode_model *mm, hylo_mode mode, const hylo_real *a,
+			  const hylo_real *b)
+{
+	(void)mm;
+	(void)mode;
+	(void)a;
+	(void)b;
+	return 0;
+}
+
+hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, uint32_t ki, uint32_t j,
+				  uint32_t kj)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	hylo_mode mode = (hylo_mode)rm->pos[i].mode;
+	const hylo_mode_model *mm = hylo_planner_mode_model(pl, mode);
+	hylo_real lb = floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
+
+	if (mm->model) {
+		hylo_real a[HYLO_XS_DIM], b[HYLO_XS_DIM], e;
+
+		class_state(pl, i, ki, a);
+		class_state(pl, j, kj, b);
+		e = envelope(mm, mode, a, b);
+		if (e > lb)
+			lb = e;
+	}
+	return lb;
+}
+
+hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i)
+{
+	return pl->robot->switch_cost[pl->roadmap.pos[i].mode == pl->robot->modes[0].mode ? 0 : 1];
+}
+
+hylo_real hylo_planner_h(const hylo_planner *pl, uint32_t u)
+{
+	uint32_t i = pl->roadmap.node_pos[u];
+
+	return pl->h_abs[pl->abs_base[i] +
+			 hylo_planner_node_class(pl, i, u - pl->roadmap.pos[i].node_base)];
+}
+
+/* The edge bounds from class ki at position i to every class of j. */
+static void class_bounds(const hylo_planner *pl, uint32_t i, uint32_t ki, uint32_t j, hylo_real *lb)
+{
+	uint32_t k, n = hylo_planner_class_count(pl, j);
+
+	for (k = 0; k < n; k++)
+		lb[k] = hylo_planner_edge_bound(pl, i, ki, j, k);
+}
+
+/*
+ * Costs of the edges from the tail (position i, class ki, state tail) to
+ * combinations combos[0 .. n) of position j into costs: the model's
+ * prediction (or the cost callback's) raised to the edge bound, +inf where
+ * the mode's feasibility classifier rejects the edge.
+ */
+static hylo_status evaluate(hylo_planner *pl, uint32_t i, uint32_t ki, const hylo_real *tail,
+			    uint32_t j, const uint32_t *combos, uint32_t n, hylo_real *costs)
+{
+	hylo_mode mode = (hylo_mode)pl->roadmap.pos[i].mode;
+	const hylo_mode_model *mm = hylo_planner_mode_model(pl, mode);
+	int k = hylo_robot_mode_index(pl->robot, mode);
+	unsigned nf = hylo_feature_count(mode);
+	hylo_real lb[HYLO_MAX_GRID];
+	uint32_t m;
+	hylo_status st;
+
+	if (n == 0)
+		return HYLO_OK;
+	for (m = 0; m < n; m++)
+		hylo_planner_node_state(pl, j, combos[m], pl->head_xs[m]);
+	if (mm->model || mm->feasibility)
+		for (m = 0; m < n; m++)
+			hylo_features(mode, tail, pl->head_xs[m], &pl->features[m * nf]);
+	if (mm->model) {
+		st = hylo_svr_predict_batch(mm->model, &pl->svr_cache[k], pl->features, n, costs);
+		if (st != HYLO_OK)
+			return hylo_fail(&pl->reason, st, "SVR evaluation failed: %s",
+					 hylo_status_str(st));
+	} else {
+		st = mm->cost_fn(mm->cost_ctx, mode, tail,
+				 (const hylo_real(*)[HYLO_XS_DIM])pl->head_xs, n, costs, &pl->reason);
+		if (st != HYLO_OK)
+			return st;
+	}
+	class_bounds(pl, i, ki, j, lb);
+	for (m = 0; m < n; m++) {
+		hylo_real lo = lb[hylo_planner_node_class(pl, j, combos[m])];
+
+		if (!isfinite(costs[m]))
+			return hylo_fail(&pl->reason, HYLO_E_BAD_COST,
+					 "the %s cost model returned %g", hylo_mode_str(mode), costs[m]);
+		if (costs[m] < 0)
+			pl->n_negative++;
+		if (costs[m] < lo) {
+			costs[m] = lo;
+			pl->n_clamped++;
+		}
+	}
+	pl->n_evaluated += n;
+	if (!mm->feasibility)
+		return HYLO_OK;
+	st = hylo_svr_predict_batch(mm->feasibility, &pl->feas_cache[k], pl->features, n, pl->feas_d);
+	if (st != HYLO_OK)
+		return hylo_fail(&pl->reason, st, "feasibility evaluation failed: %s",
+				 hylo_status_str(st));
+	for (m = 0; m < n; m++)
+		if (!(pl->feas_d[m] >= 0)) {
+			costs[m] = INFINITY;
+			pl->n_infeasible++;
+		}
+	return HYLO_OK;
+}
+
+/* What a group's heads are offered for: the search (s) with A*'s pruning, or
+ * the greedy walk (heads whose heuristic is below h_below). */
+typedef struct {
+	hylo_search *s;       /* NULL for the walk: nothing is closed */
+	hylo_real g;          /* cost of the tail */
+	hylo_real h_below;    /* +inf: every head */
+} offer;
+
+/* 1 when head v is worth a cost: open, able to reach the goal, and (A*)
+ * possibly on a path cheaper than the walk's with an edge of cost at
+ * least lb. */
+static int wanted(const hylo_planner *pl, const offer *o, uint32_t v, hylo_real lb, hylo_real *hv)
+{
+	*hv = pl->use_heuristic ? hylo_planner_h(pl, v) : 0;
+	if (o->s && hylo_search_closed(o->s, v))
+		return 0;
+	if (pl->use_heuristic && !isfinite(*hv))
+		return 0;
+	if (!(*hv < o->h_below))
+		return 0;
+	return !(pl->use_heuristic && o->g + lb + *hv > pl->bound * (1 + BOUND_SLACK));
+}
+
+/* Where group costs come from and go to: the cache for roadmap nodes' groups. */
+static hylo_real *group_costs(hylo_planner *pl, uint32_t u, uint32_t group, int create)
+{
+	if (group == HYLO_GOAL_GROUP || u >= pl->roadmap.n_nodes)
+		return NULL;
+	return hylo_edge_cache_group(&pl->cache, &pl->roadmap, u, group, create);
+}
+
+static hylo_status emit(hylo_planner *pl, uint32_t v, hylo_real cost, uint32_t *heads,
+			hylo_real *costs, uint32_t cap, uint32_t *n)
+{
+	if (*n >= cap)
+		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+				 "more than HYLO_MAX_SUCCESSORS = %d successors", HYLO_MAX_SUCCESSORS);
+	heads[*n] = v;
+	costs[*n] = cost;
+	(*n)++;
+	return HYLO_OK;
+}
+
+/* Evaluates the wanted heads of group (u, j) that are not known yet, keeps
+ * them in the cache, and appends every wanted head with a finite cost. */
+static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, uint32_t group,
+				 uint32_t j, uint32_t *heads, hylo_real *costs, uint32_t cap,
+				 uint32_t *n)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_position *q = &rm->pos[j];
+	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base, ki = hylo_planner_node_class(pl, i, c);
+	hylo_real *cached = group_costs(pl, u, group, 1);
+	hylo_real got[HYLO_MAX_COMBOS], lb[HYLO_MAX_GRID], tail[HYLO_XS_DIM], hv, fresh[HYLO_MAX_COMBOS];
+	uint32_t c2, m = 0;
+	hylo_status st;
+
+	class_bounds(pl, i, ki, j, lb);
+	for (c2 = 0; c2 < q->n_combos; c2++) {
+		got[c2] = NAN;
+		if (!wanted(pl, o, q->node_base + c2, lb[hylo_planner_node_class(pl, j, c2)], &hv))
+			continue;
+		if (cached && !isnan(cached[c2]))
+			got[c2] = cached[c2];
+		else
+			pl->eval_idx[m++] = c2;
+	}
+	hylo_planner_node_state(pl, i, c, tail);
+	st = evaluate(pl, i, ki, tail, j, pl->eval_idx, m, fresh);
+	if (st != HYLO_OK)
+		return st;
+	for (c2 = 0; c2 < m; c2++) {
+		got[pl->eval_idx[c2]] = fresh[c2];
+		if (cached)
+			cached[pl->eval_idx[c2]] = fresh[c2];
+	}
+	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++)
+		if (isfinite(got[c2]) &&
+		    !(pl->use_heuristic && o->s &&
+		      o->g + got[c2] + hylo_planner_h(pl, q->node_base + c2) > pl->bound * (1 + BOUND_SLACK)))
+			st = emit(pl, q->node_base + c2, got[c2], heads, costs, cap, n);
+	return st;
+}
+
+/*
+ * Offers the search the edges from u to position j: known costs at once,
+ * the others as one deferred group keyed by the least f-value they could
+ * get (A*), or evaluated at once (Dijkstra, or no room to defer).
+ */
+static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uint32_t group,
+			       uint32_t j, uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_position *q = &rm->pos[j];
+	uint32_t i = rm->node_pos[u], ki = hylo_planner_node_class(pl, i, u - rm->pos[i].node_base), c2;
+	const hylo_real *cached = group_costs(pl, u, group, 0);
+	hylo_real lb[HYLO_MAX_GRID], key = INFINITY, hv;
+	hylo_status st = HYLO_OK;
+	int need = 0;
+
+	class_bounds(pl, i, ki, j, lb);
+	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++) {
+		hylo_real b = lb[hylo_planner_node_class(pl, j, c2)], f;
+
+		if (!wanted(pl, o, q->node_base + c2, b, &hv))
+			continue;
+		if (cached && !isnan(cached[c2])) {
+			pl->n_cached++;
+			if (isfinite(cached[c2]) &&
+			    !(pl->use_heuristic && o->g + cached[c2] + hv > pl->bound * (1 + BOUND_SLACK)))
+				st = emit(pl, q->node_base + c2, cached[c2], heads, costs, cap, n);
+			continue;
+		}
+		need = 1;
+		f = o->g + b + pl->weight * hv;
+		if (f < key)
+			key = f;
+	}
+	if (st != HYLO_OK || !need)
+		return st;
+	if (pl->use_heuristic && o->s && hylo_search_defer(o->s, u, group, key))
+		return HYLO_OK;
+	return resolve_group(pl, o, u, group, j, heads, costs, cap, n);
+}
+
+/* Appends the switch edges of node u (position i, combination c). */
+static hylo_status switch_edges(hylo_planner *pl, const offer *o, uint32_t u, uint32_t *heads,
+				hylo_real *costs, uint32_t cap, uint32_t *n)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base, combos[HYLO_MAX_COMBOS], k, m;
+	hylo_real sw, hv;
+	hylo_status st = HYLO_OK;
+
+	if (i >= rm->n_positions || rm->pos[i].twin == HYLO_NO_POSITION)
+		return HYLO_OK;
+	sw = hylo_planner_switch_cost(pl, i);
+	m = hylo_roadmap_switch_heads(rm, i, c, combos);
+	for (k = 0; k < m && st == HYLO_OK; k++) {
+		uint32_t v = rm->pos[rm->pos[i].twin].node_base + combos[k];
+
+		if (wanted(pl, o, v, sw, &hv))
+			st = emit(pl, v, sw, heads, costs, cap, n);
+	}
+	return st;
+}
+
+/* Every successor of u that o wants, known or evaluated (deferred ones aside). */
+static hylo_status successors(hylo_planner *pl, const offer *o, uint32_t u, uint32_t *heads,
+			      hylo_real *costs, uint32_t cap, uint32_t *n)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t i = rm->node_pos[u], k, n_adj;
+	const uint32_t *adj;
+	hylo_status st = HYLO_OK;
+
+	*n = 0;
+	if (i == pl->goal_pos)
+		return HYLO_OK;
+	adj = hylo_planner_neighbours(pl, i, &n_adj);
+	for (k = 0; k < n_adj && st == HYLO_OK; k++)
+		st = offer_group(pl, o, u, k, adj[k], heads, costs, cap, n);
+	if (st == HYLO_OK && ((i == pl->start_pos && pl->start_goal_linked) ||
+			      (i < rm->n_positions && pl->links_goal[i])))
+		st = offer_group(pl, o, u, HYLO_GOAL_GROUP, pl->goal_pos, heads, costs, cap, n);
+	if (st == HYLO_OK)
+		st = switch_edges(pl, o, u, heads, costs, cap, n);
+	return st;
+}
+
+hylo_status hylo_planner_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
+				hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	offer o;
+
+	(void)r;
+	o.s = s;
+	o.g = hylo_search_cost(s, u);
+	o.h_below = INFINITY;
+	return successors(pl, &o, u, heads, costs, cap, n);
+}
+
+hylo_status hylo_planner_resolve(void *ctx, hylo_search *s, uint32_t u, uint32_t group,
+				 uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n,
+				 hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	uint32_t n_adj, i = pl->roadmap.node_pos[u];
+	const uint32_t *adj = hylo_planner_neighbours(pl, i, &n_adj);
+	offer o;
+
+	(void)r;
+	*n = 0;
+	if (group != HYLO_GOAL_GROUP && group >= n_adj)
+		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "resolve: node %u has no group %u",
+				 (unsigned)u, (unsigned)group);
+	o.s = s;
+	o.g = hylo_search_cost(s, u);
+	o.h_below = INFINITY;
+	return resolve_group(pl, &o, u, group, group == HYLO_GOAL_GROUP ? pl->goal_pos : adj[group],
+			     heads, costs, cap, n);
+}
+
+/*
+ * The greedy walk: from the start, at every node the edge with the least
+ * cost plus heuristic among those that get strictly nearer the goal by the
+ * heuristic (a mode switch may keep the heuristic, but not twice in a row).
+ * The optimum is at most its cost, so A* skips, without evaluating them,
+ * edges u -> v with g(u) + bound(u, v) + h(v) above it. Its evaluations
+ * stay in the cache for the search.
+ */
+hylo_real hylo_planner_greedy_walk(hylo_planner *pl, double deadline)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t u = rm->n_nodes, goal = rm->n_nodes + 1, step, k, n;
+	hylo_real total = 0;
+	int switched = 0;
+	offer o;
+
+	pl->walk_len = 0;
+	o.s = NULL;
+	o.g = 0;
+	for (step = 0; step < HYLO_MAX_WAYPOINTS; step++) {
+		uint32_t best_v = goal + 1, ui = rm->node_pos[u];
+		hylo_real best = INFINITY, best_c = 0, hu = hylo_planner_h(pl, u);
+		int best_switch = 0;
+
+		pl->walk_path[step] = u;
+		pl->walk_cost[step] = total;
+		if (u == goal) {
+			pl->walk_len = step + 1;
+			return total;
+		}
+		if (hylo_planner_now(pl) > deadline)
+			return INFINITY;
+		/* Candidates: heads below u's heuristic, and switch heads at it. */
+		o.h_below = switched ? hu : nextafter(hu, INFINITY);
+		if (successors(pl, &o, u, pl->walk_heads, pl->walk_costs, HYLO_MAX_SUCCESSORS, &n) != HYLO_OK)
+			return INFINITY;
+		for (k = 0; k < n; k++) {
+			uint32_t v = pl->walk_heads[k], vi = rm->node_pos[v];
+			hylo_real hv = hylo_planner_h(pl, v);
+			int sw = ui < rm->n_positions && rm->pos[ui].twin == vi;
+
+			if (!(hv < hu || (sw && !switched && hv <= hu)))
+				continue;
+			if (pl->walk_costs[k] + hv < best) {
+				best = pl->walk_costs[k] + hv;
+				best_c = pl->walk_costs[k];
+				best_v = v;
+				best_switch = sw;
+			}
+		}
+		if (best_v > goal)
+			return INFINITY;
+		total += best_c;
+		switched = best_switch;
+		u = best_v;
+	}
+	return INFINITY;
+}
+
+/* ---- for references and tests ------------------------------------------ */
+
+hylo_status hylo_planner_successors(hylo_planner *pl, uint32_t tail, uint32_t *heads, uint32_t *n)
+{
+	const hylo_roadmap *rm;
+	uint32_t i, k, c, n_adj, combos[HYLO_MAX_COMBOS];
+	const uint32_t *adj;
+
+	if (!pl || !heads || !n)
+		return HYLO_E_NULL;
+	rm = &pl->roadmap;
+	*n = 0;
+	if (!pl->has_map || !rm->built || tail >= rm->n_nodes + 2)
+		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "no node %u in the last goal's graph",
+				 (unsigned)tail);
+	i = rm->node_pos[tail];
+	if (i == pl->goal_pos)
+		return HYLO_OK;
+	adj = hylo_planner_neighbours(pl, i, &n_adj);
+	for (k = 0; k <= n_adj; k++) {
+		uint32_t j = k < n_adj ? adj[k] : pl->goal_pos;
+
+		if (k == n_adj && !((i == pl->start_pos && pl->start_goal_linked) ||
+				    (i < rm->n_positions && pl->links_goal[i])))
+			continue;
+		for (c = 0; c < rm->pos[j].n_combos; c++) {
+			if (*n >= HYLO_MAX_SUCCESSORS)
+				return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+						 "more than HYLO_MAX_SUCCESSORS = %d successors",
+						 HYLO_MAX_SUCCESSORS);
+			heads[(*n)++] = rm->pos[j].node_base + c;
+		}
+	}
+	if (i < rm->n_positions && rm->pos[i].twin != HYLO_NO_POSITION) {
+		uint32_t m = hylo_roadmap_switch_heads(rm, i, tail - rm->pos[i].node_base, combos);
+
+		for (k = 0; k < m && *n < HYLO_MAX_SUCCESSORS; k++)
+			heads[(*n)++] = rm->pos[rm->pos[i].twin].node_base + combos[k];
+	}
+	return HYLO_OK;
+}
+
+hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint32_t *heads,
+				    uint32_t n, hylo_real *costs)
+{
+	const hylo_roadmap *rm;
+	uint32_t i, c, k, ki, m;
+	hylo_real xs[HYLO_XS_DIM];
+	hylo_status st = HYLO_OK;
+
+	if (!pl || (n > 0 && (!heads || !costs)))
+		return HYLO_E_NULL;
+	rm = &pl->roadmap;
+	if (!pl->has_map || !rm->built || tail >= rm->n_nodes + 2)
+		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "no node %u in the last goal's graph",
+				 (unsigned)tail);
+	for (k = 0; k < n; k++)
+		if (heads[k] >= rm->n_nodes + 2)
+			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "no node %u", (unsigned)heads[k]);
+	i = rm->node_pos[tail];
+	c = tail - rm->pos[i].node_base;
+	ki = hylo_planner_node_class(pl, i, c);
+	hylo_planner_node_state(pl, i, c, xs);
+	/* Runs of heads at one position are evaluated as one batch. */
+	for (k = 0; k < n && st == HYLO_OK; k += m) {
+		uint32_t j = rm->node_pos[heads[k]];
+
+		for (m = 0; k + m < n && rm->node_pos[heads[k + m]] == j && m < HYLO_MAX_COMBOS; m++)
+			pl->eval_idx[m] = heads[k + m] - rm->pos[j].node_base;
+		if (i < rm->n_positions && rm->pos[i].twin == j) {
+			uint32_t t;
+
+			for (t = 0; t < m; t++)
+				costs[k + t] = hylo_planner_switch_cost(pl, i);
+			continue;
+		}
+		if (rm->pos[j].mode != rm->pos[i].mode)
+			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "node %u is not a successor of %u",
+					 (unsigned)heads[k], (unsigned)tail);
+		st = evaluate(pl, i, ki, xs, j, pl->eval_idx, m, &costs[k]);
+	}
+	return st;
+}

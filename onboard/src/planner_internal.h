@@ -1,0 +1,71 @@
+/*
+ * The planner's parts, shared between planner.c (requests, validation,
+ * plans), planner_graph.c (edge costs and the search's callbacks) and
+ * planner_heuristic.c (the A* heuristic). Not a public header.
+ *
+ * The search graph is implicit: a node is (position, combination); its
+ * successors are every combination of every neighbouring position of the
+ * same mode, the guard twin's switch edges, and the goal when it is in
+ * reach. Positions rm->n_positions and rm->n_positions + 1 are the start and
+ * the goal, with one node each (rm->n_nodes, rm->n_nodes + 1).
+ */
+#ifndef HYLO_PLANNER_INTERNAL_H
+#define HYLO_PLANNER_INTERNAL_H
+
+#include "hylo/planner.h"
+
+/* The group number of the edge into the goal (the others are a neighbour's
+ * index in the tail position's list). */
+#define HYLO_GOAL_GROUP (UINT32_MAX - 1u)
+
+/* The model of mode for the current map's robot. */
+const hylo_mode_model *hylo_planner_mode_model(const hylo_planner *pl, hylo_mode mode);
+
+/* Sampled coordinates of combination c of position i (start and goal included). */
+void hylo_planner_node_state(const hylo_planner *pl, uint32_t i, uint32_t c, hylo_real *xs);
+
+/* Speed class of combination c of position i (start and goal: 0). */
+uint32_t hylo_planner_node_class(const hylo_planner *pl, uint32_t i, uint32_t c);
+
+/* Speed classes of position i (start and goal: 1). */
+uint32_t hylo_planner_class_count(const hylo_planner *pl, uint32_t i);
+
+/* The neighbours of position i whose nodes lead to it (i's own list; the
+ * start's from the request), into *n. */
+const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint32_t *n);
+
+/*
+ * A lower bound of every edge cost from a node of class ki at position i to
+ * a node of class kj at position j (same mode): the model's floor, raised to
+ * its envelope for those speeds. Edge costs are raised to it, so the bound
+ * holds for every edge, and the heuristic built from it is consistent.
+ */
+hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, uint32_t ki, uint32_t j,
+				  uint32_t kj);
+
+/* Cost of the switch edges from guard copy i to its twin. */
+hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i);
+
+/* The heuristic of node u (h_abs of its position and class). */
+hylo_real hylo_planner_h(const hylo_planner *pl, uint32_t u);
+
+/* Computes h_abs for the current goal (backward Dijkstra on (position,
+ * class) with edge bounds as weights). */
+hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget);
+
+/* The search's callbacks (ctx: the planner). */
+hylo_status hylo_planner_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
+				hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r);
+hylo_status hylo_planner_resolve(void *ctx, hylo_search *s, uint32_t u, uint32_t group,
+				 uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n,
+				 hylo_reason *r);
+
+/* A greedy walk from the start on the heuristic: the cost of a real path
+ * (an upper bound of the optimum, kept with its path in pl->walk_*), or
+ * +inf when it gets stuck or passes deadline [ms, on the planner's clock]. */
+hylo_real hylo_planner_greedy_walk(hylo_planner *pl, double deadline);
+
+/* The planner's clock [ms], 0 without one. */
+double hylo_planner_now(const hylo_planner *pl);
+
+#endif

@@ -1,0 +1,381 @@
+// Plan latency on the committed scenes with the committed models: hylo's
+// planner (lazy A*, edge-cost cache) against the algorithm it replaced, run
+// here on the same roadmap with the same edge weights: A* with the per-metre
+// floor heuristic on positions, every successor of an expanded node
+// evaluated (no cache). Rows per scene:
+//   first goal on a new map (hylo median of 5 against the reference, 1 run),
+//   a second goal nearby (the goal moved by one sampling spacing) and the way back (start
+//   and goal swapped) on the same map, after the first (median of 5),
+//   the plans' costs (hylo's against the reference's: equal to 1e-9),
+//   edges evaluated, and the workspace size.
+// Writes a table to stdout and JSON rows to argv[1]; the optional further
+// arguments name scene files (default: every scene in scenes/).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <queue>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "hylo/planner.h"
+#include "node/registry.h"
+}
+#include "tools/scene/scene.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using hylo::scene::Scene;
+
+double now_ms(void *)
+{
+	return std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count();
+}
+
+double median(std::vector<double> v)
+{
+	std::sort(v.begin(), v.end());
+	size_t n = v.size();
+	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Row {
+	std::string name, unit, reference;
+	double value, reference_value;
+	bool compared;
+};
+std::vector<Row> rows;
+
+void add(const std::string &name, double value, const std::string &unit)
+{
+	rows.push_back({name, unit, "", value, 0, false});
+}
+
+void add_cmp(const std::string &name, double value, const std::string &unit, const std::string &ref,
+	     double ref_value)
+{
+	rows.push_back({name, unit, ref, value, ref_value, true});
+}
+
+// ratio > 1: hylo does better (less time, fewer edges); costs: reference / hylo.
+void write_json(const char *path)
+{
+	std::ofstream out(path);
+	out << "[\n";
+	for (size_t i = 0; i < rows.size(); i++) {
+		const Row &r = rows[i];
+		char buf[600];
+		if (r.compared)
+			std::snprintf(buf, sizeof buf,
+				      "  {\"name\": \"%s\", \"value\": %.10g, \"unit\": \"%s\", \"reference\": \"%s\", "
+				      "\"reference_value\": %.10g, \"ratio\": %.6g}",
+				      r.name.c_str(), r.value, r.unit.c_str(), r.reference.c_str(), r.reference_value,
+				      r.value > 0 ? r.reference_value / r.value : 0.0);
+		else
+			std::snprintf(buf, sizeof buf,
+				      "  {\"name\": \"%s\", \"value\": %.10g, \"unit\": \"%s\", \"reference\": null, "
+				      "\"reference_value\": null, \"ratio\": null}",
+				      r.name.c_str(), r.value, r.unit.c_str());
+		out << buf << (i + 1 < rows.size() ? ",\n" : "\n");
+	}
+	out << "]\n";
+}
+
+hylo_map_view map_view(const Scene &sc)
+{
+	hylo_map_view v{};
+	v.map_id = sc.map_id;
+	v.robot = sc.robot.c_str();
+	v.nx = sc.nx;
+	v.ny = sc.ny;
+	v.resolution = sc.resolution_m;
+	v.origin_x = sc.origin_x_m;
+	v.origin_y = sc.origin_y_m;
+	v.ceiling = sc.ceiling_m;
+	v.max_step = sc.max_step_m;
+	v.n_cells = sc.nx * sc.ny;
+	v.terrain = sc.terrain.data();
+	v.height = sc.height_m.data();
+	return v;
+}
+
+hylo_goal goal_of(const Scene &sc)
+{
+	const hylo::scene::Goal &g = sc.goal;
+	hylo_goal q{};
+	q.request_id = 1;
+	q.algorithm = g.algorithm;
+	q.start_mode = g.start.mode;
+	q.goal_mode = g.goal.mode;
+	for (int k = 0; k < HYLO_XS_DIM; k++) {
+		q.start[k] = g.start.x[static_cast<size_t>(k)];
+		q.goal[k] = g.goal.x[static_cast<size_t>(k)];
+	}
+	q.seed = static_cast<uint64_t>(g.seed);
+	q.spacing = g.spacing_m;
+	q.air_spacing = g.air_spacing_m;
+	q.guard_spacing = g.guard_spacing_m;
+	q.connect_radius = g.connect_radius_m;
+	q.air_connect_radius = g.air_connect_radius_m;
+	q.n_speeds = static_cast<uint32_t>(g.speeds_mps.size());
+	q.speeds = g.speeds_mps.data();
+	q.n_headings = static_cast<uint32_t>(g.headings_rad.size());
+	q.headings = g.headings_rad.data();
+	q.n_air_speeds = static_cast<uint32_t>(g.air_speeds_mps.size());
+	q.air_speeds = g.air_speeds_mps.data();
+	return q;
+}
+
+struct Bench {
+	hylo_robot robots[HYLO_MAX_ROBOTS];
+	std::vector<double> mem;
+	hylo_planner *pl_ = nullptr;
+	std::unique_ptr<hylo_plan> plan{new hylo_plan};
+	size_t size = 0;
+
+	Bench()
+	{
+		hylo_reason r;
+		hylo_planner_config cfg{};
+		cfg.robots = robots;
+		cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &r);
+		cfg.clock = now_ms;
+		size = hylo_planner_size(&cfg);
+		mem.resize(size / sizeof(double) + 1);
+		pl_ = reinterpret_cast<hylo_planner *>(mem.data());
+		if (hylo_planner_init(pl_, size, &cfg) != HYLO_OK)
+			throw std::runtime_error(std::string("planner: ") + hylo_planner_reason(pl_));
+	}
+
+	void new_map(const Scene &sc)
+	{
+		hylo_map_view v = map_view(sc);
+		if (hylo_planner_set_map(pl_, &v) != HYLO_OK)
+			throw std::runtime_error(sc.path + ": " + hylo_planner_reason(pl_));
+	}
+
+	// Plans g; the wall time [ms].
+	double plan_goal(const hylo_goal &g, bool must_find = true)
+	{
+		auto t0 = Clock::now();
+		hylo_planner_plan(pl_, &g, plan.get());
+		double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+		if (must_find && (plan->status != HYLO_OK || plan->outcome != HYLO_FOUND))
+			throw std::runtime_error(std::string("no plan: ") + plan->reason.text);
+		return ms;
+	}
+};
+
+// The reference: A* with the floor heuristic on positions (a backward
+// Dijkstra over positions, each edge weighted by the mode's per-edge and
+// per-metre floors, the switch cost), every successor of an expanded node
+// evaluated by hylo_planner_edge_costs. Run after hylo planned the same goal,
+// so the roadmap and the start and goal links are in place.
+struct Reference {
+	double cost = INFINITY, ms = 0;
+	uint64_t evaluated = 0, expansions = 0;
+};
+
+double floor_of(const hylo_planner *pl, uint32_t i, uint32_t j)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	int k = hylo_robot_mode_index(pl->robot, static_cast<hylo_mode>(rm->pos[i].mode));
+	const hylo_mode_model &mm = pl->robot->modes[k];
+	double fj = mm.model ? mm.model->cost_floor_j : mm.cost_floor_j;
+	double fm = mm.model ? mm.model->cost_floor_per_m : mm.cost_floor_per_m;
+	return fj + fm * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
+}
+
+double switch_cost(const hylo_planner *pl, uint32_t i)
+{
+	return pl->robot->switch_cost[pl->roadmap.pos[i].mode == pl->robot->modes[0].mode ? 0 : 1];
+}
+
+Reference run_reference(hylo_planner *pl)
+{
+	using Item = std::pair<double, uint32_t>;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t np = rm->n_positions + 2, start = rm->n_nodes, goal = rm->n_nodes + 1;
+	Reference ref;
+	auto t0 = Clock::now();
+
+	// Position heuristic: backward Dijkstra from the goal position.
+	std::vector<double> hp(np, INFINITY);
+	std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+	hp[pl->goal_pos] = 0;
+	q.push({0, pl->goal_pos});
+	while (!q.empty()) {
+		auto [d, j] = q.top();
+		q.pop();
+		if (d > hp[j])
+			continue;
+		std::vector<uint32_t> pred;
+		if (j == pl->goal_pos)
+			pred.assign(pl->goal_adj, pl->goal_adj + pl->n_goal_adj);
+		else if (j < rm->n_positions)
+			pred.assign(rm->adjacency + rm->pos[j].adj_begin, rm->adjacency + rm->pos[j].adj_end);
+		for (uint32_t i : pred) {
+			double nd = d + floor_of(pl, i, j);
+			if (nd < hp[i]) {
+				hp[i] = nd;
+				q.push({nd, i});
+			}
+		}
+		if (j < rm->n_positions && rm->pos[j].twin != HYLO_NO_POSITION) {
+			uint32_t t = rm->pos[j].twin;
+			double nd = d + switch_cost(pl, t);
+			if (nd < hp[t]) {
+				hp[t] = nd;
+				q.push({nd, t});
+			}
+		}
+	}
+	double hs = pl->start_goal_linked ? floor_of(pl, pl->start_pos, pl->goal_pos) : INFINITY;
+	for (uint32_t k = 0; k < pl->n_start_adj; k++)
+		hs = std::min(hs, floor_of(pl, pl->start_pos, pl->start_adj[k]) + hp[pl->start_adj[k]]);
+	hp[pl->start_pos] = hs;
+
+	// Node A*, every successor of an expanded node evaluated.
+	uint32_t nn = rm->n_nodes + 2;
+	std::vector<double> g(nn, INFINITY);
+	std::vector<char> closed(nn, 0);
+	std::vector<uint32_t> heads(HYLO_MAX_SUCCESSORS);
+	std::vector<double> costs(HYLO_MAX_SUCCESSORS);
+	auto h = [&](uint32_t v) { return hp[rm->node_pos[v]]; };
+	std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+	g[start] = 0;
+	open.push({h(start), start});
+	while (!open.empty()) {
+		auto [f, u] = open.top();
+		open.pop();
+		if (closed[u] || f > g[u] + h(u))
+			continue;
+		closed[u] = 1;
+		ref.expansions++;
+		if (u == goal)
+			break;
+		uint32_t n = 0, m = 0;
+		if (hylo_planner_successors(pl, u, heads.data(), &n) != HYLO_OK)
+			throw std::runtime_error(hylo_planner_reason(pl));
+		for (uint32_t k = 0; k < n; k++)
+			if (!closed[heads[k]] && std::isfinite(h(heads[k])))
+				heads[m++] = heads[k];
+		if (hylo_planner_edge_costs(pl, u, heads.data(), m, costs.data()) != HYLO_OK)
+			throw std::runtime_error(hylo_planner_reason(pl));
+		ref.evaluated += m;
+		for (uint32_t k = 0; k < m; k++) {
+			uint32_t v = heads[k];
+			if (std::isfinite(costs[k]) && g[u] + costs[k] < g[v]) {
+				g[v] = g[u] + costs[k];
+				open.push({g[v] + h(v), v});
+			}
+		}
+	}
+	ref.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+	ref.cost = g[goal];
+	return ref;
+}
+
+// A goal near the scene's: moved by one sampling spacing (2 m on the robots'
+// scenes; the first direction the planner accepts).
+hylo_goal nearby_goal(Bench &b, const hylo_goal &g)
+{
+	static const double offsets[][2] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
+	for (const auto &o : offsets) {
+		hylo_goal n = g;
+		n.goal[0] += o[0] * g.spacing;
+		n.goal[1] += o[1] * g.spacing;
+		b.plan_goal(n, false);
+		if (b.plan->status == HYLO_OK && b.plan->outcome == HYLO_FOUND)
+			return n;
+	}
+	throw std::runtime_error("no nearby goal is valid");
+}
+
+hylo_goal way_back(const hylo_goal &g)
+{
+	hylo_goal n = g;
+	std::swap(n.start_mode, n.goal_mode);
+	for (int k = 0; k < HYLO_XS_DIM; k++)
+		std::swap(n.start[k], n.goal[k]);
+	return n;
+}
+
+void bench_scene(Bench &b, const std::string &path)
+{
+	Scene sc = hylo::scene::load(path);
+	hylo_goal g = goal_of(sc);
+	const int runs = 5;
+	std::vector<double> first, near, back;
+	double cost = 0, near_cost = 0;
+	uint64_t evaluated = 0, near_evaluated = 0;
+
+	b.new_map(sc);
+	hylo_goal g2 = nearby_goal(b, g), g3 = way_back(g);
+	for (int r = 0; r < runs; r++) {
+		b.new_map(sc);
+		first.push_back(b.plan_goal(g));
+		cost = b.plan->total_cost;
+		evaluated = b.plan->n_edges_evaluated;
+		near.push_back(b.plan_goal(g2));
+		near_cost = b.plan->total_cost;
+		near_evaluated = b.plan->n_edges_evaluated;
+		b.new_map(sc);
+		b.plan_goal(g);
+		back.push_back(b.plan_goal(g3, false));
+	}
+	// The reference on the first goal's graph, and on the nearby one's.
+	b.new_map(sc);
+	b.plan_goal(g);
+	Reference ref = run_reference(b.pl_);
+	b.plan_goal(g2);
+	Reference ref2 = run_reference(b.pl_);
+	std::string n = sc.name;
+	std::printf("%-16s %7u nodes %9llu edges | first %9.1f ms (ref %9.1f) | nearby %8.1f ms | back %8.1f ms | "
+		    "cost %.6f (ref %.6f, %.1e) | evaluated %llu (ref %llu)\n",
+		    n.c_str(), b.plan->n_nodes, static_cast<unsigned long long>(b.plan->n_edges), median(first),
+		    ref.ms, median(near), median(back), cost, ref.cost, std::fabs(cost - ref.cost) / ref.cost,
+		    static_cast<unsigned long long>(evaluated), static_cast<unsigned long long>(ref.evaluated));
+	std::fflush(stdout);
+	add_cmp("plan_first_goal_ms_" + n, median(first), "ms", "floor-heuristic A*, every successor evaluated", ref.ms);
+	add_cmp("plan_nearby_goal_ms_" + n, median(near), "ms", "floor-heuristic A*, every successor evaluated", ref2.ms);
+	add("plan_way_back_ms_" + n, median(back), "ms");
+	add_cmp("plan_cost_j_" + n, cost, "J", "floor-heuristic A*", ref.cost);
+	add_cmp("plan_nearby_cost_j_" + n, near_cost, "J", "floor-heuristic A*", ref2.cost);
+	add_cmp("plan_edges_evaluated_" + n, double(evaluated), "edges", "floor-heuristic A*", double(ref.evaluated));
+	add_cmp("plan_nearby_edges_evaluated_" + n, double(near_evaluated), "edges", "floor-heuristic A*",
+		double(ref2.evaluated));
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+	if (argc < 2 || argv[1][0] == '-') {
+		std::fprintf(stderr, "usage: bench_scenes RESULTS.json [SCENE.yaml ...]\n");
+		return 2;
+	}
+	std::vector<std::string> scenes(argv + 2, argv + argc);
+	if (scenes.empty())
+		scenes = {"scenes/di.yaml", "scenes/river_crossing.yaml", "scenes/island_crossing.yaml",
+			  "scenes/chasm_030.yaml", "scenes/chasm_050.yaml", "scenes/chasm_070.yaml",
+			  "scenes/chasm_090.yaml", "scenes/chasm_110.yaml"};
+	try {
+		Bench b;
+		std::printf("workspace: %zu bytes (hylo_planner_size, every committed robot)\n", b.size);
+		add("workspace_bytes", double(b.size), "bytes");
+		for (const std::string &s : scenes)
+			bench_scene(b, s);
+	} catch (const std::exception &e) {
+		std::fprintf(stderr, "bench_scenes: %s\n", e.what());
+		return 1;
+	}
+	write_json(argv[1]);
+	return 0;
+}
