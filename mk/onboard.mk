@@ -61,7 +61,7 @@ ONBOARD_TEST_SRCS := $(sort $(wildcard tests/onboard/test_*.c))
 ONBOARD_TEST_NAMES := $(basename $(notdir $(ONBOARD_TEST_SRCS)))
 ONBOARD_TESTS := $(ONBOARD_TEST_NAMES:%=$(BUILD)/test/onboard/%)
 ONBOARD_TESTS_SAN := $(ONBOARD_TEST_NAMES:%=$(BUILD)/san/test/onboard/%)
-TEST_INC := $(ONBOARD_INC) $(MSG_ADAPT_INC) -Itests
+TEST_INC := $(ONBOARD_INC) $(MSG_ADAPT_INC) -Itests -Ionboard/models
 TEST_LIBS := $(SVM_LIBS) $(CMOCKA_LIBS) -lm
 # The allocation test wraps the allocator at link time (tests/onboard/test_nomalloc.c).
 WRAP_ALLOC := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
