@@ -44,9 +44,19 @@ $(CROSS_DIR)/test/%: tests/onboard/%.c $(CROSS_DIR)/lib/libhylo.a $(CROSS_DIR)/l
 $(CROSS_DIGEST): tools/cross/plan_digest.c $(CROSS_DIR)/lib/libhylo.a $(MODEL_HEADERS)
 	$(CROSS_CC) $(C99_FLAGS) -static $(ONBOARD_INC) -Itests -Ionboard/models $< $(CROSS_DIR)/lib/libhylo.a -lm -o $@
 
-$(NATIVE_DIGEST): tools/cross/plan_digest.c $(ONBOARD_LIB) $(MODEL_HEADERS)
+$(NATIVE_DIGEST): tools/cross/plan_digest.c $(ONBOARD_LIB) $(MODEL_HEADERS) $(wildcard tests/onboard/testutil_*.h)
 	@mkdir -p $(@D)
 	$(CC) $(C99_FLAGS) $(ONBOARD_INC) -Itests -Ionboard/models $< $(ONBOARD_LIB) -lm -o $@
+
+# The same without the SVR evaluator's AVX2 clones (tests/cross/test_paths.sh).
+NATIVE_DIGEST_SSE2 := $(BUILD)/cross/plan_digest_sse2
+$(NATIVE_DIGEST_SSE2): tools/cross/plan_digest.c $(ONBOARD_SRCS) $(MODEL_HEADERS) $(wildcard onboard/include/hylo/*.h tests/onboard/testutil_*.h)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) -DHYLO_NO_CLONES $(ONBOARD_INC) -Itests -Ionboard/models $< $(ONBOARD_SRCS) -lm -o $@
+
+ALL_TARGETS += $(NATIVE_DIGEST) $(NATIVE_DIGEST_SSE2)
+tests/cross/test_paths.sh: $(NATIVE_DIGEST) $(NATIVE_DIGEST_SSE2)
+TESTS += tests/cross/test_paths.sh
 
 cross-test: cross-deps $(CROSS_TESTS) $(CROSS_DIGEST) $(NATIVE_DIGEST)
 	@CROSS_RUN="$(CROSS_RUN)" tools/cross/run $(CROSS_DIGEST) $(NATIVE_DIGEST) $(CROSS_TESTS)

@@ -5,59 +5,102 @@
 #include "hylo/svr.h"
 
 /*
- * Two doubles per operation (GCC/Clang vector extension): SSE2 on x86-64,
- * NEON on aarch64, plain scalar code where neither exists. The batch path
- * spends most of its time in the kernel's exponentials and the running
- * products; this halves both (bench_plan). Same bits on every target: no
- * fused multiply-add (-std=c99 keeps contraction off), one rounding per op.
+ * Four doubles per operation (GCC/Clang vector extension): two SSE2
+ * operations on x86-64, or one AVX2 operation where the CPU has it (the hot
+ * loops are compiled for both and chosen at run time, HYLO_CLONES), NEON on
+ * aarch64. The batch path spends most of its time in the kernel's
+ * exponentials and the running products. Same bits on every target and
+ * path: every lane does the same operations in the same order, no fused
+ * multiply-add (-std=c99 keeps contraction off), one rounding per op.
  */
-typedef double hylo_v2 __attribute__((vector_size(16)));
-typedef int64_t hylo_v2i __attribute__((vector_size(16)));
+typedef double hylo_v4 __attribute__((vector_size(32)));
+#if defined(__GNUC__) && !defined(__clang__)
+/* The helpers below pass 32-byte vectors by value; they are static and
+ * inlined, so the AVX calling convention GCC warns about never applies. */
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+typedef uint64_t hylo_v4u __attribute__((vector_size(32)));
 
-static hylo_v2 load2(const double *p)
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(HYLO_NO_CLONES)
+#define HYLO_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define HYLO_CLONES
+#endif
+
+static inline hylo_v4 load4(const double *p)
 {
-	hylo_v2 v;
+	hylo_v4 v;
 
 	memcpy(&v, p, sizeof v);
 	return v;
 }
 
-static void store2(double *p, hylo_v2 v)
+static inline void store4(double *p, hylo_v4 v)
 {
 	memcpy(p, &v, sizeof v);
 }
 
-/*
- * exp(x) for x <= 0, to about 4e-16 relative (within two ulp of libm's): x =
- * k ln2 + r with |r| <= ln2/2, exp(r) by its degree-13 Taylor polynomial in
- * Estrin's form (short dependency chains), times 2^k put into the exponent
- * bits. Below -700 the result is 0 (libm's is < 1e-304, and it only ever
- * multiplies a support vector's coefficient).
- */
-static hylo_v2 exp_nonpositive2(hylo_v2 x)
+static inline hylo_v4 splat4(double x)
 {
-	const hylo_v2 shift = { 0x1.8p52, 0x1.8p52 }, lowest = { -700.0, -700.0 };
-	const double ln2_hi = 0x1.62e42feep-1, ln2_lo = 0x1.a39ef35793c76p-33;
-	hylo_v2i keep = x >= lowest, xb, lb, tb, pb;
-	hylo_v2 t, k, r, r2, r4, r8, p;
+	hylo_v4 v = { x, x, x, x };
 
+	return v;
+}
+
+/* 2^(j/64), j = 0 .. 63, correctly rounded. */
+static const double exp2_64[64] = {
+	0x1.0000000000000p+0, 0x1.02c9a3e778061p+0, 0x1.059b0d3158574p+0, 0x1.0874518759bc8p+0,
+	0x1.0b5586cf9890fp+0, 0x1.0e3ec32d3d1a2p+0, 0x1.11301d0125b51p+0, 0x1.1429aaea92de0p+0,
+	0x1.172b83c7d517bp+0, 0x1.1a35beb6fcb75p+0, 0x1.1d4873168b9aap+0, 0x1.2063b88628cd6p+0,
+	0x1.2387a6e756238p+0, 0x1.26b4565e27cddp+0, 0x1.29e9df51fdee1p+0, 0x1.2d285a6e4030bp+0,
+	0x1.306fe0a31b715p+0, 0x1.33c08b26416ffp+0, 0x1.371a7373aa9cbp+0, 0x1.3a7db34e59ff7p+0,
+	0x1.3dea64c123422p+0, 0x1.4160a21f72e2ap+0, 0x1.44e086061892dp+0, 0x1.486a2b5c13cd0p+0,
+	0x1.4bfdad5362a27p+0, 0x1.4f9b2769d2ca7p+0, 0x1.5342b569d4f82p+0, 0x1.56f4736b527dap+0,
+	0x1.5ab07dd485429p+0, 0x1.5e76f15ad2148p+0, 0x1.6247eb03a5585p+0, 0x1.6623882552225p+0,
+	0x1.6a09e667f3bcdp+0, 0x1.6dfb23c651a2fp+0, 0x1.71f75e8ec5f74p+0, 0x1.75feb564267c9p+0,
+	0x1.7a11473eb0187p+0, 0x1.7e2f336cf4e62p+0, 0x1.82589994cce13p+0, 0x1.868d99b4492edp+0,
+	0x1.8ace5422aa0dbp+0, 0x1.8f1ae99157736p+0, 0x1.93737b0cdc5e5p+0, 0x1.97d829fde4e50p+0,
+	0x1.9c49182a3f090p+0, 0x1.a0c667b5de565p+0, 0x1.a5503b23e255dp+0, 0x1.a9e6b5579fdbfp+0,
+	0x1.ae89f995ad3adp+0, 0x1.b33a2b84f15fbp+0, 0x1.b7f76f2fb5e47p+0, 0x1.bcc1e904bc1d2p+0,
+	0x1.c199bdd85529cp+0, 0x1.c67f12e57d14bp+0, 0x1.cb720dcef9069p+0, 0x1.d072d4a07897cp+0,
+	0x1.d5818dcfba487p+0, 0x1.da9e603db3285p+0, 0x1.dfc97337b9b5fp+0, 0x1.e502ee78b3ff6p+0,
+	0x1.ea4afa2a490dap+0, 0x1.efa1bee615a27p+0, 0x1.f50765b6e4540p+0, 0x1.fa7c1819e90d8p+0
+};
+
+/*
+ * exp(x) for x <= 0, to about 3e-16 relative (within two ulp of libm's):
+ * x = (64 k + j) ln2/64 + r with |r| <= ln2/128, exp(r) by its degree-5
+ * Taylor polynomial (truncation below 4e-17), times 2^(j/64) from a table,
+ * times 2^k put into the exponent bits. Below -700 the result is 0 (libm's
+ * is < 1e-304, and it only ever multiplies a support vector's coefficient).
+ */
+static inline hylo_v4 exp_nonpositive4(hylo_v4 x)
+{
+	const double ln2_64_hi = 0x1.62e42fef00000p-7, ln2_64_lo = 0x1.473de6af278edp-40;
+	const hylo_v4 shift = splat4(0x1.8p52), lowest = splat4(-700.0);
+	hylo_v4u keep, xb, lb, tb, jb, pb;
+	hylo_v4 t, n, r, r2, p, tab;
+
+	keep = (hylo_v4u)(x >= lowest);
 	memcpy(&xb, &x, sizeof xb);
 	memcpy(&lb, &lowest, sizeof lb);
 	xb = (xb & keep) | (lb & ~keep);
 	memcpy(&x, &xb, sizeof x);
-	t = x * 0x1.71547652b82fep0 + shift;  /* k, rounded, in the low mantissa bits */
-	k = t - shift;
-	r = (x - k * ln2_hi) - k * ln2_lo;
+	t = x * 0x1.71547652b82fep+6 + shift;  /* round(64 x / ln2) in the low mantissa bits */
+	n = t - shift;
+	r = (x - n * ln2_64_hi) - n * ln2_64_lo;
 	r2 = r * r;
-	r4 = r2 * r2;
-	r8 = r4 * r4;
-	p = ((1.0 + r) + (0.5 + r * (1.0 / 6)) * r2) +
-	    ((1.0 / 24 + r * (1.0 / 120)) + (1.0 / 720 + r * (1.0 / 5040)) * r2) * r4 +
-	    (((1.0 / 40320 + r * (1.0 / 362880)) + (1.0 / 3628800 + r * (1.0 / 39916800)) * r2) +
-	     (1.0 / 479001600 + r * (1.0 / 6227020800.0)) * r4) * r8;
+	p = (1.0 + r) + r2 * ((0.5 + r * (1.0 / 6)) + r2 * (1.0 / 24 + r * (1.0 / 120)));
 	memcpy(&tb, &t, sizeof tb);
+	jb = tb & 63;
+	tab[0] = exp2_64[jb[0]];
+	tab[1] = exp2_64[jb[1]];
+	tab[2] = exp2_64[jb[2]];
+	tab[3] = exp2_64[jb[3]];
+	p = p * tab;
 	memcpy(&pb, &p, sizeof pb);
-	pb = (pb + (tb << 52)) & keep;
+	/* (tb >> 6) << 52: floor(n / 64) in the exponent field (mod 2^12). */
+	pb = (pb + ((tb >> 6) << 52)) & keep;
 	memcpy(&p, &pb, sizeof p);
 	return p;
 }
@@ -252,13 +295,49 @@ static void feature_groups(hylo_svr_cache *c, uint32_t nf)
 				    nf == HYLO_FEATURES_DI ? di_begin[k] : k;
 }
 
+/* row[i] = exp(-gamma |v - s_i|^2) over the w features order[b .. b + w) of
+ * every support vector i < n, four at a time (a short last block repeats
+ * the last SV). */
+HYLO_CLONES
+static void kernel_row(double *row, const hylo_svr_cache *c, uint32_t b, uint32_t w,
+		       const double *v, double gamma, uint32_t n)
+{
+	uint32_t i, k, l;
+
+	for (i = 0; i + 4 <= n; i += 4) {
+		hylo_v4 d2 = splat4(0);
+
+		for (k = 0; k < w; k++) {
+			hylo_v4 d = splat4(v[k]) - load4(&c->sv_col[(size_t)c->order[b + k] * n + i]);
+
+			d2 += d * d;
+		}
+		store4(&row[i], exp_nonpositive4(-gamma * d2));
+	}
+	if (i < n) {
+		hylo_v4 d2 = splat4(0), e;
+
+		for (k = 0; k < w; k++) {
+			const double *col = &c->sv_col[(size_t)c->order[b + k] * n];
+			hylo_v4 d;
+
+			for (l = 0; l < 4; l++)
+				d[l] = v[k] - col[i + l < n ? i + l : n - 1];
+			d2 += d * d;
+		}
+		e = exp_nonpositive4(-gamma * d2);
+		for (l = 0; i + l < n; l++)
+			row[i + l] = e[l];
+	}
+}
+
 /* The factor row exp(-gamma |z_G - s_G|^2) of group g at the standardized
  * values v[] (its features in order), computing it into the least recently
  * used slot when v is not cached. */
 static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint32_t g,
 				const double *v)
 {
-	uint32_t b = c->group_begin[g], w = c->group_begin[g + 1] - b, j, k, slot = 0, i;
+	uint32_t b = c->group_begin[g], w = c->group_begin[g + 1] - b, j, k, slot = 0;
 	double *row;
 
 	for (j = 0; j < c->n_used[g]; j++) {
@@ -282,50 +361,37 @@ static const double *factor_row(const hylo_svr_model *m, hylo_svr_cache *c, uint
 		c->value[g][slot][k] = v[k];
 	c->last_use[g][slot] = ++c->clock;
 	row = &c->factor[((size_t)g * HYLO_SVR_CACHE_VALUES + slot) * m->n_sv];
-	for (i = 0; i < m->n_sv; i += 2) {  /* an odd last one is paired with itself */
-		uint32_t i1 = i + 1 < m->n_sv ? i + 1 : i;
-		hylo_v2 d2 = { 0, 0 }, e;
-
-		for (k = 0; k < w; k++) {
-			const double *col = &c->sv_col[(size_t)c->order[b + k] * m->n_sv];
-			hylo_v2 d = { v[k] - col[i], v[k] - col[i1] };
-
-			d2 += d * d;
-		}
-		e = exp_nonpositive2(-m->gamma * d2);
-		row[i] = e[0];
-		row[i1] = e[1];
-	}
+	kernel_row(row, c, b, w, v, m->gamma, m->n_sv);
 	return row;
 }
 
-/* sum_i a[i] * b[i] with four partial sums in a fixed pattern: a quarter of
- * the dependent-add latency of one running sum, and the same bits every time. */
+/* sum_i a[i] * b[i] with four partial sums in a fixed pattern (lane l
+ * takes the i = l mod 4): a quarter of the dependent-add latency of one
+ * running sum, and the same bits every time. */
+HYLO_CLONES
 static double dot(const double *a, const double *b, uint32_t n)
 {
-	hylo_v2 s01 = { 0, 0 }, s23 = { 0, 0 };
+	hylo_v4 acc = splat4(0);
 	double s[4];
 	uint32_t i;
 
-	for (i = 0; i + 4 <= n; i += 4) {
-		s01 += load2(&a[i]) * load2(&b[i]);
-		s23 += load2(&a[i + 2]) * load2(&b[i + 2]);
-	}
-	store2(&s[0], s01);
-	store2(&s[2], s23);
+	for (i = 0; i + 4 <= n; i += 4)
+		acc += load4(&a[i]) * load4(&b[i]);
+	store4(s, acc);
 	for (; i < n; i++)
 		s[0] += a[i] * b[i];
 	return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
 /* out[i] = a[i] * b[i], i < n. */
+HYLO_CLONES
 static void multiply(double *out, const double *a, const double *b, uint32_t n)
 {
 	uint32_t i;
 
-	for (i = 0; i + 2 <= n; i += 2)
-		store2(&out[i], load2(&a[i]) * load2(&b[i]));
-	if (i < n)
+	for (i = 0; i + 4 <= n; i += 4)
+		store4(&out[i], load4(&a[i]) * load4(&b[i]));
+	for (; i < n; i++)
 		out[i] = a[i] * b[i];
 }
 

@@ -1,18 +1,17 @@
 /*
  * Plans fixed requests on the test scenes (tests/onboard/testutil_planner.h:
  * river, chasm, double integrator on the committed SVR models; A* and
- * Dijkstra) and prints one line per
- * plan with an FNV-1a digest of every number in it, so that builds for
- * different machines can be compared bit for bit (make cross-test).
+ * Dijkstra) and on the small scenes of tests/onboard/testutil_models.h with
+ * every committed model, and prints one line per plan with an FNV-1a digest
+ * of every number in it, so that builds for different machines, and the
+ * SVR evaluator's run-time paths (AVX2 or not), can be compared bit for bit
+ * (make cross-test; tests/cross/test_paths.sh).
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "onboard/testutil_planner.h"
-/* The committed double-integrator models: SVR evaluation (libm exp) too. */
-#include "di_di_neg.h"
-#include "di_di_pos.h"
+#include "onboard/testutil_models.h"
 
 static uint64_t fnv(uint64_t h, const void *p, size_t n)
 {
@@ -24,6 +23,64 @@ static uint64_t fnv(uint64_t h, const void *p, size_t n)
 		h *= 1099511628211ULL;
 	}
 	return h;
+}
+
+static void print_plan(const char *scene, const char *alg, const hylo_plan *plan)
+{
+	uint64_t h = 1469598103934665603ULL;
+	uint32_t w;
+
+	h = fnv(h, &plan->total_cost, sizeof plan->total_cost);
+	for (w = 0; w < plan->n_waypoints; w++) {
+		h = fnv(h, plan->state[w], sizeof plan->state[w]);
+		h = fnv(h, &plan->cost[w], sizeof plan->cost[w]);
+		h = fnv(h, &plan->mode[w], 1);
+	}
+	printf("%-12s %-8s cost %.17g  %u waypoints  %lu edges evaluated  digest %016llx\n", scene, alg,
+	       plan->total_cost, (unsigned)plan->n_waypoints, (unsigned long)plan->n_edges_evaluated,
+	       (unsigned long long)h);
+}
+
+/* The committed models on the small scenes. */
+static int model_plans(void)
+{
+	static hylo_robot robots[TM_N_ROBOTS];
+	hylo_planner_config cfg;
+	hylo_planner *pl;
+	hylo_plan *plan = malloc(sizeof *plan);
+	hylo_goal goals[3];
+	tu_map maps[3];
+	const char *names[3] = { "model_river", "model_chasm", "model_di" };
+	size_t size;
+	int k, rc = 0;
+
+	tm_robots(robots);
+	memset(&cfg, 0, sizeof cfg);
+	cfg.robots = robots;
+	cfg.n_robots = TM_N_ROBOTS;
+	size = hylo_planner_size(&cfg);
+	pl = malloc(size);
+	if (!pl || !plan || hylo_planner_init(pl, size, &cfg) != HYLO_OK)
+		return 1;
+	tm_small_river(&maps[0]);
+	tm_small_chasm(&maps[1]);
+	tu_di(&maps[2]);
+	goals[0] = tm_river_goal();
+	goals[1] = tm_chasm_goal();
+	goals[2] = tm_di_goal();
+	for (k = 0; k < 3 && rc == 0; k++) {
+		hylo_map_view v = tu_view(&maps[k]);
+
+		if (hylo_planner_set_map(pl, &v) != HYLO_OK || hylo_planner_plan(pl, &goals[k], plan) != HYLO_OK)
+			rc = 1;
+		else
+			print_plan(names[k], "astar", plan);
+	}
+	for (k = 0; k < 3; k++)
+		tu_map_free(&maps[k]);
+	free(pl);
+	free(plan);
+	return rc;
 }
 
 int main(void)
@@ -60,27 +117,15 @@ int main(void)
 		if (hylo_planner_set_map(pl, &v) != HYLO_OK)
 			return 1;
 		for (alg = 0; alg < 2; alg++) {
-			uint64_t h = 1469598103934665603ULL;
-			uint32_t w;
-
 			goals[k].algorithm = alg;
 			if (hylo_planner_plan(pl, &goals[k], plan) != HYLO_OK)
 				return 1;
-			h = fnv(h, &plan->total_cost, sizeof plan->total_cost);
-			for (w = 0; w < plan->n_waypoints; w++) {
-				h = fnv(h, plan->state[w], sizeof plan->state[w]);
-				h = fnv(h, &plan->cost[w], sizeof plan->cost[w]);
-				h = fnv(h, &plan->mode[w], 1);
-			}
-			printf("%-6s %-8s cost %.17g  %u waypoints  %lu edges evaluated  digest %016llx\n",
-			       names[k], alg ? "dijkstra" : "astar", plan->total_cost,
-			       (unsigned)plan->n_waypoints, (unsigned long)plan->n_edges_evaluated,
-			       (unsigned long long)h);
+			print_plan(names[k], alg ? "dijkstra" : "astar", plan);
 		}
 	}
 	for (k = 0; k < 3; k++)
 		tu_map_free(&maps[k]);
 	free(pl);
 	free(plan);
-	return 0;
+	return model_plans();
 }
