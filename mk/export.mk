@@ -36,3 +36,12 @@ $(FIT_TEST): tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_fit.hpp t
 	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_export.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -o $@
 ALL_TARGETS += $(FIT_TEST)
 TESTS += $(FIT_TEST)
+
+# Headers read back (tests/export/test_header_parse.cpp): the export stage
+# reads the fit stage's header before it adds the envelope.
+HEADER_PARSE_TEST := $(BUILD)/test/export/test_header_parse
+$(HEADER_PARSE_TEST): tests/export/test_header_parse.cpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_header_parse.cpp trainer/svr_export.cpp $(ONBOARD_LIB) -lm -o $@
+ALL_TARGETS += $(HEADER_PARSE_TEST)
+TESTS += $(HEADER_PARSE_TEST)
