@@ -8,9 +8,9 @@ EXPORT_HEADER := $(EXPORT_DIR)/testbot_ground.h
 EXPORT_TEST := $(BUILD)/test/export/test_export
 EXPORT_TEST_SAN := $(BUILD)/san/test/export/test_export
 
-$(EXPORT_GEN): tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
+$(EXPORT_GEN): tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp trainer/envelope.cpp trainer/envelope.hpp $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/make_test_model.cpp trainer/svr_export.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) $(EIGEN_CFLAGS) tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/envelope.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -lm -o $@
 
 $(EXPORT_HEADER): $(EXPORT_GEN)
 	@mkdir -p $(@D)
