@@ -8,9 +8,9 @@ EXPORT_HEADER := $(EXPORT_DIR)/testbot_ground.h
 EXPORT_TEST := $(BUILD)/test/export/test_export
 EXPORT_TEST_SAN := $(BUILD)/san/test/export/test_export
 
-$(EXPORT_GEN): tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
+$(EXPORT_GEN): tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp trainer/envelope.cpp trainer/envelope.hpp $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/make_test_model.cpp trainer/svr_export.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) $(EIGEN_CFLAGS) tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/envelope.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -lm -o $@
 
 $(EXPORT_HEADER): $(EXPORT_GEN)
 	@mkdir -p $(@D)
@@ -36,3 +36,12 @@ $(FIT_TEST): tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_fit.hpp t
 	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_export.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -o $@
 ALL_TARGETS += $(FIT_TEST)
 TESTS += $(FIT_TEST)
+
+# Headers read back (tests/export/test_header_parse.cpp): the export stage
+# reads the fit stage's header before it adds the envelope.
+HEADER_PARSE_TEST := $(BUILD)/test/export/test_header_parse
+$(HEADER_PARSE_TEST): tests/export/test_header_parse.cpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_header_parse.cpp trainer/svr_export.cpp $(ONBOARD_LIB) -lm -o $@
+ALL_TARGETS += $(HEADER_PARSE_TEST)
+TESTS += $(HEADER_PARSE_TEST)

@@ -2,7 +2,7 @@
 # collocation with Ipopt, CVODE replay, datasets, SVR fit and export.
 #   build/bin/trainer
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
-	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/sha256.cpp \
+	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
 	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
@@ -14,8 +14,10 @@ $(BUILD)/obj/trainer/%.o: trainer/%.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) -c $< -o $@
 
-# The trainer computes flight features with the onboard code itself.
-$(TRAINER_LIB): $(TRAINER_OBJS) $(BUILD)/obj/onboard/src/features.o
+# The trainer computes features, and the envelope's costs, with the onboard
+# code itself.
+TRAINER_ONBOARD_OBJS := $(addprefix $(BUILD)/obj/onboard/src/,features.o svr.o envelope.o status.o)
+$(TRAINER_LIB): $(TRAINER_OBJS) $(TRAINER_ONBOARD_OBJS)
 	@mkdir -p $(@D)
 	rm -f $@ && $(AR) rcs $@ $^
 

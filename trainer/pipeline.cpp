@@ -1,5 +1,6 @@
 #include "trainer/pipeline.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -8,6 +9,7 @@
 #include <stdexcept>
 
 #include "trainer/collocation.hpp"
+#include "trainer/envelope.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
 #include "trainer/switching.hpp"
@@ -197,11 +199,42 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	return 0;
 }
 
+// Reads the model fit wrote (its header is the hand-off), adds the
+// envelope where the mode has one (trainer/envelope.hpp; any envelope the
+// header has is computed afresh) and writes the header into models_dir.
 int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 {
 	std::string name = robot.robot + "_" + opt.gen.mode + ".h";
-	std::string text = slurp(opt.gen.out_dir + "/" + name);
-	write_text(opt.models_dir + "/" + name, text);
+	std::string path = opt.gen.out_dir + "/" + name;
+	SvrExport m;
+	try {
+		m = parse_svr_header(slurp(path));
+	} catch (const std::invalid_argument &e) {
+		throw std::invalid_argument(path + ": " + e.what());
+	}
+	if (m.robot != robot.robot || m.mode != opt.gen.mode)
+		throw std::invalid_argument(path + " holds the " + m.robot + " " + m.mode + " model");
+	auto line = std::find_if(m.provenance.begin(), m.provenance.end(),
+				 [](const auto &p) { return p.first == "envelope"; });
+	if (line != m.provenance.end())
+		m.provenance.erase(line);
+	m.envelope.reset();
+	if (envelope_applies(m)) {
+		EnvelopeOptions eo;
+		eo.jobs = opt.gen.jobs;
+		eo.progress = opt.gen.progress;
+		EnvelopeReport rep = compute_envelope(m, eo);
+		m.envelope = rep.table;
+		// Before the version line, which stays last.
+		auto at = !m.provenance.empty() && m.provenance.back().first == "hylo version"
+				  ? m.provenance.end() - 1 : m.provenance.end();
+		m.provenance.insert(at, {"envelope", rep.provenance()});
+		std::printf("envelope %s %s: %s; %.1f s (table %.1f s, margin %.1f s, check %.1f s)\n",
+			    robot.robot.c_str(), opt.gen.mode.c_str(), rep.provenance().c_str(),
+			    rep.table_seconds + rep.margin_seconds + rep.check_seconds, rep.table_seconds,
+			    rep.margin_seconds, rep.check_seconds);
+	}
+	write_svr_header(m, opt.models_dir + "/" + name);
 	std::printf("exported %s/%s\n", opt.models_dir.c_str(), name.c_str());
 	return 0;
 }

@@ -21,8 +21,10 @@ struct PipelineOptions {
 uint64_t default_samples(const std::string &mode);
 
 // Runs stage "gen", "fit", "export" or "all"; returns the exit code.
-// "fit" writes <out>/<robot>_<mode>.h and <out>/<mode>.fit.json; "export"
-// copies that header into models_dir. Nothing is written on bad data.
+// "fit" writes <out>/<robot>_<mode>.h (the fitted model) and
+// <out>/<mode>.fit.json; "export" reads that header, adds the envelope
+// (ground, marine, flight; trainer/envelope.hpp) and writes the result into
+// models_dir. Nothing is written on bad data.
 int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage);
 
 }  // namespace hylo::trainer

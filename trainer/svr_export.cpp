@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <system_error>
 
@@ -148,6 +149,27 @@ void check(const SvrExport &m)
 		throw std::invalid_argument("svr export: gamma and label_scale must be > 0, "
 					    "cost floors and max_distance_m >= 0, "
 					    "speed_min_mps <= speed_max_mps");
+	if (m.envelope) {
+		const EnvelopeExport &e = *m.envelope;
+		const hylo_mode mode = mode_enum(m.mode).value;
+		if (mode != HYLO_MODE_GROUND && mode != HYLO_MODE_MARINE && mode != HYLO_MODE_FLIGHT)
+			throw std::invalid_argument("svr export: mode " + m.mode + " has no envelope");
+		if (e.n_d == 0 || e.n_z == 0 || e.n_v == 0 || (mode != HYLO_MODE_FLIGHT && e.n_z != 1))
+			throw std::invalid_argument("svr export: envelope cell counts must be >= 1 "
+						    "(one climb cell on ground and water)");
+		const uint64_t n = static_cast<uint64_t>(e.n_d) * e.n_z * e.n_v * e.n_v;
+		if (n >= (uint64_t{1} << 32) || e.value.size() != n)
+			throw std::invalid_argument("svr export: envelope has " + std::to_string(e.value.size()) +
+						    " values, expected n_d * n_z * n_v * n_v = " + std::to_string(n));
+		for (double v : {e.d_step, e.z_min, e.z_step, e.v_min, e.v_step})
+			require_finite(v, "an envelope step or origin");
+		if (!(e.d_step > 0) || !(e.v_step > 0) || (e.n_z > 1 && !(e.z_step > 0)))
+			throw std::invalid_argument("svr export: envelope steps must be > 0");
+		for (size_t i = 0; i < e.value.size(); i++)
+			if (!std::isfinite(e.value[i]) || !(e.value[i] >= 0))
+				throw std::invalid_argument("svr export: envelope value " + std::to_string(i) +
+							    " is not finite and >= 0");
+	}
 	for (const auto &c : m.constants) {
 		if (!is_identifier(c.key, true))
 			throw std::invalid_argument("svr export: constant '" + c.key +
@@ -166,6 +188,53 @@ void array(std::string &out, const std::string &type_name, const std::string &si
 		if (i % per_line == per_line - 1 || i + 1 == v.size())
 			out += "\n";
 	}
+	out += "};\n\n";
+}
+
+// The float's "%.9g", which a C compiler reads back as the same float (the
+// double nearest the text is far closer to the float than to the middle
+// between it and a neighbour); checked here.
+std::string format_float(float v)
+{
+	char buf[64];
+	auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 9);
+	if (r.ec != std::errc())
+		throw std::invalid_argument("svr export: cannot format a number");
+	double back = 0;
+	auto p = std::from_chars(buf, r.ptr, back);
+	if (p.ec != std::errc() || static_cast<float>(back) != v)
+		throw std::invalid_argument("svr export: a float does not round-trip");
+	return std::string(buf, r.ptr);
+}
+
+void envelope_block(std::string &out, const EnvelopeExport &e, const std::string &id,
+		    const std::string &mac)
+{
+	const std::string emac = mac + "_ENVELOPE";
+	out += "/* Envelope: per distance (and climb) cell and pair of speed nodes, a lower\n"
+	       " * bound of the predicted cost over every heading (onboard/models/README.md). */\n";
+	out += "#define " + emac + "_N_D " + std::to_string(e.n_d) + "\n";
+	out += "#define " + emac + "_N_Z " + std::to_string(e.n_z) + "\n";
+	out += "#define " + emac + "_N_V " + std::to_string(e.n_v) + "\n\n";
+	out += "static const float " + id + "_envelope_value[" + emac + "_N_D * " + emac + "_N_Z * " +
+	       emac + "_N_V * " + emac + "_N_V] = {\n";
+	for (size_t i = 0; i < e.value.size(); i++) {
+		out += (i % e.n_v == 0) ? "\t" : " ";
+		out += format_float(e.value[i]) + ",";
+		if (i % e.n_v == e.n_v - 1)
+			out += "\n";
+	}
+	out += "};\n\n";
+	out += "static const hylo_svr_envelope " + id + "_envelope = {\n";
+	out += "\t.n_d = " + emac + "_N_D,\n";
+	out += "\t.n_z = " + emac + "_N_Z,\n";
+	out += "\t.n_v = " + emac + "_N_V,\n";
+	out += "\t.d_step = " + format_double(e.d_step) + ",\n";
+	out += "\t.z_min = " + format_double(e.z_min) + ",\n";
+	out += "\t.z_step = " + format_double(e.z_step) + ",\n";
+	out += "\t.v_min = " + format_double(e.v_min) + ",\n";
+	out += "\t.v_step = " + format_double(e.v_step) + ",\n";
+	out += "\t.value = " + id + "_envelope_value,\n";
 	out += "};\n\n";
 }
 
@@ -213,6 +282,8 @@ std::string svr_header_text(const SvrExport &m)
 	      static_cast<size_t>(m.n_features));
 	array(out, id + "_feature_scale", mac + "_N_FEATURES", m.feature_scale,
 	      static_cast<size_t>(m.n_features));
+	if (m.envelope)
+		envelope_block(out, *m.envelope, id, mac);
 	out += "static const hylo_svr_model " + id + " = {\n";
 	out += "\t.name = \"" + name + "\",\n";
 	out += "\t.n_sv = " + mac + "_N_SV,\n";
@@ -232,6 +303,8 @@ std::string svr_header_text(const SvrExport &m)
 	out += "\t.speed_min_mps = " + format_double(m.speed_min_mps) + ",\n";
 	out += "\t.speed_max_mps = " + format_double(m.speed_max_mps) + ",\n";
 	out += "\t.provenance = " + c_string(prov) + ",\n";
+	if (m.envelope)
+		out += "\t.envelope = &" + id + "_envelope,\n";
 	out += "};\n\n";
 	if (m.feasibility) {
 		const ClassifierExport &f = *m.feasibility;
@@ -262,6 +335,223 @@ std::string svr_header_text(const SvrExport &m)
 	}
 	out += "#endif\n";
 	return out;
+}
+
+namespace {
+
+// The pieces of a header svr_header_text wrote, by name.
+struct HeaderParts {
+	std::vector<std::pair<std::string, std::string>> provenance;
+	std::vector<std::pair<std::string, std::string>> defines;   // name, rest of the line
+	std::map<std::string, std::vector<std::string>> arrays;     // array name -> number texts
+	std::map<std::string, std::map<std::string, std::string>> structs;  // name -> field -> text
+	std::vector<std::string> models;   // the hylo_svr_model structs, in order
+};
+
+bool starts_with(const std::string &s, const std::string &p) { return s.compare(0, p.size(), p) == 0; }
+
+std::string after(const std::string &s, const std::string &p) { return s.substr(p.size()); }
+
+HeaderParts split_header(const std::string &text)
+{
+	HeaderParts h;
+	std::vector<std::string> lines;
+	for (size_t pos = 0; pos < text.size();) {
+		size_t end = text.find('\n', pos);
+		if (end == std::string::npos)
+			throw std::invalid_argument("svr header: the text does not end with a newline");
+		lines.push_back(text.substr(pos, end - pos));
+		pos = end + 1;
+	}
+	size_t i = 0;
+	while (i < lines.size() && lines[i] != " *")   // the comment's title lines
+		i++;
+	for (i++; i < lines.size() && lines[i] != " */"; i++) {
+		size_t colon = lines[i].find(": ");
+		if (!starts_with(lines[i], " * ") || colon == std::string::npos)
+			throw std::invalid_argument("svr header: provenance line '" + lines[i] + "' is not ' * key: value'");
+		h.provenance.emplace_back(lines[i].substr(3, colon - 3), lines[i].substr(colon + 2));
+	}
+	for (; i < lines.size(); i++) {
+		const std::string &l = lines[i];
+		if (starts_with(l, "#define ")) {
+			std::string rest = after(l, "#define ");
+			size_t sp = rest.find(' ');
+			if (sp != std::string::npos)
+				h.defines.emplace_back(rest.substr(0, sp), rest.substr(sp + 1));
+		} else if (starts_with(l, "static const double ") || starts_with(l, "static const float ")) {
+			std::string rest = after(l, starts_with(l, "static const double ") ? "static const double "
+										      : "static const float ");
+			std::string name = rest.substr(0, rest.find('['));
+			std::vector<std::string> &values = h.arrays[name];
+			for (i++; i < lines.size() && lines[i] != "};"; i++) {
+				std::string item;
+				for (char c : lines[i] + ",") {
+					if (c == ',') {
+						if (!item.empty())
+							values.push_back(item);
+						item.clear();
+					} else if (c != ' ' && c != '\t') {
+						item += c;
+					}
+				}
+			}
+		} else if (starts_with(l, "static const hylo_svr_model ") ||
+			   starts_with(l, "static const hylo_svr_envelope ")) {
+			std::string rest = after(l, starts_with(l, "static const hylo_svr_model ")
+							    ? "static const hylo_svr_model "
+							    : "static const hylo_svr_envelope ");
+			const std::string name = rest.substr(0, rest.find(' '));
+			if (starts_with(l, "static const hylo_svr_model "))
+				h.models.push_back(name);
+			std::map<std::string, std::string> &fields = h.structs[name];
+			for (i++; i < lines.size() && lines[i] != "};"; i++) {
+				size_t eq = lines[i].find(" = ");
+				if (!starts_with(lines[i], "\t.") || eq == std::string::npos || lines[i].back() != ',')
+					throw std::invalid_argument("svr header: field line '" + lines[i] + "'");
+				fields[lines[i].substr(2, eq - 2)] = lines[i].substr(eq + 3, lines[i].size() - eq - 4);
+			}
+		}
+	}
+	return h;
+}
+
+double number(const std::string &t)
+{
+	double v = 0;
+	auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+	if (r.ec != std::errc() || r.ptr != t.data() + t.size())
+		throw std::invalid_argument("svr header: '" + t + "' is not a number");
+	return v;
+}
+
+std::vector<double> numbers(const HeaderParts &h, const std::string &name)
+{
+	auto it = h.arrays.find(name);
+	if (it == h.arrays.end())
+		throw std::invalid_argument("svr header: no array " + name);
+	std::vector<double> v;
+	for (const std::string &t : it->second)
+		v.push_back(number(t));
+	return v;
+}
+
+const std::map<std::string, std::string> &fields(const HeaderParts &h, const std::string &name)
+{
+	auto it = h.structs.find(name);
+	if (it == h.structs.end())
+		throw std::invalid_argument("svr header: no struct " + name);
+	return it->second;
+}
+
+const std::string &field(const std::map<std::string, std::string> &f, const std::string &key)
+{
+	auto it = f.find(key);
+	if (it == f.end())
+		throw std::invalid_argument("svr header: no field ." + key);
+	return it->second;
+}
+
+}  // namespace
+
+SvrExport parse_svr_header(const std::string &text)
+{
+	const HeaderParts h = split_header(text);
+	std::string mode;
+	for (const auto &d : h.defines)
+		if (d.first.size() > 5 && d.first.compare(d.first.size() - 5, 5, "_MODE") == 0)
+			for (const char *name : {"ground", "marine", "flight", "di_neg", "di_pos"})
+				if (d.second == mode_enum(name).c_name)
+					mode = name;
+	if (mode.empty())
+		throw std::invalid_argument("svr header: no HYLO_MODEL_<NAME>_MODE");
+	if (h.models.empty())
+		throw std::invalid_argument("svr header: no hylo_svr_model");
+	const std::string id = h.models[0];   // the cost model; the classifier follows it
+	const auto &f = fields(h, id);
+	const std::string &qname = field(f, "name");
+	SvrExport m;
+	const std::string name = qname.size() >= 2 ? qname.substr(1, qname.size() - 2) : "";
+	if (name.size() <= mode.size() + 1 || name.compare(name.size() - mode.size() - 1, std::string::npos, "_" + mode) != 0)
+		throw std::invalid_argument("svr header: model name '" + name + "' does not end in _" + mode);
+	m.robot = name.substr(0, name.size() - mode.size() - 1);
+	m.mode = mode;
+	m.n_features = static_cast<int>(hylo_feature_count(mode_enum(mode).value));
+	m.gamma = number(field(f, "gamma"));
+	m.rho = number(field(f, "rho"));
+	m.sv = numbers(h, id + "_sv");
+	m.coef = numbers(h, id + "_coef");
+	m.feature_offset = numbers(h, id + "_feature_offset");
+	m.feature_scale = numbers(h, id + "_feature_scale");
+	m.label_offset = number(field(f, "label_offset"));
+	m.label_scale = number(field(f, "label_scale"));
+	m.label_log = field(f, "label_log") == "1";
+	m.cost_floor_per_m = number(field(f, "cost_floor_per_m"));
+	m.cost_floor_j = number(field(f, "cost_floor_j"));
+	m.max_distance_m = number(field(f, "max_distance_m"));
+	m.speed_min_mps = number(field(f, "speed_min_mps"));
+	m.speed_max_mps = number(field(f, "speed_max_mps"));
+	m.provenance = h.provenance;
+	const std::string mac = "HYLO_MODEL_" + upper(name) + "_";
+	for (const auto &d : h.defines) {
+		if (!starts_with(d.first, mac))
+			continue;
+		std::string key = d.first.substr(mac.size());
+		size_t c = d.second.find("  /* ");
+		if (key == "MODE" || key == "N_SV" || key == "N_FEATURES" || key == "H" ||
+		    starts_with(key, "FEASIBILITY_") || starts_with(key, "ENVELOPE_") || c == std::string::npos ||
+		    d.second.size() < c + 8)
+			continue;
+		m.constants.push_back({key, number(d.second.substr(0, c)),
+				       d.second.substr(c + 5, d.second.size() - c - 8)});
+	}
+	if (h.structs.count(id + "_feasibility")) {
+		const auto &ff = fields(h, id + "_feasibility");
+		ClassifierExport c;
+		c.gamma = number(field(ff, "gamma"));
+		c.rho = number(field(ff, "rho"));
+		c.sv = numbers(h, id + "_feasibility_sv");
+		c.coef = numbers(h, id + "_feasibility_coef");
+		c.feature_offset = numbers(h, id + "_feasibility_feature_offset");
+		c.feature_scale = numbers(h, id + "_feasibility_feature_scale");
+		m.feasibility = c;
+	}
+	if (h.structs.count(id + "_envelope")) {
+		const auto &ef = fields(h, id + "_envelope");
+		EnvelopeExport e;
+		const std::string emac = mac + "ENVELOPE_";
+		auto count = [&](const std::string &key) {
+			for (const auto &d : h.defines)
+				if (d.first == emac + key)
+					return static_cast<uint32_t>(number(d.second));
+			throw std::invalid_argument("svr header: no " + emac + key);
+		};
+		e.n_d = count("N_D");
+		e.n_z = count("N_Z");
+		e.n_v = count("N_V");
+		e.d_step = number(field(ef, "d_step"));
+		e.z_min = number(field(ef, "z_min"));
+		e.z_step = number(field(ef, "z_step"));
+		e.v_min = number(field(ef, "v_min"));
+		e.v_step = number(field(ef, "v_step"));
+		for (double v : numbers(h, id + "_envelope_value"))
+			e.value.push_back(static_cast<float>(v));
+		m.envelope = e;
+	}
+	std::string again;
+	try {
+		again = svr_header_text(m);
+	} catch (const std::invalid_argument &e) {
+		throw std::invalid_argument(std::string("svr header: ") + e.what());
+	}
+	if (again != text) {
+		size_t at = 0, line = 1;
+		while (at < again.size() && at < text.size() && again[at] == text[at])
+			line += text[at++] == '\n';
+		throw std::invalid_argument("svr header: not a header this trainer writes (written again, it "
+					    "differs from line " + std::to_string(line) + " on)");
+	}
+	return m;
 }
 
 void write_svr_header(const SvrExport &m, const std::string &path)

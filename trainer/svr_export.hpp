@@ -4,6 +4,7 @@
 #ifndef HYLO_TRAINER_SVR_EXPORT_HPP
 #define HYLO_TRAINER_SVR_EXPORT_HPP
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -28,6 +29,16 @@ struct ClassifierExport {
 	std::vector<double> feature_offset, feature_scale;
 };
 
+// An envelope table (hylo_svr_envelope in onboard/include/hylo/svr.h; the
+// trainer computes it in trainer/envelope.cpp): value[((k * n_z + j) * n_v +
+// i1) * n_v + i2] bounds the cost of distance cell k, climb cell j, tail
+// speed node i1 and head speed node i2 from below.
+struct EnvelopeExport {
+	uint32_t n_d = 0, n_z = 1, n_v = 0;
+	double d_step = 0, z_min = 0, z_step = 0, v_min = 0, v_step = 0;
+	std::vector<float> value;       // n_d * n_z * n_v * n_v, each finite and >= 0
+};
+
 // Everything the header holds. Field meanings: onboard/include/hylo/svr.h.
 struct SvrExport {
 	std::string robot;              // lower-case C identifier, e.g. "ambot"
@@ -46,11 +57,19 @@ struct SvrExport {
 	std::vector<std::pair<std::string, std::string>> provenance;
 	std::vector<HeaderConstant> constants;
 	std::optional<ClassifierExport> feasibility;
+	std::optional<EnvelopeExport> envelope;   // ground, marine and flight only
 };
 
 // The header text. Throws std::invalid_argument naming the problem (bad
 // identifier, size mismatch, non-finite number, no support vectors).
 std::string svr_header_text(const SvrExport &m);
+
+// The model a header written by svr_header_text holds, read back so that
+// a later stage (the envelope, at export) can work on the fitted model.
+// Throws std::invalid_argument naming the problem when text is not such a
+// header: it checks that svr_header_text of the result gives text back byte
+// for byte, so nothing is lost or changed on the way.
+SvrExport parse_svr_header(const std::string &text);
 
 // Writes svr_header_text(m) to path atomically (temporary file + rename);
 // nothing is written when the model is invalid. Throws std::runtime_error

@@ -115,8 +115,50 @@ static int finite_array(const double *a, uint32_t n)
 	return 1;
 }
 
+static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hylo_reason *r)
+{
+	const hylo_svr_envelope *e = m->envelope;
+	uint64_t n;
+	uint32_t i;
+
+	if (m->n_features != HYLO_FEATURES_PLANAR && m->n_features != HYLO_FEATURES_FLIGHT)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: an envelope needs planar (%d) or flight (%d) features, "
+				 "not %u", name, HYLO_FEATURES_PLANAR, HYLO_FEATURES_FLIGHT,
+				 (unsigned)m->n_features);
+	if (e->n_d == 0 || e->n_z == 0 || e->n_v == 0 ||
+	    (m->n_features == HYLO_FEATURES_PLANAR && e->n_z != 1))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: envelope of %u x %u x %u cells (each >= 1, "
+				 "planar climb cells 1)", name, (unsigned)e->n_d, (unsigned)e->n_z,
+				 (unsigned)e->n_v);
+	n = (uint64_t)e->n_d * e->n_z;
+	if (n >= ((uint64_t)1 << 32) || e->n_v >= ((uint32_t)1 << 16) ||
+	    n * e->n_v * e->n_v >= ((uint64_t)1 << 32))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: envelope of %u x %u x %u cells has 2^32 values or more",
+				 name, (unsigned)e->n_d, (unsigned)e->n_z, (unsigned)e->n_v);
+	if (!(e->d_step > 0) || !isfinite(e->d_step) || !(e->v_step > 0) || !isfinite(e->v_step) ||
+	    !isfinite(e->v_min) || !isfinite(e->z_min) || !isfinite(e->z_step) ||
+	    (e->n_z > 1 && !(e->z_step > 0)))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: envelope steps d %g, z %g, v %g m/s (finite, > 0) or "
+				 "origins z %g, v %g not finite", name, e->d_step, e->z_step, e->v_step,
+				 e->z_min, e->v_min);
+	if (!e->value)
+		return hylo_fail(r, HYLO_E_NULL, "svr model %s: the envelope's values are NULL", name);
+	n *= (uint64_t)e->n_v * e->n_v;
+	for (i = 0; i < (uint32_t)n; i++)
+		if (!isfinite(e->value[i]) || !(e->value[i] >= 0))
+			return hylo_fail(r, HYLO_E_BAD_VALUE,
+					 "svr model %s: envelope value %u is %g (finite, >= 0)", name,
+					 (unsigned)i, (double)e->value[i]);
+	return HYLO_OK;
+}
+
 hylo_status hylo_svr_check(const hylo_svr_model *m, hylo_reason *r)
 {
+	hylo_status st;
 	const char *name;
 	uint32_t k;
 
@@ -170,6 +212,8 @@ hylo_status hylo_svr_check(const hylo_svr_model *m, hylo_reason *r)
 	    !finite_array(m->sv, m->n_sv * m->n_features))
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "svr model %s: a support vector or coefficient is not finite", name);
+	if (m->envelope && (st = check_envelope(m, name, r)) != HYLO_OK)
+		return st;
 	hylo_reason_clear(r);
 	return HYLO_OK;
 }
@@ -222,6 +266,62 @@ int hylo_svr_speed_trained(const hylo_svr_model *m, double speed)
 	if (m->speed_min_mps == 0 && m->speed_max_mps == 0)
 		return !isnan(speed);
 	return speed >= m->speed_min_mps - slack && speed <= m->speed_max_mps + slack;
+}
+
+/* The speed nodes of v: i[0] = i[1] = the node within 1e-9 m/s of v, else
+ * the two bracketing it; 0 when v is outside the nodes or NaN. */
+static int envelope_nodes(const hylo_svr_envelope *e, double v, uint32_t *i)
+{
+	double x = (v - e->v_min) / e->v_step, top = (double)(e->n_v - 1), dv;
+	uint32_t n;
+
+	if (!(x > -1 && x < top + 1))  /* also NaN; the casts below stay in range */
+		return 0;
+	n = x < 0 ? 0 : (uint32_t)(x + 0.5);
+	if (n > e->n_v - 1)
+		n = e->n_v - 1;
+	dv = v - (e->v_min + n * e->v_step);
+	if (dv >= -1e-9 && dv <= 1e-9) {
+		i[0] = i[1] = n;
+		return 1;
+	}
+	if (!(x > 0 && x < top))
+		return 0;
+	i[0] = (uint32_t)x;
+	i[1] = i[0] + 1;
+	return 1;
+}
+
+double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, double v1, double v2)
+{
+	const hylo_svr_envelope *e;
+	uint32_t k, j = 0, a[2], b[2], p, q;
+	double x, best = 0;
+	size_t row;
+
+	if (!m || !(e = m->envelope) || !e->value)
+		return 0;
+	x = d / e->d_step;
+	if (!(x >= 0 && x < (double)e->n_d))
+		return 0;
+	k = (uint32_t)x;
+	if (e->n_z > 1) {
+		x = (dz - e->z_min) / e->z_step;
+		if (!(x >= 0 && x < (double)e->n_z))
+			return 0;
+		j = (uint32_t)x;
+	}
+	if (!envelope_nodes(e, v1, a) || !envelope_nodes(e, v2, b))
+		return 0;
+	row = ((size_t)k * e->n_z + j) * e->n_v;
+	for (p = 0; p < 2; p++)
+		for (q = 0; q < 2; q++) {
+			double v = e->value[(row + a[p]) * e->n_v + b[q]];
+
+			if ((p == 0 && q == 0) || v < best)
+				best = v;
+		}
+	return best;
 }
 
 double hylo_svr_predict(const hylo_svr_model *m, const double *x)

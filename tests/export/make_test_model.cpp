@@ -2,10 +2,13 @@
 // smooth function of the 8 planar features, exports them with the trainer's
 // exporter as OUT_DIR/testbot_ground.h, and writes libsvm's own predictions
 // on held-out points to OUT_DIR/reference.txt (%.17g), which
-// tests/export/test_export.c compares with the onboard evaluator.
-//   make_test_model OUT_DIR
+// tests/export/test_export.c compares with the onboard evaluator. The
+// header carries the model's envelope (trainer/envelope.cpp), computed on
+// JOBS threads (default 1; the bytes must not depend on it).
+//   make_test_model OUT_DIR [JOBS]
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -17,6 +20,7 @@
 extern "C" {
 #include "hylo/features.h"
 }
+#include "trainer/envelope.hpp"
 #include "trainer/svr_export.hpp"
 
 namespace {
@@ -104,8 +108,8 @@ void take(const svm_model *m, std::vector<double> &sv, std::vector<double> &coef
 
 int main(int argc, char **argv)
 {
-	if (argc != 2) {
-		std::fprintf(stderr, "usage: %s OUT_DIR\n", argv[0]);
+	if (argc != 2 && argc != 3) {
+		std::fprintf(stderr, "usage: %s OUT_DIR [JOBS]\n", argv[0]);
 		return 2;
 	}
 	try {
@@ -135,6 +139,8 @@ int main(int argc, char **argv)
 		m.feature_scale.assign(kScale, kScale + kF);
 		m.cost_floor_per_m = 0;
 		m.max_distance_m = 6;
+		m.speed_min_mps = 0;
+		m.speed_max_mps = 0.5;
 		m.provenance = {{"kind", "test model (tests/export/make_test_model.cpp)"},
 				{"samples", std::to_string(kTrain)}};
 		// Orient the classifier: decision >= 0 means feasible (+1).
@@ -146,6 +152,13 @@ int main(int argc, char **argv)
 		f.feature_offset = m.feature_offset;
 		f.feature_scale = m.feature_scale;
 		m.feasibility = f;
+		hylo::trainer::EnvelopeOptions eo;
+		eo.jobs = argc == 3 ? std::atoi(argv[2]) : 1;
+		eo.check_edges = 100000;
+		eo.progress = false;
+		hylo::trainer::EnvelopeReport env = hylo::trainer::compute_envelope(m, eo);
+		m.envelope = env.table;
+		m.provenance.push_back({"envelope", env.provenance()});
 		std::string dir = argv[1];
 		hylo::trainer::write_svr_header(m, dir + "/testbot_ground.h");
 

@@ -3,7 +3,9 @@
  * make_test_model.cpp, exported by trainer/svr_export.cpp, compiled here.
  * The onboard evaluator must reproduce libsvm's svm_predict (cost) and
  * svm_predict_values (feasibility) to 1e-9 relative on held-out points, one
- * at a time and in batches, and the header must carry its size macros.
+ * at a time and in batches, and the header must carry its size macros. The
+ * exported envelope (trainer/envelope.cpp) bounds the model's cost from
+ * below on random edges.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -15,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "hylo/envelope.h"
 #include "hylo/features.h"
 #include "testbot_ground.h"
 
@@ -97,12 +100,49 @@ static void test_feasibility_matches_libsvm(void **state)
 	assert_int_equal(agree, n);
 }
 
+/* 20,000 random edges with speeds on the envelope's nodes cost no less than
+ * its bound, which exists for each of them. */
+static void test_envelope_bounds_cost(void **state)
+{
+	const hylo_svr_model *m = &hylo_model_testbot_ground;
+	const hylo_svr_envelope *e = m->envelope;
+	uint64_t s = 99;
+	int i, below = 0, none = 0;
+
+	(void)state;
+	assert_non_null(e);
+	assert_int_equal(e->n_d, HYLO_MODEL_TESTBOT_GROUND_ENVELOPE_N_D);
+	assert_int_equal(e->n_v, HYLO_MODEL_TESTBOT_GROUND_ENVELOPE_N_V);
+	for (i = 0; i < 20000; i++) {
+		double u[6], tail[4], head[4], f[HYLO_FEATURES_PLANAR], bound;
+		int k;
+
+		for (k = 0; k < 6; k++) {
+			s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+			u[k] = (double)(s >> 11) * 0x1.0p-53;
+		}
+		tail[0] = 1, tail[1] = -2, tail[2] = e->v_min + (int)(u[0] * e->n_v) * e->v_step;
+		tail[3] = 6.28 * u[1];
+		head[0] = 1 + m->max_distance_m * u[2] * cos(6.28 * u[3]);
+		head[1] = -2 + m->max_distance_m * u[2] * sin(6.28 * u[3]);
+		head[2] = e->v_min + (int)(u[4] * e->n_v) * e->v_step;
+		head[3] = 6.28 * u[5];
+		hylo_features(HYLO_MODE_GROUND, tail, head, f);
+		bound = hylo_envelope_of_edge(m, HYLO_MODE_GROUND, tail, head);
+		below += hylo_svr_predict(m, f) < bound;
+		none += bound == 0;
+	}
+	assert_int_equal(below, 0);
+	assert_int_equal(none, 0);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_header_shape),
 		cmocka_unit_test(test_cost_matches_libsvm),
 		cmocka_unit_test(test_feasibility_matches_libsvm),
+		cmocka_unit_test(test_envelope_bounds_cost),
 	};
 
 	if (hylo_svr_cache_size(&hylo_model_testbot_ground) > sizeof cache_mem ||

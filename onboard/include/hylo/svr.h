@@ -21,6 +21,31 @@
 #include "hylo/status.h"
 #include "hylo/types.h"
 
+/*
+ * A cost model's envelope (onboard/models/README.md, "Envelope"): a table of
+ * lower bounds of the model's predicted cost (hylo_svr_predict, before the
+ * planner's floor) that depend only on an edge's distance (and climb) and its
+ * speeds, each the least predicted cost over every heading / velocity
+ * direction of the edges in its cell, minus a measured margin. The planner's
+ * A* uses it as an admissible edge bound far tighter than the per-metre floor.
+ *   distance cell k: [k d_step, (k+1) d_step), k < n_d
+ *   climb cell j:    [z_min + j z_step, z_min + (j+1) z_step), j < n_z
+ *                    (n_z = 1: the climb is ignored; ground and marine)
+ *   speed node i:    v_min + i v_step, i < n_v
+ *   value[((k * n_z + j) * n_v + i1) * n_v + i2] [J]: the bound for tail
+ *   speed node i1 and head speed node i2.
+ * Speeds as hylo_envelope_args() measures them (ground and marine vx,
+ * flight the horizontal |v|). Values are floats, exactly representable in
+ * double, so the lookup needs no libm and gives the same bits everywhere.
+ */
+typedef struct {
+	uint32_t n_d, n_z, n_v;        /* distance cells, climb cells, speed nodes; each >= 1 */
+	double d_step;                 /* distance cell width [m], > 0 */
+	double z_min, z_step;          /* climb cells [m]; z_step > 0 when n_z > 1 */
+	double v_min, v_step;          /* speed nodes [m/s]; v_step > 0 */
+	const float *value;            /* n_d * n_z * n_v * n_v bounds [J], finite, >= 0 */
+} hylo_svr_envelope;
+
 typedef struct {
 	const char *name;              /* "<robot>_<mode>", a C identifier */
 	uint32_t n_sv;                 /* support vectors, <= HYLO_MAX_SV */
@@ -40,11 +65,17 @@ typedef struct {
 	double speed_min_mps;          /* training speeds span [speed_min_mps, speed_max_mps] */
 	double speed_max_mps;          /* (hylo_state_speed); both 0 = any */
 	const char *provenance;        /* samples, seed, hashes, errors, version; may be NULL */
+	const hylo_svr_envelope *envelope;  /* NULL: none (the double integrator, classifiers) */
 } hylo_svr_model;
 
 /**
  * Checks a model: non-NULL arrays, sizes within capacity (HYLO_E_CAP_SV),
- * finite numbers, positive gamma and scales (HYLO_E_BAD_VALUE). O(n_sv).
+ * finite numbers, positive gamma and scales (HYLO_E_BAD_VALUE); and its
+ * envelope, if any: only on a planar (8 features, n_z = 1) or flight (9)
+ * model, every count >= 1 and n_d * n_z * n_v * n_v below 2^32, steps finite
+ * and > 0 (z_step only when n_z > 1), every value finite and >= 0
+ * (HYLO_E_BAD_VALUE; a NULL value array: HYLO_E_NULL). O(n_sv * n_features
+ * + envelope values). No allocation.
  */
 hylo_status hylo_svr_check(const hylo_svr_model *m, hylo_reason *r);
 
@@ -65,6 +96,23 @@ double hylo_svr_predict(const hylo_svr_model *m, const double *x);
  * 1e-9 relative), or m declares none (both bounds 0); 0 otherwise, and for
  * NaN. */
 int hylo_svr_speed_trained(const hylo_svr_model *m, double speed);
+
+/**
+ * m's envelope bound [J] for an edge of horizontal distance d [m], climb dz
+ * [m] (ignored when the envelope has one climb cell) and tail and head
+ * speeds v1, v2 [m/s] (hylo_envelope_args() computes these from two sampled
+ * states): the table value of the cell holding (d, dz) for the speed nodes
+ * v1 and v2, a lower bound of hylo_svr_predict for every such edge. A speed
+ * within 1e-9 m/s of a node uses that node; a speed between two nodes uses
+ * the least value over the bracketing nodes, which is NOT a guaranteed bound
+ * (the model's cost between nodes is not bounded by its values at them).
+ * Returns 0 ("no envelope": the planner keeps its floor) when m is NULL or
+ * has no envelope, and when d, dz or a speed is outside the table or NaN.
+ * No libm, no allocation, O(1); safe in a control loop. Same bits on every
+ * target.
+ */
+double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, double v1,
+                               double v2);
 
 /** The floor the planner raises m's prediction for an edge of length
  * distance_m to: cost_floor_j + cost_floor_per_m * distance_m [J]. */

@@ -1,0 +1,46 @@
+/*
+ * The envelope of an edge: what a cost model's envelope table
+ * (hylo_svr_envelope, svr.h) is looked up with, computed from the edge's two
+ * sampled states, so that the planner, the tools and the trainer measure
+ * edges the same way.
+ *   ground, marine: (d, 0, vx1, vx2), d = |(x2 - x1, y2 - y1)|
+ *   flight:         (d, z2 - z1, |(vx1, vy1)|, |(vx2, vy2)|), d the
+ *                   horizontal distance; only level velocities (vz = 0):
+ *                   the roadmap uses no others and the model was trained on
+ *                   no others, so an edge with a vertical velocity has none
+ *   double integrator: none (its features are absolute positions)
+ * The bound holds for every heading (ground, marine: the tail's and the
+ * head's; flight: every direction of either level velocity and of the
+ * displacement), because the table is the least cost over all of them.
+ */
+#ifndef HYLO_ENVELOPE_H
+#define HYLO_ENVELOPE_H
+
+#include "hylo/svr.h"
+#include "hylo/types.h"
+
+/**
+ * Writes the envelope arguments (distance [m], climb [m], tail speed, head
+ * speed [m/s]; see above) of the edge tail_xs -> head_xs (sampled
+ * coordinates of mode, HYLO_XS_DIM at most) into args[4] and returns 1;
+ * returns 0 and leaves args untouched when the edge has none (the double
+ * integrator, an invalid mode, a flight state with vz != 0). Uses sqrt
+ * only (correctly rounded: the same bits on every target). No allocation;
+ * safe in a control loop.
+ */
+int hylo_envelope_args(hylo_mode mode, const hylo_real *tail_xs, const hylo_real *head_xs,
+                       hylo_real *args);
+
+/**
+ * m's envelope bound [J] for the edge tail_xs -> head_xs of mode:
+ * hylo_svr_envelope_bound() at hylo_envelope_args(). A lower bound of
+ * hylo_svr_predict() for the edge when both speeds lie on the table's speed
+ * nodes (to 1e-9 m/s); between nodes see hylo_svr_envelope_bound(). 0 ("no
+ * envelope") when m or a state is NULL, m has no envelope, m's feature count
+ * is not mode's, or the edge has no arguments or lies outside the table.
+ * No allocation; safe in a control loop.
+ */
+hylo_real hylo_envelope_of_edge(const hylo_svr_model *m, hylo_mode mode, const hylo_real *tail_xs,
+                                const hylo_real *head_xs);
+
+#endif

@@ -1,0 +1,45 @@
+#include <math.h>
+#include <stddef.h>
+#include "hylo/envelope.h"
+#include "hylo/features.h"
+
+int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
+		       hylo_real *args)
+{
+	hylo_real dx, dy;
+
+	if (!tail || !head || !args)
+		return 0;
+	dx = head[0] - tail[0];
+	dy = head[1] - tail[1];
+	switch (mode) {
+	case HYLO_MODE_GROUND:
+	case HYLO_MODE_MARINE:
+		args[0] = sqrt(dx * dx + dy * dy);
+		args[1] = 0;
+		args[2] = tail[2];
+		args[3] = head[2];
+		return 1;
+	case HYLO_MODE_FLIGHT:
+		if (tail[5] != 0 || head[5] != 0)
+			return 0;
+		args[0] = sqrt(dx * dx + dy * dy);
+		args[1] = head[2] - tail[2];
+		args[2] = sqrt(tail[3] * tail[3] + tail[4] * tail[4]);
+		args[3] = sqrt(head[3] * head[3] + head[4] * head[4]);
+		return 1;
+	default:
+		return 0;
+	}
+}
+
+hylo_real hylo_envelope_of_edge(const hylo_svr_model *m, hylo_mode mode, const hylo_real *tail_xs,
+				const hylo_real *head_xs)
+{
+	hylo_real a[4];
+
+	if (!m || !m->envelope || m->n_features != hylo_feature_count(mode) ||
+	    !hylo_envelope_args(mode, tail_xs, head_xs, a))
+		return 0;
+	return hylo_svr_envelope_bound(m, a[0], a[1], a[2], a[3]);
+}

@@ -1,0 +1,183 @@
+// The export stage reads the header the fit stage wrote back into the model
+// (parse_svr_header, trainer/svr_export.cpp) before it adds the envelope:
+// every committed header and small models of each kind (with and without a
+// feasibility classifier, constants, an envelope) come back field for field
+// and give the same text again; text this trainer did not write is refused
+// with a clear error, and so are envelopes the header cannot hold. Prints
+// TAP.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "tests/tap.hpp"
+#include "trainer/svr_export.hpp"
+
+using namespace hylo::trainer;
+
+namespace {
+
+void check_throws(const std::function<void()> &f, const std::string &needle, const std::string &name)
+{
+	try {
+		f();
+		check(false, name, "no exception");
+	} catch (const std::invalid_argument &e) {
+		check(std::string(e.what()).find(needle) != std::string::npos, name, e.what());
+	}
+}
+
+SvrExport small(const std::string &mode, int nf)
+{
+	SvrExport m;
+	m.robot = "testbot";
+	m.mode = mode;
+	m.n_features = nf;
+	m.gamma = 0.30000000000000004;
+	m.rho = -1.25;
+	for (int i = 0; i < 3 * nf; i++)
+		m.sv.push_back(std::sin(i + 0.5) * 1.7);
+	m.coef = {0.1, -2.5, 1e-300};
+	for (int k = 0; k < nf; k++) {
+		m.feature_offset.push_back(0.1 * k - 0.3);
+		m.feature_scale.push_back(1 + 0.01 * k);
+	}
+	m.label_offset = 3.3;
+	m.label_scale = 0.7;
+	m.label_log = true;
+	m.cost_floor_per_m = 20;
+	m.cost_floor_j = 2;
+	m.max_distance_m = 4.5;
+	m.speed_max_mps = 1.2;
+	m.provenance = {{"samples", "3"}, {"note", "a: b, c"}, {"hylo version", "0.1.0"}};
+	return m;
+}
+
+EnvelopeExport table(uint32_t n_d, uint32_t n_z, uint32_t n_v)
+{
+	EnvelopeExport e;
+	e.n_d = n_d;
+	e.n_z = n_z;
+	e.n_v = n_v;
+	e.d_step = 0.1;
+	e.v_step = 0.1;
+	if (n_z > 1) {
+		e.z_min = -9;
+		e.z_step = 0.25;
+	}
+	for (uint32_t i = 0; i < n_d * n_z * n_v * n_v; i++)
+		e.value.push_back(static_cast<float>(10 + i * 0.37 + 1e-7 * i * i));
+	return e;
+}
+
+bool same(const SvrExport &a, const SvrExport &b)
+{
+	bool ok = a.robot == b.robot && a.mode == b.mode && a.n_features == b.n_features && a.gamma == b.gamma &&
+		  a.rho == b.rho && a.sv == b.sv && a.coef == b.coef && a.feature_offset == b.feature_offset &&
+		  a.feature_scale == b.feature_scale && a.label_offset == b.label_offset &&
+		  a.label_scale == b.label_scale && a.label_log == b.label_log &&
+		  a.cost_floor_per_m == b.cost_floor_per_m && a.cost_floor_j == b.cost_floor_j &&
+		  a.max_distance_m == b.max_distance_m && a.speed_min_mps == b.speed_min_mps &&
+		  a.speed_max_mps == b.speed_max_mps && a.provenance == b.provenance &&
+		  a.constants.size() == b.constants.size() && a.feasibility.has_value() == b.feasibility.has_value() &&
+		  a.envelope.has_value() == b.envelope.has_value();
+	for (size_t i = 0; ok && i < a.constants.size(); i++)
+		ok = a.constants[i].key == b.constants[i].key && a.constants[i].value == b.constants[i].value &&
+		     a.constants[i].comment == b.constants[i].comment;
+	if (ok && a.feasibility)
+		ok = a.feasibility->sv == b.feasibility->sv && a.feasibility->coef == b.feasibility->coef &&
+		     a.feasibility->rho == b.feasibility->rho && a.feasibility->gamma == b.feasibility->gamma;
+	if (ok && a.envelope) {
+		const EnvelopeExport &x = *a.envelope, &y = *b.envelope;
+		ok = x.n_d == y.n_d && x.n_z == y.n_z && x.n_v == y.n_v && x.d_step == y.d_step &&
+		     x.z_min == y.z_min && x.z_step == y.z_step && x.v_min == y.v_min && x.v_step == y.v_step &&
+		     x.value == y.value;
+	}
+	return ok;
+}
+
+void round_trip(const SvrExport &m, const std::string &name)
+{
+	std::string text = svr_header_text(m);
+	try {
+		SvrExport back = parse_svr_header(text);
+		check(same(back, m) && svr_header_text(back) == text, name);
+	} catch (const std::exception &e) {
+		check(false, name, e.what());
+	}
+}
+
+}  // namespace
+
+int main()
+{
+	SvrExport ground = small("ground", 8);
+	round_trip(ground, "a ground model comes back field for field");
+	ground.envelope = table(3, 1, 2);
+	ground.provenance.insert(ground.provenance.end() - 1, {"envelope", "3 x 1 x 2 cells, margin 0.001"});
+	ClassifierExport c;
+	c.gamma = 0.5;
+	c.rho = 0.25;
+	c.sv = ground.sv;
+	c.coef = {1, -1, 0.5};
+	c.feature_offset = ground.feature_offset;
+	c.feature_scale = ground.feature_scale;
+	ground.feasibility = c;
+	round_trip(ground, "with its envelope and feasibility classifier too");
+	SvrExport flight = small("flight", 9);
+	flight.constants = {{"TAKEOFF_J", 375.33, "ground rest -> hover 1 m above [J]"},
+			    {"LANDING_J", 385.6, "hover 1 m above -> ground rest [J]"}};
+	flight.envelope = table(2, 3, 3);
+	round_trip(flight, "a flight model with constants and climb cells");
+	SvrExport di = small("di_neg", 4);
+	di.robot = "di";
+	round_trip(di, "a double-integrator model (whose name repeats its mode's prefix)");
+
+	size_t headers = 0, parsed = 0;
+	for (const auto &f : std::filesystem::directory_iterator("onboard/models")) {
+		if (f.path().extension() != ".h")
+			continue;
+		std::ifstream in(f.path(), std::ios::binary);
+		std::stringstream ss;
+		ss << in.rdbuf();
+		headers++;
+		try {
+			SvrExport m = parse_svr_header(ss.str());
+			parsed += svr_header_text(m) == ss.str();
+		} catch (const std::exception &e) {
+			std::printf("# %s: %s\n", f.path().c_str(), e.what());
+		}
+	}
+	check(headers >= 6 && parsed == headers, "every committed header parses and is written again unchanged",
+	      std::to_string(parsed) + " of " + std::to_string(headers));
+
+	std::string text = svr_header_text(flight);
+	std::string edited = text;
+	edited.replace(edited.find(".rho = -1.25"), 12, ".rho = -1.250");
+	check_throws([&] { parse_svr_header(edited); }, "not a header this trainer writes",
+		     "a number written differently: refused, naming where");
+	edited = text;
+	edited.replace(edited.find("static const hylo_svr_model hylo_model_testbot_flight = {"), 6, "const ");
+	check_throws([&] { parse_svr_header(edited); }, "svr header", "the model's struct missing: refused");
+	check_throws([&] { parse_svr_header(text.substr(0, text.size() - 1)); }, "newline",
+		     "a truncated header: refused");
+	SvrExport bad = flight;
+	bad.envelope->value.pop_back();
+	check_throws([&] { svr_header_text(bad); }, "envelope has", "an envelope of the wrong size: refused");
+	bad = flight;
+	bad.envelope->value[4] = -1;
+	check_throws([&] { svr_header_text(bad); }, "envelope value 4", "a negative envelope value: refused");
+	bad = flight;
+	bad.envelope->z_step = 0;
+	check_throws([&] { svr_header_text(bad); }, "steps", "climb cells without a climb step: refused");
+	bad = ground;
+	bad.envelope = table(2, 3, 3);
+	check_throws([&] { svr_header_text(bad); }, "climb cell", "climb cells on a ground model: refused");
+	bad = di;
+	bad.envelope = table(2, 1, 3);
+	check_throws([&] { svr_header_text(bad); }, "no envelope", "an envelope on a double integrator: refused");
+	return tap_finish();
+}

@@ -1,0 +1,321 @@
+/*
+ * The envelope lookup (hylo_svr_envelope_bound, svr.h) and the edge
+ * arguments it is looked up with (hylo_envelope_args and
+ * hylo_envelope_of_edge, envelope.h) on small hand-made tables: a speed on a
+ * node and within 1e-9 of it, between nodes, outside the table, flight
+ * climbs and vertical velocities; hylo_svr_check refusing bad tables; and
+ * the two feature symmetries the trainer's envelope relies on (a planar
+ * goal's mirror image, a flight edge turned about z give the same features).
+ * The committed models' tables against their own predictions:
+ * tests/export/test_envelope_models.c.
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <string.h>
+
+#include "hylo/envelope.h"
+#include "hylo/features.h"
+#include "hylo/svr.h"
+
+#define PI 3.14159265358979323846
+
+static double sv[HYLO_MAX_FEATURES], coef[1] = { 1 };
+static const double offset[HYLO_MAX_FEATURES] = { 0 };
+static const double scale[HYLO_MAX_FEATURES] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+
+/* Planar: 3 distance cells of 0.5 m, speed nodes 0, 0.5, 1; value 100 (k +
+ * 1) + 10 i1 + i2. */
+static float planar_values[3 * 3 * 3];
+static hylo_svr_envelope planar_env = { 3, 1, 3, 0.5, 0, 0, 0, 0.5, planar_values };
+/* Flight: 2 distance cells of 1 m, 4 climb cells of 1 m from -2, speed nodes
+ * 0, 4, 8; value 10000 + 1000 k + 100 j + 10 i1 + i2. */
+static float flight_values[2 * 4 * 3 * 3];
+static hylo_svr_envelope flight_env = { 2, 4, 3, 1.0, -2.0, 1.0, 0, 4.0, flight_values };
+
+static hylo_svr_model model(uint32_t n_features, const hylo_svr_envelope *env)
+{
+	hylo_svr_model m;
+
+	memset(&m, 0, sizeof m);
+	m.name = "envelope_test";
+	m.n_sv = 1;
+	m.n_features = n_features;
+	m.gamma = 0.5;
+	m.sv = sv;
+	m.coef = coef;
+	m.feature_offset = offset;
+	m.feature_scale = scale;
+	m.label_scale = 1;
+	m.envelope = env;
+	return m;
+}
+
+static int setup(void **state)
+{
+	uint32_t k, j, a, b;
+
+	(void)state;
+	for (k = 0; k < 3; k++)
+		for (a = 0; a < 3; a++)
+			for (b = 0; b < 3; b++)
+				planar_values[(k * 3 + a) * 3 + b] = (float)(100 * (k + 1) + 10 * a + b);
+	for (k = 0; k < 2; k++)
+		for (j = 0; j < 4; j++)
+			for (a = 0; a < 3; a++)
+				for (b = 0; b < 3; b++)
+					flight_values[((k * 4 + j) * 3 + a) * 3 + b] =
+						(float)(10000 + 1000 * k + 100 * j + 10 * a + b);
+	return 0;
+}
+
+static void test_node_speeds(void **state)
+{
+	hylo_svr_model m = model(HYLO_FEATURES_PLANAR, &planar_env);
+
+	(void)state;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0.5, 1.0) == 212);
+	assert_true(hylo_svr_envelope_bound(&m, 0, 0, 0, 0) == 100);
+	assert_true(hylo_svr_envelope_bound(&m, 0.2, 123.0, 1.0, 0.0) == 120);  /* climb ignored */
+	assert_true(hylo_svr_envelope_bound(&m, 1.4999, 0, 1.0, 1.0) == 322);
+	/* Within 1e-9 m/s of a node: that node, on either side. */
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0.5 + 9e-10, 1.0 - 9e-10) == 212);
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0.5 - 9e-10, 0.0 - 9e-10) == 210);
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 1.0 + 9e-10, 0.5) == 221);
+	/* Cell edges: [k d_step, (k+1) d_step). */
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, 0, 0, 0) == 200);
+	assert_true(hylo_svr_envelope_bound(&m, 0.49999999, 0, 0, 0) == 100);
+}
+
+static void test_between_nodes(void **state)
+{
+	hylo_svr_model m = model(HYLO_FEATURES_PLANAR, &planar_env);
+
+	(void)state;
+	/* The least value over the bracketing nodes (not a guaranteed bound). */
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0.75, 1.0) == 212);
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0.75, 0.25) == 210);
+	assert_true(hylo_svr_envelope_bound(&m, 1.2, 0, 0.25, 0.6) == 301);
+	assert_true(hylo_svr_envelope_bound(&m, 1.2, 0, 0.5 + 2e-9, 1.0) == 312);
+	/* Values that do not grow with speed: still the least of the four. */
+	planar_values[(1 * 3 + 2) * 3 + 2] = 5;
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0.75, 0.75) == 5);
+	planar_values[(1 * 3 + 2) * 3 + 2] = 222;
+}
+
+static void test_out_of_range(void **state)
+{
+	hylo_svr_model m = model(HYLO_FEATURES_PLANAR, &planar_env), none = model(HYLO_FEATURES_PLANAR, NULL);
+
+	(void)state;
+	assert_true(hylo_svr_envelope_bound(&m, 1.5, 0, 0, 0) == 0);  /* past the last cell */
+	assert_true(hylo_svr_envelope_bound(&m, 1e300, 0, 0, 0) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, -1e-12, 0, 0, 0) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, NAN, 0, 0, 0) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, INFINITY, 0, 0, 0) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, -2e-9, 0) == 0);  /* speed below the nodes */
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0, 1.0 + 2e-9) == 0);  /* above */
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, -0.3, 0) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, NAN, 0) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, 0.7, 0, 0, -INFINITY) == 0);
+	assert_true(hylo_svr_envelope_bound(&none, 0.7, 0, 0.5, 0.5) == 0);  /* no envelope */
+	assert_true(hylo_svr_envelope_bound(NULL, 0.7, 0, 0.5, 0.5) == 0);
+}
+
+static void test_flight(void **state)
+{
+	hylo_svr_model m = model(HYLO_FEATURES_FLIGHT, &flight_env);
+	const double tail[6] = { 10, 20, 5, 0, 4, 0 };
+	double head[6] = { 10.3, 20.4, 4.5, 8 * 0.6, -8 * 0.8, 0 }, a[4];
+
+	(void)state;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	assert_true(hylo_svr_envelope_bound(&m, 1.5, 0.5, 4, 8) == 11212);
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, -2.0, 0, 0) == 10000);
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, -2.0 - 1e-12, 0, 0) == 0);  /* below the climbs */
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, 1.999, 8, 8) == 10322);
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, 2.0, 8, 8) == 0);  /* above */
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, NAN, 8, 8) == 0);
+	/* The edge's arguments: horizontal distance 0.5, climb -0.5, |v| 4 and 8. */
+	assert_int_equal(hylo_envelope_args(HYLO_MODE_FLIGHT, tail, head, a), 1);
+	assert_true(fabs(a[0] - 0.5) < 1e-12 && a[1] == -0.5);
+	assert_true(a[2] == 4 && fabs(a[3] - 8) < 1e-12);
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_FLIGHT, tail, head) == 10112);
+	/* A vertical velocity: no envelope (the roadmap flies level). */
+	head[5] = 0.1;
+	assert_int_equal(hylo_envelope_args(HYLO_MODE_FLIGHT, tail, head, a), 0);
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_FLIGHT, tail, head) == 0);
+	head[5] = -1e-300;
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_FLIGHT, tail, head) == 0);
+	head[5] = 0;
+	/* The model's features are not the mode's. */
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, head) == 0);
+}
+
+static void test_edge_args(void **state)
+{
+	hylo_svr_model m = model(HYLO_FEATURES_PLANAR, &planar_env);
+	const double tail[4] = { 1, 2, 0.5, 2.0 }, head[4] = { 1.45, 1.4, 1.0, -3.0 };
+	const double di_a[2] = { -0.5, 0.1 }, di_b[2] = { -0.2, 0.3 };
+	double a[4] = { -1, -1, -1, -1 };
+
+	(void)state;
+	assert_int_equal(hylo_envelope_args(HYLO_MODE_MARINE, tail, head, a), 1);
+	assert_true(fabs(a[0] - 0.75) < 1e-12 && a[1] == 0 && a[2] == 0.5 && a[3] == 1.0);
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, head) == 212);
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_MARINE, tail, head) == 212);
+	/* The double integrator and invalid modes have none. */
+	a[0] = -1;
+	assert_int_equal(hylo_envelope_args(HYLO_MODE_DI_NEG, di_a, di_b, a), 0);
+	assert_int_equal(hylo_envelope_args((hylo_mode)99, tail, head, a), 0);
+	assert_true(a[0] == -1);
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_DI_POS, di_a, di_b) == 0);
+	assert_int_equal(hylo_envelope_args(HYLO_MODE_GROUND, NULL, head, a), 0);
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, NULL) == 0);
+	assert_true(hylo_envelope_of_edge(NULL, HYLO_MODE_GROUND, tail, head) == 0);
+}
+
+static void expect_refused(hylo_svr_model *m, hylo_status want)
+{
+	hylo_reason r;
+
+	assert_int_equal(hylo_svr_check(m, &r), want);
+	assert_non_null(strstr(r.text, "envelope"));
+}
+
+static void test_check_refuses_bad_tables(void **state)
+{
+	hylo_svr_envelope e = planar_env;
+	hylo_svr_model m = model(HYLO_FEATURES_PLANAR, &e), f = model(HYLO_FEATURES_FLIGHT, &e);
+	hylo_svr_model di = model(HYLO_FEATURES_DI, &planar_env);
+
+	(void)state;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	e.value = NULL;
+	expect_refused(&m, HYLO_E_NULL);
+	e = planar_env, e.n_d = 0;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.n_v = 0;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.n_z = 0;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.n_z = 2, e.z_step = 1;  /* planar tables have one climb cell */
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.d_step = 0;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.d_step = NAN;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.v_step = -0.5;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.v_min = INFINITY;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.n_d = 1u << 20, e.n_v = 1u << 10;  /* 2^40 values */
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = planar_env, e.n_v = 1u << 16;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	/* Values: finite and >= 0. */
+	e = planar_env;
+	planar_values[7] = -1;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	planar_values[7] = NAN;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	planar_values[7] = INFINITY;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	planar_values[7] = 121;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	/* Flight: climb cells need a climb step. */
+	e = flight_env;
+	assert_int_equal(hylo_svr_check(&f, NULL), HYLO_OK);
+	e.z_step = 0;
+	expect_refused(&f, HYLO_E_BAD_VALUE);
+	e = flight_env, e.z_min = NAN;
+	expect_refused(&f, HYLO_E_BAD_VALUE);
+	/* The double integrator has no envelope. */
+	expect_refused(&di, HYLO_E_BAD_VALUE);
+}
+
+static uint64_t rng_state = 12345;
+
+static double uniform(double lo, double hi)
+{
+	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
+	return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
+}
+
+static void assert_features_close(const double *a, const double *b, unsigned n)
+{
+	unsigned k;
+
+	for (k = 0; k < n; k++)
+		if (!(fabs(a[k] - b[k]) <= 1e-12 * fmax(1, fabs(b[k]))))
+			fail_msg("feature %u: %.17g vs %.17g", k, a[k], b[k]);
+}
+
+/* The envelope minimizes over b in [0, pi] only and over headings of the
+ * tail fixed at 0, relying on the mirror image (y -> -y, headings negated)
+ * and turns about z giving the same features; and for flight on turns about
+ * z. Away from the heading feature's seam at dtheta = +-pi, exactly so to
+ * rounding. */
+static void test_symmetries(void **state)
+{
+	int i, k;
+
+	(void)state;
+	for (i = 0; i < 2000; i++) {
+		double t[4], h[4], mt[4], mh[4], rt[4], rh[4], f[8], g[8];
+		double phi = uniform(-PI, PI), c = cos(phi), s = sin(phi);
+
+		t[0] = uniform(-9, 9), t[1] = uniform(-9, 9), t[2] = uniform(0, 1.2), t[3] = uniform(-PI, PI);
+		h[0] = t[0] + uniform(-4, 4), h[1] = t[1] + uniform(-4, 4), h[2] = uniform(0, 1.2);
+		h[3] = t[3] + uniform(-3.1, 3.1);
+		hylo_features(HYLO_MODE_GROUND, t, h, f);
+		for (k = 0; k < 4; k++)
+			mt[k] = k == 1 || k == 3 ? -t[k] : t[k], mh[k] = k == 1 || k == 3 ? -h[k] : h[k];
+		hylo_features(HYLO_MODE_GROUND, mt, mh, g);
+		assert_features_close(g, f, 8);
+		rt[0] = c * t[0] - s * t[1], rt[1] = s * t[0] + c * t[1], rt[2] = t[2], rt[3] = t[3] + phi;
+		rh[0] = c * h[0] - s * h[1], rh[1] = s * h[0] + c * h[1], rh[2] = h[2], rh[3] = h[3] + phi;
+		hylo_features(HYLO_MODE_GROUND, rt, rh, g);
+		assert_features_close(g, f, 8);
+	}
+	for (i = 0; i < 2000; i++) {
+		double t[6], h[6], rt[6], rh[6], f[9], g[9];
+		double phi = uniform(-PI, PI), c = cos(phi), s = sin(phi), a1 = uniform(-PI, PI);
+		double a2 = uniform(-PI, PI), s1 = uniform(0, 8), s2 = uniform(0, 8);
+
+		for (k = 0; k < 3; k++)
+			t[k] = uniform(-9, 9), h[k] = t[k] + uniform(-5, 5);
+		t[3] = s1 * cos(a1), t[4] = s1 * sin(a1), t[5] = 0;
+		h[3] = s2 * cos(a2), h[4] = s2 * sin(a2), h[5] = 0;
+		hylo_features(HYLO_MODE_FLIGHT, t, h, f);
+		for (k = 0; k < 6; k += 3) {
+			const double *x = k ? h : t;
+			double *y = k ? rh : rt;
+
+			y[0] = c * x[0] - s * x[1], y[1] = s * x[0] + c * x[1], y[2] = x[2];
+			y[3] = c * x[3] - s * x[4], y[4] = s * x[3] + c * x[4], y[5] = x[5];
+		}
+		hylo_features(HYLO_MODE_FLIGHT, rt, rh, g);
+		assert_features_close(g, f, 9);
+	}
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_node_speeds),
+		cmocka_unit_test(test_between_nodes),
+		cmocka_unit_test(test_out_of_range),
+		cmocka_unit_test(test_flight),
+		cmocka_unit_test(test_edge_args),
+		cmocka_unit_test(test_check_refuses_bad_tables),
+		cmocka_unit_test(test_symmetries),
+	};
+
+	return cmocka_run_group_tests(tests, setup, NULL);
+}
