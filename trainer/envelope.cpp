@@ -117,9 +117,10 @@ hylo_svr_model model_view(const SvrExport &m)
 class Evaluator {
 public:
 	Evaluator(const hylo_svr_model &m, hylo_mode mode)
-		: m_(m), mode_(mode), nf_(hylo_feature_count(mode)), cache_(new hylo_svr_cache)
+		: m_(m), mode_(mode), nf_(hylo_feature_count(mode)), cache_(new hylo_svr_cache()),
+		  mem_(hylo_svr_cache_size(&m) / sizeof(double) + 1)
 	{
-		hylo_svr_cache_reset(cache_.get());
+		hylo_svr_cache_attach(cache_.get(), mem_.data(), mem_.size() * sizeof(double));
 	}
 	void clear() { x_.clear(); }
 	void add(const double *tail, const double *head)
@@ -143,6 +144,7 @@ private:
 	hylo_mode mode_;
 	unsigned nf_;
 	std::unique_ptr<hylo_svr_cache> cache_;
+	std::vector<double> mem_;   // the cache's memory (hylo_svr_cache_size)
 	std::vector<double> x_, cost_;
 };
 

@@ -111,6 +111,7 @@ hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_
 	pl->robot = NULL;
 	pl->roadmap.built = 0;
 	pl->cache.enabled = 0;
+	pl->h_valid = 0;
 	pl->n_goal_adj = 0;
 	memset(pl->links_goal, 0, sizeof pl->links_goal);
 	if (cfg->n_robots > HYLO_MAX_ROBOTS)
@@ -197,6 +198,7 @@ static hylo_status ingest_map(hylo_planner *pl, const hylo_map_view *map)
 
 	pl->has_map = 0;
 	pl->roadmap.built = 0;
+	pl->h_valid = 0;
 	pl->map_generation++;
 	st = hylo_map_ingest(&pl->map, map, &pl->reason);
 	if (st != HYLO_OK)
@@ -546,6 +548,7 @@ static hylo_status roadmap_for(hylo_planner *pl, const hylo_sampling *s, hylo_pl
 	/* The old goal's links refer to positions that no longer exist. */
 	memset(pl->links_goal, 0, sizeof pl->links_goal);
 	pl->n_goal_adj = 0;
+	pl->h_valid = 0;
 	hylo_edge_cache_reset(&pl->cache, rm);
 	return HYLO_OK;
 }
@@ -619,17 +622,18 @@ static void report_counts(const hylo_planner *pl, hylo_plan *plan)
 static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, double t0)
 {
 	hylo_roadmap *rm = &pl->roadmap;
-	hylo_budget budget;
+	hylo_budget budget, unlimited;
 	hylo_graph graph;
 	hylo_status st = HYLO_OK;
 	double deadline = g->time_budget_ms > 0 ? t0 + g->time_budget_ms : INFINITY;
 
+	memset(&unlimited, 0, sizeof unlimited);
 	memset(&budget, 0, sizeof budget);
 	budget.clock = pl->cfg.clock;
 	budget.clock_ctx = pl->cfg.clock_ctx;
 	pl->use_heuristic = g->algorithm == HYLO_ASTAR;
 	if (pl->use_heuristic)
-		st = hylo_planner_heuristic(pl, &budget);
+		st = hylo_planner_heuristic(pl, &unlimited);
 	if (st != HYLO_OK)
 		return st;
 	if (pl->use_heuristic)

@@ -1,6 +1,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "hylo/envelope.h"
 #include "hylo/features.h"
 #include "planner_internal.h"
 
@@ -40,11 +41,6 @@ static hylo_real floor_j(const hylo_mode_model *mm)
 	return mm->model ? mm->model->cost_floor_j : mm->cost_floor_j;
 }
 
-static int is_terminal(const hylo_planner *pl, uint32_t i)
-{
-	return i == pl->start_pos || i == pl->goal_pos;
-}
-
 void hylo_planner_node_state(const hylo_planner *pl, uint32_t i, uint32_t c, hylo_real *xs)
 {
 	if (i == pl->start_pos)
@@ -53,18 +49,6 @@ void hylo_planner_node_state(const hylo_planner *pl, uint32_t i, uint32_t c, hyl
 		memcpy(xs, pl->goal_xs, sizeof pl->goal_xs);
 	else
 		hylo_roadmap_state(&pl->roadmap, i, c, xs);
-}
-
-uint32_t hylo_planner_node_class(const hylo_planner *pl, uint32_t i, uint32_t c)
-{
-	return is_terminal(pl, i) ? 0
-				  : hylo_roadmap_class(&pl->roadmap, (hylo_mode)pl->roadmap.pos[i].mode, c);
-}
-
-uint32_t hylo_planner_class_count(const hylo_planner *pl, uint32_t i)
-{
-	return is_terminal(pl, i) ? 1
-				  : hylo_roadmap_class_count(&pl->roadmap, (hylo_mode)pl->roadmap.pos[i].mode);
 }
 
 const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint32_t *n)
@@ -83,60 +67,16 @@ const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint
 	return &pl->roadmap.adjacency[p->adj_begin];
 }
 
-/* A state of class k at position i that stands for all of the class's
- * combinations in the envelope, which depends on positions and speeds only. */
-static void class_state(const hylo_planner *pl, uint32_t i, uint32_t k, hylo_real *xs)
-{
-	const hylo_roadmap *rm = &pl->roadmap;
-	const hylo_position *p = &rm->pos[i];
-	hylo_real speed;
-
-	if (is_terminal(pl, i) || !(p->mode == HYLO_MODE_GROUND || p->mode == HYLO_MODE_MARINE ||
-				    p->mode == HYLO_MODE_FLIGHT)) {
-		hylo_planner_node_state(pl, i, 0, xs);
-		return;
-	}
-	memset(xs, 0, HYLO_XS_DIM * sizeof *xs);
-	speed = hylo_roadmap_class_speed(rm, (hylo_mode)p->mode, k);
-	xs[0] = p->p.x;
-	xs[1] = p->p.y;
-	if (p->mode == HYLO_MODE_FLIGHT) {
-		xs[2] = p->p.z;
-		xs[3] = speed;
-	} else {
-		xs[2] = speed;
-	}
-}
-
-/* The model's envelope for the edge a -> b (0 until models carry one). */
-static hylo_real envelope(const hylo_mode_model *mm, hylo_mode mode, const hylo_real *a,
-			  const hylo_real *b)
-{
-	(void)mm;
-	(void)mode;
-	(void)a;
-	(void)b;
-	return 0;
-}
-
-hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, uint32_t ki, uint32_t j,
-				  uint32_t kj)
+hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, const hylo_real *tail,
+				  uint32_t j, const hylo_real *head)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	hylo_mode mode = (hylo_mode)rm->pos[i].mode;
 	const hylo_mode_model *mm = hylo_planner_mode_model(pl, mode);
 	hylo_real lb = floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
+	hylo_real e = mm->model ? hylo_envelope_of_edge(mm->model, mode, tail, head) : 0;
 
-	if (mm->model) {
-		hylo_real a[HYLO_XS_DIM], b[HYLO_XS_DIM], e;
-
-		class_state(pl, i, ki, a);
-		class_state(pl, j, kj, b);
-		e = envelope(mm, mode, a, b);
-		if (e > lb)
-			lb = e;
-	}
-	return lb;
+	return e > lb ? e : lb;
 }
 
 hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i)
@@ -146,42 +86,37 @@ hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i)
 
 hylo_real hylo_planner_h(const hylo_planner *pl, uint32_t u)
 {
-	uint32_t i = pl->roadmap.node_pos[u];
-
-	return pl->h_abs[pl->abs_base[i] +
-			 hylo_planner_node_class(pl, i, u - pl->roadmap.pos[i].node_base)];
+	return pl->h_node[u];
 }
 
-/* The edge bounds from class ki at position i to every class of j. */
-static void class_bounds(const hylo_planner *pl, uint32_t i, uint32_t ki, uint32_t j, hylo_real *lb)
+/* The states of the combinations combos[0 .. n) of position j into pl->head_xs. */
+static void head_states(hylo_planner *pl, uint32_t j, const uint32_t *combos, uint32_t n)
 {
-	uint32_t k, n = hylo_planner_class_count(pl, j);
+	uint32_t m;
 
-	for (k = 0; k < n; k++)
-		lb[k] = hylo_planner_edge_bound(pl, i, ki, j, k);
+	for (m = 0; m < n; m++)
+		hylo_planner_node_state(pl, j, combos[m], pl->head_xs[m]);
 }
 
 /*
- * Costs of the edges from the tail (position i, class ki, state tail) to
- * combinations combos[0 .. n) of position j into costs: the model's
- * prediction (or the cost callback's) raised to the edge bound, +inf where
- * the mode's feasibility classifier rejects the edge.
+ * Costs of the edges from the tail (position i, state tail) to combinations
+ * combos[0 .. n) of position j into costs: the model's prediction (or the
+ * cost callback's) raised to the edge bound, +inf where the mode's
+ * feasibility classifier rejects the edge.
  */
-static hylo_status evaluate(hylo_planner *pl, uint32_t i, uint32_t ki, const hylo_real *tail,
-			    uint32_t j, const uint32_t *combos, uint32_t n, hylo_real *costs)
+static hylo_status evaluate(hylo_planner *pl, uint32_t i, const hylo_real *tail, uint32_t j,
+			    const uint32_t *combos, uint32_t n, hylo_real *costs)
 {
 	hylo_mode mode = (hylo_mode)pl->roadmap.pos[i].mode;
 	const hylo_mode_model *mm = hylo_planner_mode_model(pl, mode);
 	int k = hylo_robot_mode_index(pl->robot, mode);
 	unsigned nf = hylo_feature_count(mode);
-	hylo_real lb[HYLO_MAX_GRID];
 	uint32_t m;
 	hylo_status st;
 
 	if (n == 0)
 		return HYLO_OK;
-	for (m = 0; m < n; m++)
-		hylo_planner_node_state(pl, j, combos[m], pl->head_xs[m]);
+	head_states(pl, j, combos, n);
 	if (mm->model || mm->feasibility)
 		for (m = 0; m < n; m++)
 			hylo_features(mode, tail, pl->head_xs[m], &pl->features[m * nf]);
@@ -196,9 +131,8 @@ static hylo_status evaluate(hylo_planner *pl, uint32_t i, uint32_t ki, const hyl
 		if (st != HYLO_OK)
 			return st;
 	}
-	class_bounds(pl, i, ki, j, lb);
 	for (m = 0; m < n; m++) {
-		hylo_real lo = lb[hylo_planner_node_class(pl, j, combos[m])];
+		hylo_real lo = hylo_planner_edge_bound(pl, i, tail, j, pl->head_xs[m]);
 
 		if (!isfinite(costs[m]))
 			return hylo_fail(&pl->reason, HYLO_E_BAD_COST,
@@ -276,24 +210,24 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	const hylo_position *q = &rm->pos[j];
-	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base, ki = hylo_planner_node_class(pl, i, c);
+	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
 	hylo_real *cached = group_costs(pl, u, group, 1);
-	hylo_real got[HYLO_MAX_COMBOS], lb[HYLO_MAX_GRID], tail[HYLO_XS_DIM], hv, fresh[HYLO_MAX_COMBOS];
+	hylo_real got[HYLO_MAX_COMBOS], tail[HYLO_XS_DIM], head[HYLO_XS_DIM], hv, fresh[HYLO_MAX_COMBOS];
 	uint32_t c2, m = 0;
 	hylo_status st;
 
-	class_bounds(pl, i, ki, j, lb);
+	hylo_planner_node_state(pl, i, c, tail);
 	for (c2 = 0; c2 < q->n_combos; c2++) {
 		got[c2] = NAN;
-		if (!wanted(pl, o, q->node_base + c2, lb[hylo_planner_node_class(pl, j, c2)], &hv))
+		hylo_planner_node_state(pl, j, c2, head);
+		if (!wanted(pl, o, q->node_base + c2, hylo_planner_edge_bound(pl, i, tail, j, head), &hv))
 			continue;
 		if (cached && !isnan(cached[c2]))
 			got[c2] = cached[c2];
 		else
 			pl->eval_idx[m++] = c2;
 	}
-	hylo_planner_node_state(pl, i, c, tail);
-	st = evaluate(pl, i, ki, tail, j, pl->eval_idx, m, fresh);
+	st = evaluate(pl, i, tail, j, pl->eval_idx, m, fresh);
 	if (st != HYLO_OK)
 		return st;
 	for (c2 = 0; c2 < m; c2++) {
@@ -319,16 +253,18 @@ static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uin
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	const hylo_position *q = &rm->pos[j];
-	uint32_t i = rm->node_pos[u], ki = hylo_planner_node_class(pl, i, u - rm->pos[i].node_base), c2;
+	uint32_t i = rm->node_pos[u], c2;
 	const hylo_real *cached = group_costs(pl, u, group, 0);
-	hylo_real lb[HYLO_MAX_GRID], key = INFINITY, hv;
+	hylo_real key = INFINITY, hv, tail[HYLO_XS_DIM], head[HYLO_XS_DIM];
 	hylo_status st = HYLO_OK;
 	int need = 0;
 
-	class_bounds(pl, i, ki, j, lb);
+	hylo_planner_node_state(pl, i, u - rm->pos[i].node_base, tail);
 	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++) {
-		hylo_real b = lb[hylo_planner_node_class(pl, j, c2)], f;
+		hylo_real b, f;
 
+		hylo_planner_node_state(pl, j, c2, head);
+		b = hylo_planner_edge_bound(pl, i, tail, j, head);
 		if (!wanted(pl, o, q->node_base + c2, b, &hv))
 			continue;
 		if (cached && !isnan(cached[c2])) {
@@ -534,7 +470,7 @@ hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint3
 				    uint32_t n, hylo_real *costs)
 {
 	const hylo_roadmap *rm;
-	uint32_t i, c, k, ki, m;
+	uint32_t i, c, k, m;
 	hylo_real xs[HYLO_XS_DIM];
 	hylo_status st = HYLO_OK;
 
@@ -549,7 +485,6 @@ hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint3
 			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "no node %u", (unsigned)heads[k]);
 	i = rm->node_pos[tail];
 	c = tail - rm->pos[i].node_base;
-	ki = hylo_planner_node_class(pl, i, c);
 	hylo_planner_node_state(pl, i, c, xs);
 	/* Runs of heads at one position are evaluated as one batch. */
 	for (k = 0; k < n && st == HYLO_OK; k += m) {
@@ -567,7 +502,7 @@ hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint3
 		if (rm->pos[j].mode != rm->pos[i].mode)
 			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "node %u is not a successor of %u",
 					 (unsigned)heads[k], (unsigned)tail);
-		st = evaluate(pl, i, ki, xs, j, pl->eval_idx, m, &costs[k]);
+		st = evaluate(pl, i, xs, j, pl->eval_idx, m, &costs[k]);
 	}
 	return st;
 }

@@ -1,107 +1,68 @@
 #include <math.h>
+#include <string.h>
 
 #include "planner_internal.h"
 
 /*
- * The A* heuristic: exact shortest distances to the goal on the graph of
- * (position, speed class), each edge weighted by the bound of every node
- * edge it stands for (hylo_planner_edge_bound: the model's floor and its
- * envelope for the two speeds; the switch cost). Node edges are raised to
- * their bound, so the heuristic is admissible and consistent, and it sees
- * obstacles, water, mode changes and the cost of changing speed. Computed
- * per goal by one backward Dijkstra, with one extra node that is never
- * reached so that it runs to exhaustion; positions that cannot reach the
- * goal get +inf and are never expanded.
+ * The A* heuristic: exact shortest distances to the goal on the search graph
+ * itself, every edge weighted by its bound (hylo_planner_edge_bound: the
+ * model's floor raised to its envelope for the edge's distance, speeds and,
+ * where the envelope has them, turn or climb; the switch cost). Edge costs
+ * are raised to their bound, so the heuristic is admissible and consistent,
+ * and it sees obstacles, water, mode changes and the costs of changing
+ * speed and heading. Computed by one backward Dijkstra over every node (no
+ * model evaluation, one envelope lookup per edge), with one extra node that
+ * is never reached so that it runs to exhaustion; nodes that cannot reach
+ * the goal get +inf and are never expanded. It depends on the goal and the
+ * roadmap only: a new start on the same goal reuses it.
  */
 
-/* Lays out the abstract nodes: abs_base[i] + k for class k of position i. */
-static hylo_status layout(hylo_planner *pl)
+/* The switch edges into node v (position j) from j's guard twin. */
+static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t v,
+				       uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t i, k, n = 0, last = rm->n_positions + 2;
-
-	for (i = 0; i < last; i++) {
-		uint32_t m = hylo_planner_class_count(pl, i);
-
-		if (m > HYLO_MAX_NODES - 1 - n)
-			return hylo_fail(&pl->reason, HYLO_E_CAP_NODES,
-					 "the heuristic needs more than HYLO_MAX_NODES = %d nodes",
-					 HYLO_MAX_NODES);
-		pl->abs_base[i] = n;
-		for (k = 0; k < m; k++)
-			pl->abs_pos[n + k] = i;
-		n += m;
-	}
-	pl->abs_base[last] = n;
-	pl->n_abs = n;
-	return HYLO_OK;
-}
-
-/* Rest class of position i (speed 0), or HYLO_NO_NODE. */
-static uint32_t rest_class(const hylo_planner *pl, uint32_t i)
-{
-	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t k, m = hylo_planner_class_count(pl, i);
-
-	for (k = 0; k < m; k++)
-		if (hylo_roadmap_class_speed(rm, (hylo_mode)rm->pos[i].mode, k) == 0)
-			return k;
-	return HYLO_NO_NODE;
-}
-
-static hylo_status push(hylo_planner *pl, const hylo_search *s, uint32_t a, hylo_real cost,
-			uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
-{
-	if (hylo_search_closed(s, a))
-		return HYLO_OK;
-	if (*n >= cap)
-		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
-				 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
-				 HYLO_MAX_SUCCESSORS);
-	heads[*n] = a;
-	costs[*n] = cost;
-	(*n)++;
-	return HYLO_OK;
-}
-
-/* The switch edges into (j, kj) from j's guard twin. */
-static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t j,
-				       uint32_t kj, uint32_t *heads, hylo_real *costs,
-				       uint32_t cap, uint32_t *n)
-{
-	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t t = rm->pos[j].twin, kt = kj;
+	uint32_t j = rm->node_pos[v], t = rm->pos[j].twin, c, k, m, combos[HYLO_MAX_COMBOS];
 
 	if (j >= rm->n_positions || t == HYLO_NO_POSITION)
 		return HYLO_OK;
-	if (rm->pos[j].mode == HYLO_MODE_FLIGHT || rm->pos[t].mode == HYLO_MODE_FLIGHT) {
-		/* Takeoff and landing join rest states only. */
-		if (kj != rest_class(pl, j))
-			return HYLO_OK;
-		kt = rest_class(pl, t);
-		if (kt == HYLO_NO_NODE)
-			return HYLO_OK;
+	for (c = 0; c < rm->pos[t].n_combos; c++) {
+		uint32_t u = rm->pos[t].node_base + c;
+
+		if (hylo_search_closed(s, u))
+			continue;
+		m = hylo_roadmap_switch_heads(rm, t, c, combos);
+		for (k = 0; k < m; k++) {
+			if (rm->pos[j].node_base + combos[k] != v)
+				continue;
+			if (*n >= cap)
+				return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+						 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
+						 HYLO_MAX_SUCCESSORS);
+			heads[*n] = u;
+			costs[(*n)++] = hylo_planner_switch_cost(pl, t);
+		}
 	}
-	return push(pl, s, pl->abs_base[t] + kt, hylo_planner_switch_cost(pl, t), heads, costs, cap, n);
+	return HYLO_OK;
 }
 
-static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t a, uint32_t *heads,
+static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32_t *heads,
 				   hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
 	hylo_planner *pl = ctx;
 	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t j, kj, k, ki, n_pred;
+	uint32_t j, k, c, n_pred;
 	const uint32_t *pred;
-	hylo_status st = HYLO_OK;
+	hylo_real head[HYLO_XS_DIM], tail[HYLO_XS_DIM];
 
 	(void)r;
 	*n = 0;
-	if (a >= pl->n_abs)
+	if (v >= rm->n_nodes + 2)
 		return HYLO_OK;
-	j = pl->abs_pos[a];
-	kj = a - pl->abs_base[j];
+	j = rm->node_pos[v];
 	if (j == pl->start_pos)
 		return HYLO_OK;
+	hylo_planner_node_state(pl, j, v - rm->pos[j].node_base, head);
 	/* Same-mode neighbours are symmetric: j's list is also its predecessors. */
 	if (j == pl->goal_pos) {
 		pred = pl->goal_adj;
@@ -109,57 +70,85 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t a, uint32
 	} else {
 		pred = hylo_planner_neighbours(pl, j, &n_pred);
 	}
-	for (k = 0; k < n_pred && st == HYLO_OK; k++) {
-		uint32_t i = pred[k], m = hylo_planner_class_count(pl, i);
+	for (k = 0; k < n_pred; k++) {
+		const hylo_position *p = &rm->pos[pred[k]];
 
-		for (ki = 0; ki < m && st == HYLO_OK; ki++)
-			st = push(pl, s, pl->abs_base[i] + ki, hylo_planner_edge_bound(pl, i, ki, j, kj),
-				  heads, costs, cap, n);
+		for (c = 0; c < p->n_combos; c++) {
+			uint32_t u = p->node_base + c;
+
+			if (hylo_search_closed(s, u))
+				continue;
+			if (*n >= cap)
+				return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+						 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
+						 HYLO_MAX_SUCCESSORS);
+			hylo_roadmap_state(rm, pred[k], c, tail);
+			heads[*n] = u;
+			costs[(*n)++] = hylo_planner_edge_bound(pl, pred[k], tail, j, head);
+		}
 	}
-	if (st == HYLO_OK && j < rm->n_positions)
-		st = switch_predecessors(pl, s, j, kj, heads, costs, cap, n);
-	return st;
+	return switch_predecessors(pl, s, v, heads, costs, cap, n);
 }
 
-hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget)
+/* 1 when h was computed for this goal on this roadmap. */
+static int still_valid(const hylo_planner *pl)
 {
-	hylo_graph g;
-	hylo_outcome outcome;
-	hylo_real best;
-	uint32_t a, k, goal, n_adj;
-	const uint32_t *adj;
-	hylo_status st;
+	return pl->h_valid && pl->h_goal_mode == pl->roadmap.pos[pl->goal_pos].mode &&
+	       memcmp(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs) == 0;
+}
 
-	st = layout(pl);
-	if (st != HYLO_OK)
-		return st;
-	goal = pl->abs_base[pl->goal_pos];
-	g.n_nodes = pl->n_abs + 1;
-	g.expand = expand_backward;
-	g.resolve = NULL;
-	g.heuristic = NULL;
-	g.weight = 1;
-	g.ctx = pl;
-	st = hylo_search_run(&pl->search, &g, goal, pl->n_abs, budget, &outcome, &pl->reason);
-	if (st != HYLO_OK)
-		return st;
-	for (a = 0; a < pl->n_abs; a++)
-		pl->h_abs[a] = hylo_search_cost(&pl->search, a);
-	/* The start has no incoming edges; its bound comes from its edges out. */
-	best = pl->start_goal_linked ? hylo_planner_edge_bound(pl, pl->start_pos, 0, pl->goal_pos, 0)
-				     : INFINITY;
-	adj = hylo_planner_neighbours(pl, pl->start_pos, &n_adj);
+/* The start has no incoming edges; its bound comes from its edges out. */
+static void start_heuristic(hylo_planner *pl)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t k, c, n_adj;
+	const uint32_t *adj = hylo_planner_neighbours(pl, pl->start_pos, &n_adj);
+	hylo_real best = INFINITY, head[HYLO_XS_DIM];
+
+	if (pl->start_goal_linked)
+		best = hylo_planner_edge_bound(pl, pl->start_pos, pl->start_xs, pl->goal_pos, pl->goal_xs);
 	for (k = 0; k < n_adj; k++) {
-		uint32_t j = adj[k], kj, m = hylo_planner_class_count(pl, j);
+		const hylo_position *q = &rm->pos[adj[k]];
 
-		for (kj = 0; kj < m; kj++) {
-			hylo_real v = hylo_planner_edge_bound(pl, pl->start_pos, 0, j, kj) +
-				      pl->h_abs[pl->abs_base[j] + kj];
+		for (c = 0; c < q->n_combos; c++) {
+			hylo_real v;
 
+			hylo_roadmap_state(rm, adj[k], c, head);
+			v = hylo_planner_edge_bound(pl, pl->start_pos, pl->start_xs, adj[k], head) +
+			    pl->h_node[q->node_base + c];
 			if (v < best)
 				best = v;
 		}
 	}
-	pl->h_abs[pl->abs_base[pl->start_pos]] = best;
+	pl->h_node[rm->n_nodes] = best;
+}
+
+hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	hylo_graph g;
+	hylo_outcome outcome;
+	uint32_t v;
+	hylo_status st;
+
+	if (!still_valid(pl)) {
+		pl->h_valid = 0;
+		g.n_nodes = rm->n_nodes + 3;
+		g.expand = expand_backward;
+		g.resolve = NULL;
+		g.heuristic = NULL;
+		g.weight = 1;
+		g.ctx = pl;
+		st = hylo_search_run(&pl->search, &g, rm->n_nodes + 1, rm->n_nodes + 2, budget, &outcome,
+				     &pl->reason);
+		if (st != HYLO_OK)
+			return st;
+		for (v = 0; v < rm->n_nodes + 2; v++)
+			pl->h_node[v] = hylo_search_cost(&pl->search, v);
+		pl->h_valid = 1;
+		pl->h_goal_mode = rm->pos[pl->goal_pos].mode;
+		memcpy(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs);
+	}
+	start_heuristic(pl);
 	return HYLO_OK;
 }

@@ -24,33 +24,28 @@ const hylo_mode_model *hylo_planner_mode_model(const hylo_planner *pl, hylo_mode
 /* Sampled coordinates of combination c of position i (start and goal included). */
 void hylo_planner_node_state(const hylo_planner *pl, uint32_t i, uint32_t c, hylo_real *xs);
 
-/* Speed class of combination c of position i (start and goal: 0). */
-uint32_t hylo_planner_node_class(const hylo_planner *pl, uint32_t i, uint32_t c);
-
-/* Speed classes of position i (start and goal: 1). */
-uint32_t hylo_planner_class_count(const hylo_planner *pl, uint32_t i);
-
 /* The neighbours of position i whose nodes lead to it (i's own list; the
  * start's from the request), into *n. */
 const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint32_t *n);
 
 /*
- * A lower bound of every edge cost from a node of class ki at position i to
- * a node of class kj at position j (same mode): the model's floor, raised to
- * its envelope for those speeds. Edge costs are raised to it, so the bound
- * holds for every edge, and the heuristic built from it is consistent.
+ * The bound of the edge from state tail at position i to state head at
+ * position j (same mode): the model's floor for the distance, raised to its
+ * envelope for the edge (hylo_envelope_of_edge). Edge costs are raised to
+ * it, so it holds for every edge, and the heuristic built from it is
+ * consistent.
  */
-hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, uint32_t ki, uint32_t j,
-				  uint32_t kj);
+hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, const hylo_real *tail,
+				  uint32_t j, const hylo_real *head);
 
 /* Cost of the switch edges from guard copy i to its twin. */
 hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i);
 
-/* The heuristic of node u (h_abs of its position and class). */
+/* The heuristic of node u. */
 hylo_real hylo_planner_h(const hylo_planner *pl, uint32_t u);
 
-/* Computes h_abs for the current goal (backward Dijkstra on (position,
- * class) with edge bounds as weights). */
+/* Computes h_node for the current goal (planner_heuristic.c), or keeps it
+ * when the roadmap and the goal are those it was computed for. */
 hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget);
 
 /* The search's callbacks (ctx: the planner). */

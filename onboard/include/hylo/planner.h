@@ -128,11 +128,12 @@ typedef struct {
 	uint32_t goal_adj[HYLO_MAX_SUCCESSORS];
 	int start_goal_linked;          /* a direct start -> goal edge exists */
 	uint8_t links_goal[HYLO_MAX_POSITIONS];
-	/* the heuristic on (position, speed class): abstract node abs_base[i] + k */
-	uint32_t abs_base[HYLO_MAX_POSITIONS + 3];
-	uint32_t abs_pos[HYLO_MAX_NODES];
-	hylo_real h_abs[HYLO_MAX_NODES];
-	uint32_t n_abs;
+	/* the heuristic: a lower bound of each node's cost to the goal, kept
+	 * while the roadmap and the goal stay (planner_heuristic.c) */
+	hylo_real h_node[HYLO_MAX_NODES];
+	int h_valid;
+	uint8_t h_goal_mode;
+	hylo_real h_goal_xs[HYLO_XS_DIM];
 	hylo_real weight;               /* the goal's suboptimality w */
 	/* scratch of one evaluation (the combinations of one position) */
 	hylo_real head_xs[HYLO_MAX_COMBOS][HYLO_XS_DIM];
