@@ -45,3 +45,12 @@ $(HEADER_PARSE_TEST): tests/export/test_header_parse.cpp trainer/svr_export.cpp 
 	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_header_parse.cpp trainer/svr_export.cpp $(ONBOARD_LIB) -lm -o $@
 ALL_TARGETS += $(HEADER_PARSE_TEST)
 TESTS += $(HEADER_PARSE_TEST)
+
+# The committed models' envelopes against their own predictions
+# (tests/export/test_envelope_models.c), through the node's model registry.
+ENVELOPE_MODELS_TEST := $(BUILD)/test/export/test_envelope_models
+$(ENVELOPE_MODELS_TEST): tests/export/test_envelope_models.c $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $(C99_FLAGS) $(ONBOARD_INC) $< $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
+ALL_TARGETS += $(ENVELOPE_MODELS_TEST)
+TESTS += $(ENVELOPE_MODELS_TEST)

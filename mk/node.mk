@@ -158,6 +158,14 @@ $(HYLO_COST): $(BUILD)/obj/tools/cost/hylo_cost.o $(BUILD)/obj/node/registry.o $
 	$(CC) $^ -lm -o $@
 
 ALL_TARGETS += $(HYLO_COST)
+
+# hylo-envelope-tightness: envelope / cost and floor / cost of the committed
+# models over random and aligned edges (tools/cost/envelope_tightness.c).
+HYLO_ENVELOPE_TIGHTNESS := $(BUILD)/bin/hylo-envelope-tightness
+$(HYLO_ENVELOPE_TIGHTNESS): $(BUILD)/obj/tools/cost/envelope_tightness.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CC) $^ -lm -o $@
+ALL_TARGETS += $(HYLO_ENVELOPE_TIGHTNESS)
 HYLO_COST_SYNTH := $(BUILD)/test/node/hylo-cost-synthetic
 $(HYLO_COST_SYNTH): $(BUILD)/obj/tools/cost/hylo_cost.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)

@@ -238,8 +238,8 @@ Geometry geometry(const SvrExport &m)
 	return g;
 }
 
-// Per cell and speed pair: the least cost found (before the margin) and
-// where. Cells the planner never uses stay at 0.
+// Per cell and speed pair: the least cost found, before the margin. Cells
+// beyond the training distance stay at 0.
 struct Estimate {
 	std::vector<double> cost;
 };
@@ -315,8 +315,8 @@ std::vector<std::vector<PlanarStart>> planar_grid(const Geometry &g, Evaluator &
 // pi], dtheta in [-pi, pi]: polls 20 directions (d up and down; in (b,
 // dtheta) 16 evenly spread and the arc valley's +-(1, 2), the turn valley's
 // +-(1, 1) being among the 16: the features are kinked, and a poll of the
-// axes alone stalls on a kink), halving the step when none improves, down
-// to 3e-4 rad.
+// axes alone stalls on a kink), halving the step (at first half the grid's,
+// and half the cell in d) when none improves, until it is below 1e-3 rad.
 PlanarStart pattern_search(Evaluator &ev, double v1, double v2, PlanarStart s, double d_lo, double d_hi,
 			   std::atomic<size_t> &evaluations)
 {

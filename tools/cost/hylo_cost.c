@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hylo/envelope.h"
 #include "hylo/features.h"
 #include "node/registry.h"
 
@@ -19,8 +20,11 @@ static void usage(FILE *f)
 		"Prints the predicted energy of the edge X1 -> X2 (sampled coordinates of mode M,\n"
 		"comma-separated, models.md section 7: ground/marine px,py,vx,theta;\n"
 		"flight px,py,pz,vx,vy,vz; di_neg/di_pos p,v) and whether the mode's\n"
-		"feasibility classifier, if any, predicts a solution. Notes when the displacement\n"
-		"or a speed lies outside the model's training range (JSON: beyond_training_range).\n"
+		"feasibility classifier, if any, predicts a solution, and the model's envelope:\n"
+		"the lower bound of its cost over every heading that the planner's search may\n"
+		"use for an edge of this distance and these speeds (JSON envelope_j, null when\n"
+		"there is none). Notes when the displacement or a speed lies outside the\n"
+		"model's training range (JSON: beyond_training_range).\n"
 		"\n"
 		"  --robot R    robot (ambot, drivocopter, di, ...; see hylo-planner --list-robots)\n"
 		"  --mode M     ground, marine, flight, di_neg or di_pos\n"
@@ -56,7 +60,7 @@ int main(int argc, char **argv)
 	uint32_t n, k;
 	hylo_reason reason;
 	const hylo_mode_model *mm = NULL;
-	double cost, floor_cost, dist, feas = NAN, speeds[2];
+	double cost, floor_cost, dist, feas = NAN, speeds[2], envelope;
 	int far, slow_or_fast[2];
 
 	for (i = 1; i < argc; i++) {
@@ -110,6 +114,7 @@ int main(int argc, char **argv)
 	}
 	hylo_features((hylo_mode)mode, x1, x2, f);
 	cost = hylo_svr_predict(mm->model, f);
+	envelope = hylo_envelope_of_edge(mm->model, (hylo_mode)mode, x1, x2);
 	dist = mode == HYLO_MODE_FLIGHT
 		       ? sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]) +
 			      (x2[2] - x1[2]) * (x2[2] - x1[2]))
@@ -124,8 +129,13 @@ int main(int argc, char **argv)
 		feas = hylo_svr_predict(mm->feasibility, f);
 	if (json) {
 		printf("{\"robot\":\"%s\",\"mode\":\"%s\",\"predicted_cost_j\":%.17g,"
-		       "\"planner_cost_j\":%.17g,\"distance_m\":%.17g,\"feasibility\":", robot,
-		       mode_name, cost, cost < floor_cost ? floor_cost : cost, dist);
+		       "\"planner_cost_j\":%.17g,\"envelope_j\":", robot, mode_name, cost,
+		       cost < floor_cost ? floor_cost : cost);
+		if (envelope > 0)
+			printf("%.17g", envelope);
+		else
+			printf("null");
+		printf(",\"distance_m\":%.17g,\"feasibility\":", dist);
 		if (mm->feasibility)
 			printf("{\"decision\":%.17g,\"feasible\":%s}", feas, feas >= 0 ? "true" : "false");
 		else
@@ -138,6 +148,11 @@ int main(int argc, char **argv)
 	if (cost < floor_cost)
 		printf(" (the planner raises it to the floor %.6g J)", floor_cost);
 	printf("\n");
+	if (envelope > 0)
+		printf("envelope: %.6g J (the least cost over every heading at this distance and these "
+		       "speeds)\n", envelope);
+	else
+		printf("envelope: none for this edge\n");
 	if (mm->feasibility)
 		printf("feasibility: %s (decision %.4g)\n", feas >= 0 ? "feasible" : "infeasible", feas);
 	else

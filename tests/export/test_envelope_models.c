@@ -1,0 +1,174 @@
+/*
+ * Every committed ground, marine and flight model (onboard/models/, through
+ * the node's registry) carries an envelope, and the envelope is a lower
+ * bound of the model's own prediction: for 20,000 seeded random edges per
+ * model (random positions and headings, distances up to max_distance_m,
+ * flight random climbs within that ball and level velocities of any
+ * direction, speeds on the table's nodes) hylo_svr_predict >=
+ * hylo_envelope_of_edge, and the bound is not 0 (no edge of the training
+ * range falls outside the table). Negative control: the same table with
+ * every value 5% higher must be caught, so that the check would fail on an
+ * envelope that is not a bound. The trainer measures the same on 10^6 edges
+ * per model before it exports a table (trainer/envelope.cpp).
+ */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "hylo/envelope.h"
+#include "hylo/features.h"
+#include "node/registry.h"
+
+#define PI 3.14159265358979323846
+#define EDGES 20000
+#define MAX_VALUES 300000
+
+static uint64_t rng_state;
+
+static double uniform(double lo, double hi)
+{
+	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
+	return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
+}
+
+static double node(const hylo_svr_envelope *e)
+{
+	uint32_t i = (uint32_t)uniform(0, e->n_v);
+
+	return e->v_min + (i < e->n_v ? i : e->n_v - 1) * e->v_step;
+}
+
+/* Random edge `tail -> head` of mode within m's training range. */
+static void random_edge(const hylo_svr_model *m, hylo_mode mode, double *tail, double *head)
+{
+	const hylo_svr_envelope *e = m->envelope;
+	double r = m->max_distance_m, s1 = node(e), s2 = node(e);
+
+	if (mode == HYLO_MODE_FLIGHT) {
+		double dh, dz, phi = uniform(-PI, PI), a1 = uniform(-PI, PI), a2 = uniform(-PI, PI);
+		int k;
+
+		do {
+			dh = uniform(0, r);
+			dz = uniform(-r, r);
+		} while (dh * dh + dz * dz > r * r);
+		for (k = 0; k < 3; k++)
+			tail[k] = uniform(-50, 50);
+		tail[3] = s1 * cos(a1), tail[4] = s1 * sin(a1), tail[5] = 0;
+		head[0] = tail[0] + dh * cos(phi), head[1] = tail[1] + dh * sin(phi), head[2] = tail[2] + dz;
+		head[3] = s2 * cos(a2), head[4] = s2 * sin(a2), head[5] = 0;
+	} else {
+		double d = uniform(0, r), bearing = uniform(-PI, PI);
+
+		tail[0] = uniform(-50, 50), tail[1] = uniform(-50, 50), tail[2] = s1;
+		tail[3] = uniform(-PI, PI);
+		head[0] = tail[0] + d * cos(tail[3] + bearing), head[1] = tail[1] + d * sin(tail[3] + bearing);
+		head[2] = s2, head[3] = uniform(-PI, PI);
+	}
+}
+
+static float scaled[MAX_VALUES];
+
+static void check_model(const hylo_registry_model *r)
+{
+	const hylo_svr_model *m = r->model;
+	const hylo_svr_envelope *e = m->envelope;
+	hylo_svr_envelope high;
+	hylo_svr_model m_high;
+	uint32_t n_values, i, below = 0, zero = 0, caught = 0;
+	double closest = INFINITY, worst = 0;
+
+	if (!e)
+		fail_msg("%s has no envelope", m->name);
+	assert_int_equal(hylo_svr_check(m, NULL), HYLO_OK);
+	n_values = e->n_d * e->n_z * e->n_v * e->n_v;
+	assert_true(n_values <= MAX_VALUES);
+	for (i = 0; i < n_values; i++)
+		scaled[i] = e->value[i] * 1.05f;
+	high = *e;
+	high.value = scaled;
+	m_high = *m;
+	m_high.envelope = &high;
+	rng_state = 20260101u + (uint64_t)r->mode;
+	for (i = 0; i < EDGES; i++) {
+		double tail[HYLO_XS_DIM], head[HYLO_XS_DIM], f[HYLO_MAX_FEATURES], cost, bound;
+
+		random_edge(m, r->mode, tail, head);
+		hylo_features(r->mode, tail, head, f);
+		cost = hylo_svr_predict(m, f);
+		bound = hylo_envelope_of_edge(m, r->mode, tail, head);
+		zero += bound == 0;
+		if (cost < bound) {
+			below++;
+			worst = fmax(worst, (bound - cost) / cost);
+		}
+		closest = fmin(closest, (cost - bound) / cost);
+		caught += cost < hylo_envelope_of_edge(&m_high, r->mode, tail, head);
+	}
+	printf("# %s: %u of %d edges below the envelope (worst %.3g), closest %.3g relative above it; "
+	       "%u with no bound; a table 5%% higher: %u below\n",
+	       m->name, below, EDGES, worst, closest, zero, caught);
+	if (below > 0)
+		fail_msg("%s: %u of %d random edges cost less than the envelope (by up to %.3g relative)",
+			 m->name, below, EDGES, worst);
+	if (zero > 0)
+		fail_msg("%s: %u of %d edges within the training range have no bound", m->name, zero, EDGES);
+	if (caught == 0)
+		fail_msg("%s: the check does not notice a table 5%% too high", m->name);
+}
+
+/* One model, named by the test's state. */
+static void test_model(void **state)
+{
+	const char *name = (const char *)*state;
+	uint32_t k;
+
+	for (k = 0; k < hylo_registry_n_models; k++)
+		if (strcmp(hylo_registry_models[k].model->name, name) == 0) {
+			check_model(&hylo_registry_models[k]);
+			return;
+		}
+	fail_msg("no committed model %s", name);
+}
+
+/* Ground, marine and flight models have an envelope; the double
+ * integrator's none (its features are absolute positions). */
+static void test_which_models(void **state)
+{
+	uint32_t k;
+
+	(void)state;
+	for (k = 0; k < hylo_registry_n_models; k++) {
+		const hylo_registry_model *r = &hylo_registry_models[k];
+		int di = r->mode == HYLO_MODE_DI_NEG || r->mode == HYLO_MODE_DI_POS;
+
+		if (di != (r->model->envelope == NULL))
+			fail_msg("%s: %s", r->model->name, di ? "an envelope" : "no envelope");
+		assert_null(r->feasibility ? r->feasibility->envelope : NULL);
+	}
+}
+
+int main(void)
+{
+	static const char *names[] = { "ambot_ground", "ambot_marine", "drivocopter_ground",
+				       "drivocopter_flight" };
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_which_models),
+		{ "ambot_ground: 20,000 random edges cost at least the envelope", test_model, NULL, NULL,
+		  (void *)names[0] },
+		{ "ambot_marine: 20,000 random edges cost at least the envelope", test_model, NULL, NULL,
+		  (void *)names[1] },
+		{ "drivocopter_ground: 20,000 random edges cost at least the envelope", test_model, NULL,
+		  NULL, (void *)names[2] },
+		{ "drivocopter_flight: 20,000 random edges cost at least the envelope", test_model, NULL,
+		  NULL, (void *)names[3] },
+	};
+
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
