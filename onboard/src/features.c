@@ -31,7 +31,20 @@ hylo_real hylo_wrap_angle(hylo_real a)
 
 	if (!isfinite(a))
 		return a;
-	w = fmod(a, two_pi);              /* (-2pi, 2pi), sign of a */
+	/* Within two turns, one exact subtraction gives fmod's bits (its sign of
+	 * zero included) without its cost; the planner wraps millions of angles. */
+	if (a < 2 * two_pi && a > -2 * two_pi) {
+		w = a;
+		if (w >= two_pi) {
+			w -= two_pi;
+		} else if (w <= -two_pi) {
+			w += two_pi;
+			if (w == 0)
+				w = -w;
+		}
+	} else {
+		w = fmod(a, two_pi);      /* (-2pi, 2pi), sign of a */
+	}
 	if (w > two_pi / 2)
 		w -= two_pi;
 	else if (w <= -two_pi / 2)

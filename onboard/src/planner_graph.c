@@ -8,7 +8,7 @@
 /*
  * Edge costs and the search's callbacks. An edge costs the model's
  * prediction raised to the edge bound (floor and envelope,
- * hylo_planner_edge_bound); A* evaluates edges lazily: expand hands the
+ * hylo_planner_bound); A* evaluates edges lazily: expand hands the
  * search each neighbouring position's still-unknown edges as one deferred
  * group with the least f-value any of them could get, and resolve evaluates
  * the group when that value comes first. Known costs come from the edge
@@ -67,16 +67,41 @@ const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint
 	return &pl->roadmap.adjacency[p->adj_begin];
 }
 
-hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, const hylo_real *tail,
-				  uint32_t j, const hylo_real *head)
+void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
-	hylo_mode mode = (hylo_mode)rm->pos[i].mode;
-	const hylo_mode_model *mm = hylo_planner_mode_model(pl, mode);
-	hylo_real lb = floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
-	hylo_real e = mm->model ? hylo_envelope_of_edge(mm->model, mode, tail, head) : 0;
+	const hylo_point a = rm->pos[i].p, b = rm->pos[j].p;
+	const hylo_mode_model *mm;
+	hylo_real dx = b.x - a.x, dy = b.y - a.y;
 
-	return e > lb ? e : lb;
+	pb->mode = (hylo_mode)rm->pos[i].mode;
+	mm = hylo_planner_mode_model(pl, pb->mode);
+	pb->floor = floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(a, b);
+	pb->model = mm->model && mm->model->envelope &&
+			    mm->model->n_features == hylo_feature_count(pb->mode)
+		    ? mm->model : NULL;
+	/* As hylo_envelope_args measures them. */
+	pb->d = sqrt(dx * dx + dy * dy);
+	pb->dz = b.z - a.z;
+	pb->phi = atan2(dy, dx);
+}
+
+hylo_real hylo_planner_bound(const hylo_pair_bound *pb, const hylo_real *tail, const hylo_real *head)
+{
+	hylo_real e;
+
+	if (!pb->model)
+		return pb->floor;
+	if (pb->mode == HYLO_MODE_FLIGHT) {
+		if (tail[5] != 0 || head[5] != 0)
+			return pb->floor;
+		e = hylo_svr_envelope_bound(pb->model, pb->d, pb->dz,
+					    sqrt(tail[3] * tail[3] + tail[4] * tail[4]),
+					    sqrt(head[3] * head[3] + head[4] * head[4]));
+	} else {
+		e = hylo_svr_envelope_bound(pb->model, pb->d, 0, tail[2], head[2]);
+	}
+	return e > pb->floor ? e : pb->floor;
 }
 
 hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i)
@@ -111,12 +136,14 @@ static hylo_status evaluate(hylo_planner *pl, uint32_t i, const hylo_real *tail,
 	const hylo_mode_model *mm = hylo_planner_mode_model(pl, mode);
 	int k = hylo_robot_mode_index(pl->robot, mode);
 	unsigned nf = hylo_feature_count(mode);
+	hylo_pair_bound pb;
 	uint32_t m;
 	hylo_status st;
 
 	if (n == 0)
 		return HYLO_OK;
 	head_states(pl, j, combos, n);
+	hylo_planner_pair_bound(pl, i, j, &pb);
 	if (mm->model || mm->feasibility)
 		for (m = 0; m < n; m++)
 			hylo_features(mode, tail, pl->head_xs[m], &pl->features[m * nf]);
@@ -132,7 +159,7 @@ static hylo_status evaluate(hylo_planner *pl, uint32_t i, const hylo_real *tail,
 			return st;
 	}
 	for (m = 0; m < n; m++) {
-		hylo_real lo = hylo_planner_edge_bound(pl, i, tail, j, pl->head_xs[m]);
+		hylo_real lo = hylo_planner_bound(&pb, tail, pl->head_xs[m]);
 
 		if (!isfinite(costs[m]))
 			return hylo_fail(&pl->reason, HYLO_E_BAD_COST,
@@ -213,14 +240,16 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
 	hylo_real *cached = group_costs(pl, u, group, 1);
 	hylo_real got[HYLO_MAX_COMBOS], tail[HYLO_XS_DIM], head[HYLO_XS_DIM], hv, fresh[HYLO_MAX_COMBOS];
+	hylo_pair_bound pb;
 	uint32_t c2, m = 0;
 	hylo_status st;
 
 	hylo_planner_node_state(pl, i, c, tail);
+	hylo_planner_pair_bound(pl, i, j, &pb);
 	for (c2 = 0; c2 < q->n_combos; c2++) {
 		got[c2] = NAN;
 		hylo_planner_node_state(pl, j, c2, head);
-		if (!wanted(pl, o, q->node_base + c2, hylo_planner_edge_bound(pl, i, tail, j, head), &hv))
+		if (!wanted(pl, o, q->node_base + c2, hylo_planner_bound(&pb, tail, head), &hv))
 			continue;
 		if (cached && !isnan(cached[c2]))
 			got[c2] = cached[c2];
@@ -256,15 +285,17 @@ static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uin
 	uint32_t i = rm->node_pos[u], c2;
 	const hylo_real *cached = group_costs(pl, u, group, 0);
 	hylo_real key = INFINITY, hv, tail[HYLO_XS_DIM], head[HYLO_XS_DIM];
+	hylo_pair_bound pb;
 	hylo_status st = HYLO_OK;
 	int need = 0;
 
 	hylo_planner_node_state(pl, i, u - rm->pos[i].node_base, tail);
+	hylo_planner_pair_bound(pl, i, j, &pb);
 	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++) {
 		hylo_real b, f;
 
 		hylo_planner_node_state(pl, j, c2, head);
-		b = hylo_planner_edge_bound(pl, i, tail, j, head);
+		b = hylo_planner_bound(&pb, tail, head);
 		if (!wanted(pl, o, q->node_base + c2, b, &hv))
 			continue;
 		if (cached && !isnan(cached[c2])) {

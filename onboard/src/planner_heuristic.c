@@ -5,7 +5,7 @@
 
 /*
  * The A* heuristic: exact shortest distances to the goal on the search graph
- * itself, every edge weighted by its bound (hylo_planner_edge_bound: the
+ * itself, every edge weighted by its bound (hylo_planner_bound: the
  * model's floor raised to its envelope for the edge's distance, speeds and,
  * where the envelope has them, turn or climb; the switch cost). Edge costs
  * are raised to their bound, so the heuristic is admissible and consistent,
@@ -72,7 +72,9 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 	}
 	for (k = 0; k < n_pred; k++) {
 		const hylo_position *p = &rm->pos[pred[k]];
+		hylo_pair_bound pb;
 
+		hylo_planner_pair_bound(pl, pred[k], j, &pb);
 		for (c = 0; c < p->n_combos; c++) {
 			uint32_t u = p->node_base + c;
 
@@ -84,7 +86,7 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 						 HYLO_MAX_SUCCESSORS);
 			hylo_roadmap_state(rm, pred[k], c, tail);
 			heads[*n] = u;
-			costs[(*n)++] = hylo_planner_edge_bound(pl, pred[k], tail, j, head);
+			costs[(*n)++] = hylo_planner_bound(&pb, tail, head);
 		}
 	}
 	return switch_predecessors(pl, s, v, heads, costs, cap, n);
@@ -104,18 +106,21 @@ static void start_heuristic(hylo_planner *pl)
 	uint32_t k, c, n_adj;
 	const uint32_t *adj = hylo_planner_neighbours(pl, pl->start_pos, &n_adj);
 	hylo_real best = INFINITY, head[HYLO_XS_DIM];
+	hylo_pair_bound pb;
 
-	if (pl->start_goal_linked)
-		best = hylo_planner_edge_bound(pl, pl->start_pos, pl->start_xs, pl->goal_pos, pl->goal_xs);
+	if (pl->start_goal_linked) {
+		hylo_planner_pair_bound(pl, pl->start_pos, pl->goal_pos, &pb);
+		best = hylo_planner_bound(&pb, pl->start_xs, pl->goal_xs);
+	}
 	for (k = 0; k < n_adj; k++) {
 		const hylo_position *q = &rm->pos[adj[k]];
 
+		hylo_planner_pair_bound(pl, pl->start_pos, adj[k], &pb);
 		for (c = 0; c < q->n_combos; c++) {
 			hylo_real v;
 
 			hylo_roadmap_state(rm, adj[k], c, head);
-			v = hylo_planner_edge_bound(pl, pl->start_pos, pl->start_xs, adj[k], head) +
-			    pl->h_node[q->node_base + c];
+			v = hylo_planner_bound(&pb, pl->start_xs, head) + pl->h_node[q->node_base + c];
 			if (v < best)
 				best = v;
 		}

@@ -29,14 +29,24 @@ void hylo_planner_node_state(const hylo_planner *pl, uint32_t i, uint32_t c, hyl
 const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint32_t *n);
 
 /*
- * The bound of the edge from state tail at position i to state head at
- * position j (same mode): the model's floor for the distance, raised to its
- * envelope for the edge (hylo_envelope_of_edge). Edge costs are raised to
- * it, so it holds for every edge, and the heuristic built from it is
- * consistent.
+ * Edge bounds. The bound of an edge from a state at position i to a state
+ * at position j (same mode) is the model's floor for the distance, raised to
+ * its envelope for the edge: the same value hylo_envelope_of_edge gives,
+ * computed from what the pair of positions shares (distance, climb,
+ * bearing) so that the heuristic's pass over every edge stays cheap. Edge
+ * costs are raised to it, so it holds for every edge, and the heuristic
+ * built from it is consistent.
  */
-hylo_real hylo_planner_edge_bound(const hylo_planner *pl, uint32_t i, const hylo_real *tail,
-				  uint32_t j, const hylo_real *head);
+typedef struct {
+	hylo_real floor;                /* the model's floor for the distance [J] */
+	const hylo_svr_model *model;    /* with an envelope, else NULL */
+	hylo_mode mode;
+	hylo_real d, dz, phi;           /* horizontal distance, climb, bearing */
+} hylo_pair_bound;
+
+void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb);
+
+hylo_real hylo_planner_bound(const hylo_pair_bound *pb, const hylo_real *tail, const hylo_real *head);
 
 /* Cost of the switch edges from guard copy i to its twin. */
 hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i);

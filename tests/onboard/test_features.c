@@ -33,6 +33,53 @@ static void planar(const double *tail, const double *head, double *f)
 	assert_int_equal(hylo_features(HYLO_MODE_GROUND, tail, head, f), HYLO_FEATURES_PLANAR);
 }
 
+/* The textbook wrap: fmod, then one turn. */
+static double wrap_by_fmod(double a)
+{
+	const double two_pi = 6.283185307179586476925286766559;
+	double w;
+
+	if (!isfinite(a))
+		return a;
+	w = fmod(a, two_pi);
+	if (w > two_pi / 2)
+		w -= two_pi;
+	else if (w <= -two_pi / 2)
+		w += two_pi;
+	return w;
+}
+
+/* hylo_wrap_angle gives fmod's bits, signed zeros included, on random
+ * angles, multiples of pi and their neighbours, and beyond two turns. */
+static void test_wrap_bits(void **state)
+{
+	const double pi = 3.141592653589793;
+	uint64_t s = 12345;
+	double a, w, want;
+	int i, k;
+
+	(void)state;
+	for (i = 0; i < 2000000; i++) {
+		s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+		a = ((double)(s >> 11) * 0x1.0p-53 - 0.5) * (i % 3 ? 30 : 1e4);
+		if (i % 5 == 0)
+			a = (double)((int)(i % 17) - 8) * pi + ((double)(s >> 11) * 0x1.0p-53 - 0.5) * 1e-12;
+		w = hylo_wrap_angle(a);
+		want = wrap_by_fmod(a);
+		assert_memory_equal(&w, &want, sizeof w);
+	}
+	for (k = -8; k <= 8; k++) {
+		a = k * pi;
+		w = hylo_wrap_angle(a);
+		want = wrap_by_fmod(a);
+		assert_memory_equal(&w, &want, sizeof w);
+		a = nextafter(a, INFINITY);
+		w = hylo_wrap_angle(a);
+		want = wrap_by_fmod(a);
+		assert_memory_equal(&w, &want, sizeof w);
+	}
+}
+
 static void test_planar_invariance(void **state)
 {
 	static const double tails[3][4] = { { 0, 0, 0.3, 0 }, { 2, -1, 1.0, 2.5 }, { -3, 4, 0, -1.2 } };
@@ -138,6 +185,7 @@ static void test_split(void **state)
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_wrap_bits),
 		cmocka_unit_test(test_planar_invariance),
 		cmocka_unit_test(test_planar_known_poses),
 		cmocka_unit_test(test_split),
