@@ -25,21 +25,30 @@ extern "C" {
 
 // How the table is computed (onboard/models/README.md, "Envelope"):
 //
-// Ground and marine. M(d, v1, v2) is the least predicted cost of the edges
-// from (0, 0, v1, heading 0) to (d cos b, d sin b, v2, heading dtheta) over
-// the bearing b in [0, pi] and the heading change dtheta in [-pi, pi] (the
-// features mirror a goal on the right to the left, so b in [0, pi] covers
-// every edge; the heading feature jumps at dtheta = +-pi, whose other side
-// the mirror images reach, so both ends are searched). At every cell end
-// d = k d_step (the first at 1e-9 m: the limit d -> 0+, whose features
-// include those of d = 0) the costs of a 37 x 73 grid of (b, dtheta), 5
-// degrees apart, give each speed pair its grid minima; from the best of
-// both ends (within 1%, at most 3) a pattern search over (d, b, dtheta), d
-// inside the cell, finds the cell's least cost. Pattern search because the
-// features turn and arc are kinked: the grid was 15 degrees apart and the
-// poll the axes and three diagonals at first, and 1 in 10^6 random edges
-// still cost up to 0.7% less than its cell (minima in narrow wedges between
-// kinks, and past the seam); now none do.
+// Ground and marine. M(d, turn cell, v1, v2) is the least predicted cost
+// of the edges from (0, 0, v1, heading 0) to (d cos b, d sin b, v2, heading
+// dtheta) over the bearing b in [0, pi] and the heading change dtheta in
+// [-pi, pi] whose turn hylo_envelope_turn(b, 0, dtheta) (the planner's
+// argument) lies in the cell (the features mirror a goal on the right to
+// the left, so b in [0, pi] covers every edge; the heading feature jumps at
+// dtheta = +-pi, whose other side the mirror images reach, so both ends are
+// searched). 16 turn cells over [0, 2 pi], each widened by 1e-9 rad on both
+// sides (the features' turn may differ from the argument in the last bits,
+// so an edge on a cell boundary counts in both cells). At every cell end d
+// = k d_step (the first at 1e-9 m: the limit d -> 0+, whose features include
+// those of d = 0) the costs of a 37 x 73 grid of (b, dtheta), 5 degrees
+// apart, are computed once; every grid point counts in the turn cell(s) of
+// its turn, and each turn cell and speed pair gets its grid minima within
+// the cell; from the best of both ends (within 1%, at most 3) a pattern
+// search over (d, b, dtheta), d inside the distance cell and every poll
+// point moved into the turn cell (into_turn_range), finds the cell's least
+// cost. Pattern search because the features turn and arc are kinked: the
+// grid was 15 degrees apart and the poll the axes and three diagonals at
+// first, and 1 in 10^6 random edges still cost up to 0.7% less than its
+// cell (minima in narrow wedges between kinks, and past the seam); now none
+// do. Edges that stay in place (d = 0) get turn 0 from hylo_envelope_args,
+// so the first distance cell's turn cell 0 also holds their least cost
+// (coincident_minimum).
 //
 // Flight. M(dh, dz, s1, s2) is the least predicted cost from (0, 0, 0) with
 // level velocity s1 (cos psi1, sin psi1, 0) to (dh, 0, dz) with s2 (cos
@@ -68,6 +77,8 @@ constexpr double kTinyDistance = 1e-9;  // the first cell's lower end: d -> 0+
 constexpr double kPlanarDStep = 0.1, kFlightStep = 0.25;
 constexpr int kBearings = 37, kHeadings = 73;  // planar grid: b = j pi / 36, dtheta = -pi + l pi / 36
 constexpr double kSeam = 1e-9;                // dtheta's lower end: -pi + this
+constexpr uint32_t kTurnCells = 16;           // planar turn cells over [0, 2 pi]
+constexpr double kTurnSlack = 1e-9;           // a turn cell also holds turns this close to its ends
 constexpr int kDirections = 12;               // flight grid: psi = -pi + l pi / 6
 constexpr double kStartTolerance = 0.01;      // refine grid minima within 1% of the best
 constexpr size_t kMaxStarts = 3;
@@ -229,8 +240,9 @@ Geometry geometry(const SvrExport &m)
 		t.z_min = -(below * t.z_step);
 		t.n_z = 2 * below + 1;  // climbs [-max_d, max_d] and a little more
 	} else {
-		t.n_z = 1;
-		t.z_min = t.z_step = 0;
+		t.n_z = kTurnCells;
+		t.z_min = 0;
+		t.z_step = 2 * kPi / kTurnCells;
 	}
 	t.v_min = m.speed_min_mps;
 	t.v_step = envelope_speed_step(m.speed_min_mps, m.speed_max_mps);
@@ -262,6 +274,27 @@ void planar_edge(double d, double b, double t, double v1, double v2, double *tai
 	head[3] = t;
 }
 
+// The turn of the edge planar_edge(d, b, t) as the planner looks it up
+// (hylo_envelope_args: the bearing b, the tail's heading 0).
+double planar_turn(double b, double t)
+{
+	return hylo_envelope_turn(b, 0, t);
+}
+
+// Turn cell j's range, widened by kTurnSlack on both sides: the features'
+// turn may differ from hylo_envelope_turn's in the last bits, so a cell
+// holds the edges on either side of its ends (the last also 2 pi).
+double turn_lo(const Geometry &g, uint32_t j) { return j * g.t.z_step - kTurnSlack; }
+double turn_hi(const Geometry &g, uint32_t j) { return (j + 1) * g.t.z_step + kTurnSlack; }
+
+// The turn cells [first, last] whose widened range holds turn.
+void turn_cells(const Geometry &g, double turn, uint32_t *first, uint32_t *last)
+{
+	const double top = g.t.n_z - 1;
+	*first = static_cast<uint32_t>(std::min(top, std::max(0.0, std::floor((turn - kTurnSlack) / g.t.z_step))));
+	*last = static_cast<uint32_t>(std::min(top, std::max(0.0, std::floor((turn + kTurnSlack) / g.t.z_step))));
+}
+
 double grid_bearing(int j) { return j * kPi / (kBearings - 1); }
 // The heading feature s * dtheta jumps from pi to -pi (the model sees them
 // 2 pi apart), so dtheta's grid and search span the closed [-pi, pi], -pi
@@ -269,11 +302,16 @@ double grid_bearing(int j) { return j * kPi / (kBearings - 1); }
 // dtheta = pi reach it).
 double grid_heading(int l) { return l == 0 ? -kPi + kSeam : -kPi + l * 2 * kPi / (kHeadings - 1); }
 
+// Per distance end: the starts of each turn cell and speed pair, [j * np + p].
+using PlanarStarts = std::vector<std::vector<PlanarStart>>;
+
 // The best grid minima (within kStartTolerance of the best, at most
-// kMaxStarts) of every speed pair at distance d.
-std::vector<std::vector<PlanarStart>> planar_grid(const Geometry &g, Evaluator &ev, double d)
+// kMaxStarts) of every turn cell and speed pair at distance d: every grid
+// point counts in the turn cells whose widened range holds its turn, and is
+// a minimum of a cell when no neighbour in the same cell costs less.
+PlanarStarts planar_grid(const Geometry &g, Evaluator &ev, double d)
 {
-	const uint32_t np = g.pairs();
+	const uint32_t np = g.pairs(), nz = g.t.n_z;
 	ev.clear();
 	double tail[4], head[4];
 	for (int j = 0; j < kBearings; j++)
@@ -284,41 +322,79 @@ std::vector<std::vector<PlanarStart>> planar_grid(const Geometry &g, Evaluator &
 				ev.add(tail, head);
 			}
 	const std::vector<double> &c = ev.run();
-	auto at = [&](int j, int l, uint32_t p) { return c[(static_cast<size_t>(j) * kHeadings + l) * np + p]; };
-	std::vector<std::vector<PlanarStart>> starts(np);
+	std::vector<double> col(static_cast<size_t>(kBearings) * kHeadings);  // one speed pair's costs
+	auto at = [&](int j, int l) { return col[static_cast<size_t>(j) * kHeadings + l]; };
+	std::vector<std::array<uint32_t, 2>> cells(static_cast<size_t>(kBearings) * kHeadings);
+	for (int j = 0; j < kBearings; j++)
+		for (int l = 0; l < kHeadings; l++) {
+			auto &cl = cells[static_cast<size_t>(j) * kHeadings + l];
+			turn_cells(g, planar_turn(grid_bearing(j), grid_heading(l)), &cl[0], &cl[1]);
+		}
+	auto in_cell = [&](int j, int l, uint32_t z) {
+		const auto &cl = cells[static_cast<size_t>(j) * kHeadings + l];
+		return cl[0] <= z && z <= cl[1];
+	};
+	PlanarStarts starts(static_cast<size_t>(nz) * np);
+	std::vector<PlanarStart> mins;
 	for (uint32_t p = 0; p < np; p++) {
-		std::vector<PlanarStart> mins;
-		for (int j = 0; j < kBearings; j++)
-			for (int l = 0; l < kHeadings; l++) {
-				double v = at(j, l, p);
-				bool lowest = true;
-				for (int dj = -1; dj <= 1 && lowest; dj++)
-					for (int dl = -1; dl <= 1 && lowest; dl++) {
-						int jj = j + dj, ll = l + dl;
-						if ((dj || dl) && jj >= 0 && jj < kBearings && ll >= 0 && ll < kHeadings &&
-						    at(jj, ll, p) < v)
-							lowest = false;
-					}
-				if (lowest)
-					mins.push_back({v, d, grid_bearing(j), grid_heading(l)});
-			}
-		std::stable_sort(mins.begin(), mins.end(),
-				 [](const PlanarStart &a, const PlanarStart &b) { return a.cost < b.cost; });
-		for (const PlanarStart &s : mins)
-			if (starts[p].size() < kMaxStarts && s.cost <= mins[0].cost * (1 + kStartTolerance))
-				starts[p].push_back(s);
+		for (size_t i = 0; i < col.size(); i++)
+			col[i] = c[i * np + p];
+		for (uint32_t z = 0; z < nz; z++) {
+			mins.clear();
+			for (int j = 0; j < kBearings; j++)
+				for (int l = 0; l < kHeadings; l++) {
+					if (!in_cell(j, l, z))
+						continue;
+					double v = at(j, l);
+					bool lowest = true;
+					for (int dj = -1; dj <= 1 && lowest; dj++)
+						for (int dl = -1; dl <= 1 && lowest; dl++) {
+							int jj = j + dj, ll = l + dl;
+							if ((dj || dl) && jj >= 0 && jj < kBearings && ll >= 0 && ll < kHeadings &&
+							    in_cell(jj, ll, z) && at(jj, ll) < v)
+								lowest = false;
+						}
+					if (lowest)
+						mins.push_back({v, d, grid_bearing(j), grid_heading(l)});
+				}
+			std::stable_sort(mins.begin(), mins.end(),
+					 [](const PlanarStart &a, const PlanarStart &b) { return a.cost < b.cost; });
+			std::vector<PlanarStart> &out = starts[static_cast<size_t>(z) * np + p];
+			for (const PlanarStart &s : mins)
+				if (out.size() < kMaxStarts && s.cost <= mins[0].cost * (1 + kStartTolerance))
+					out.push_back(s);
+		}
 	}
 	return starts;
 }
 
+// (b, t) moved into the turn range [lo, hi], b kept where it can be: the
+// turn is b + |wrap(t - b)|, so b is first held in [lo - pi, hi] and then
+// the heading change moved along its side of b. t stays in [-pi + kSeam,
+// pi] (a turn within kSeam of the range's end may result).
+void into_turn_range(double lo, double hi, double &b, double &t)
+{
+	b = std::min(std::min(kPi, hi), std::max(std::max(0.0, lo - kPi), b));
+	const double e = wrap(t - b), side = e < 0 ? -1 : 1, turn = b + std::fabs(e);
+	const double want = std::min(std::min(hi, b + kPi), std::max(std::max(lo, b), turn));
+	if (want == turn)
+		return;
+	t = b + side * (want - b);
+	if (t > kPi)
+		t -= 2 * kPi;
+	t = std::min(kPi, std::max(-kPi + kSeam, t));
+}
+
 // Pattern search over (d, b, dtheta) from s, d in [d_lo, d_hi], b in [0,
-// pi], dtheta in [-pi, pi]: polls 20 directions (d up and down; in (b,
-// dtheta) 16 evenly spread and the arc valley's +-(1, 2), the turn valley's
-// +-(1, 1) being among the 16: the features are kinked, and a poll of the
-// axes alone stalls on a kink), halving the step (at first half the grid's,
-// and half the cell in d) when none improves, until it is below 1e-3 rad.
+// pi], dtheta in [-pi, pi], the turn in [turn_lo, turn_hi] (each candidate
+// moved into it, into_turn_range): polls 20 directions (d up and down; in
+// (b, dtheta) 16 evenly spread and the arc valley's +-(1, 2), the turn
+// valley's +-(1, 1) being among the 16: the features are kinked, and a poll
+// of the axes alone stalls on a kink), halving the step (at first half the
+// grid's, and half the cell in d) when none improves, until it is below
+// 1e-3 rad.
 PlanarStart pattern_search(Evaluator &ev, double v1, double v2, PlanarStart s, double d_lo, double d_hi,
-			   std::atomic<size_t> &evaluations)
+			   double t_lo, double t_hi, std::atomic<size_t> &evaluations)
 {
 	static const auto dirs = [] {
 		std::vector<std::array<double, 3>> u = {{1, 0, 0}, {-1, 0, 0}};
@@ -332,19 +408,25 @@ PlanarStart pattern_search(Evaluator &ev, double v1, double v2, PlanarStart s, d
 	const double angle_unit = kPi / (kBearings - 1), d_unit = d_hi - d_lo;
 	double h = 0.5;
 	double tail[4], head[4];
+	std::vector<PlanarStart> cand;
 	for (int it = 0; it < 400 && h * angle_unit > 1e-3; it++) {
-		std::vector<PlanarStart> cand;
+		cand.clear();
 		ev.clear();
 		for (const auto &u : dirs) {
 			PlanarStart c = s;
 			c.d = std::min(d_hi, std::max(d_lo, s.d + h * u[0] * d_unit));
 			c.b = std::min(kPi, std::max(0.0, s.b + h * u[1] * angle_unit));
 			c.t = std::min(kPi, std::max(-kPi + kSeam, s.t + h * u[2] * angle_unit));
+			into_turn_range(t_lo, t_hi, c.b, c.t);
 			if (c.d == s.d && c.b == s.b && c.t == s.t)
 				continue;
 			planar_edge(c.d, c.b, c.t, v1, v2, tail, head);
 			ev.add(tail, head);
 			cand.push_back(c);
+		}
+		if (cand.empty()) {
+			h *= 0.5;
+			continue;
 		}
 		const std::vector<double> &cost = ev.run();
 		evaluations += cand.size();
@@ -362,13 +444,83 @@ PlanarStart pattern_search(Evaluator &ev, double v1, double v2, PlanarStart s, d
 	return s;
 }
 
+// Edges that stay in place (d = 0; hylo_envelope_args gives them turn 0, so
+// turn cell 0 of the first distance cell holds them all). Their features
+// depend on the tail heading's quadrant through signed zeros: the bearing
+// is 0, or pi when the heading's cosine and sine are both negative
+// (atan2(+0, -0)), with the turn |dtheta| or pi + |wrap(dtheta - pi)|. Per
+// speed pair the least cost over both and every heading change: a grid of
+// 0.5 degrees, its best minima refined by a one-dimensional pattern search.
+std::vector<double> coincident_minimum(const Geometry &g, Evaluator &ev, std::atomic<size_t> &evaluations)
+{
+	constexpr int kSteps = 720;
+	const double tails[2] = {0.0, -2.0};  // cos, sin >= 0; both < 0
+	const uint32_t np = g.pairs();
+	auto heading = [](int l) { return l == 0 ? -kPi + kSeam : -kPi + l * 2 * kPi / kSteps; };
+	auto edge = [&](double th1, double dth, uint32_t p, double *tail, double *head) {
+		tail[0] = tail[1] = head[0] = head[1] = 0;
+		tail[2] = g.speed(p / g.t.n_v);
+		head[2] = g.speed(p % g.t.n_v);
+		tail[3] = th1;
+		head[3] = th1 + dth;
+	};
+	double tail[4], head[4];
+	ev.clear();
+	for (double th1 : tails)
+		for (int l = 0; l <= kSteps; l++)
+			for (uint32_t p = 0; p < np; p++) {
+				edge(th1, heading(l), p, tail, head);
+				ev.add(tail, head);
+			}
+	const std::vector<double> grid = ev.run();
+	evaluations += grid.size();
+	std::vector<double> best(np, INFINITY);
+	for (uint32_t p = 0; p < np; p++) {
+		struct Start {
+			double cost, th1, dth;
+		};
+		std::vector<Start> mins;
+		for (int a = 0; a < 2; a++)
+			for (int l = 0; l <= kSteps; l++) {
+				auto at = [&](int ll) { return grid[(static_cast<size_t>(a) * (kSteps + 1) + ll) * np + p]; };
+				double v = at(l);
+				if ((l == 0 || at(l - 1) >= v) && (l == kSteps || at(l + 1) >= v))
+					mins.push_back({v, tails[a], heading(l)});
+			}
+		std::stable_sort(mins.begin(), mins.end(), [](const Start &x, const Start &y) { return x.cost < y.cost; });
+		for (size_t s = 0; s < mins.size() && s < 2 * kMaxStarts; s++) {
+			Start c = mins[s];
+			for (double h = kPi / kSteps; h > 1e-7;) {
+				ev.clear();
+				double cand[2];
+				for (int k = 0; k < 2; k++) {
+					cand[k] = std::min(kPi, std::max(-kPi + kSeam, c.dth + (k ? h : -h)));
+					edge(c.th1, cand[k], p, tail, head);
+					ev.add(tail, head);
+				}
+				const std::vector<double> &cost = ev.run();
+				evaluations += 2;
+				int k = cost[0] <= cost[1] ? 0 : 1;
+				if (cost[k] < c.cost) {
+					c.cost = cost[k];
+					c.dth = cand[k];
+				} else {
+					h *= 0.5;
+				}
+			}
+			best[p] = std::min(best[p], c.cost);
+		}
+	}
+	return best;
+}
+
 Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, int jobs)
 {
-	const uint32_t n_d = g.t.n_d, np = g.pairs();
+	const uint32_t n_d = g.t.n_d, n_z = g.t.n_z, np = g.pairs();
 	std::vector<std::unique_ptr<Evaluator>> evs(static_cast<size_t>(std::max(1, jobs)));
 	for (auto &e : evs)
 		e = std::make_unique<Evaluator>(m, mode);
-	std::vector<std::vector<std::vector<PlanarStart>>> ends(n_d + 1);
+	std::vector<PlanarStarts> ends(n_d + 1);
 	auto t0 = Clock::now();
 	parallel(n_d + 1, jobs, [&](size_t q, size_t w) {
 		ends[q] = planar_grid(g, *evs[w], g.d_end(static_cast<uint32_t>(q)));
@@ -378,13 +530,17 @@ Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode m
 	std::atomic<size_t> searches{0}, evaluations{0};
 	t0 = Clock::now();
 	Estimate est;
-	est.cost.assign(static_cast<size_t>(n_d) * np, 0.0);
-	parallel(static_cast<size_t>(n_d) * np, jobs, [&](size_t i, size_t w) {
-		const uint32_t k = static_cast<uint32_t>(i / np), p = static_cast<uint32_t>(i % np);
-		if (!g.needed(k, 0))
+	est.cost.assign(static_cast<size_t>(n_d) * n_z * np, 0.0);
+	const size_t per_d = static_cast<size_t>(n_z) * np;
+	parallel(static_cast<size_t>(n_d) * per_d, jobs, [&](size_t i, size_t w) {
+		const uint32_t k = static_cast<uint32_t>(i / per_d), z = static_cast<uint32_t>(i % per_d / np),
+			       p = static_cast<uint32_t>(i % np);
+		if (!g.needed(k, z))
 			return;
-		std::vector<PlanarStart> starts = ends[k][p];
-		starts.insert(starts.end(), ends[k + 1][p].begin(), ends[k + 1][p].end());
+		std::vector<PlanarStart> starts = ends[k][i % per_d];
+		starts.insert(starts.end(), ends[k + 1][i % per_d].begin(), ends[k + 1][i % per_d].end());
+		if (starts.empty())
+			throw std::logic_error("envelope: a turn cell without grid points");
 		std::stable_sort(starts.begin(), starts.end(),
 				 [](const PlanarStart &a, const PlanarStart &b) { return a.cost < b.cost; });
 		std::vector<PlanarStart> distinct;   // a minimum at both ends once, the better one
@@ -395,16 +551,19 @@ Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode m
 			if (!seen && distinct.size() < kMaxStarts && s.cost <= starts[0].cost * (1 + kStartTolerance))
 				distinct.push_back(s);
 		}
-		starts = distinct;
-		double best = starts[0].cost;
-		for (size_t s = 0; s < starts.size(); s++) {
-			PlanarStart r = pattern_search(*evs[w], g.speed(p / g.t.n_v), g.speed(p % g.t.n_v),
-						       starts[s], g.d_end(k), g.d_end(k + 1), evaluations);
+		double best = distinct[0].cost;
+		for (const PlanarStart &s : distinct) {
+			PlanarStart r = pattern_search(*evs[w], g.speed(p / g.t.n_v), g.speed(p % g.t.n_v), s,
+						       g.d_end(k), g.d_end(k + 1), turn_lo(g, z), turn_hi(g, z),
+						       evaluations);
 			searches++;
 			best = std::min(best, r.cost);
 		}
-		est.cost[g.index(k, 0, p)] = best;
+		est.cost[g.index(k, z, p)] = best;
 	});
+	const std::vector<double> still = coincident_minimum(g, *evs[0], evaluations);
+	for (uint32_t p = 0; p < np; p++)
+		est.cost[g.index(0, 0, p)] = std::min(est.cost[g.index(0, 0, p)], still[p]);
 	if (std::getenv("HYLO_TRAINER_DEBUG"))
 		std::fprintf(stderr, "envelope: %zu pattern searches, %zu evaluations, %.1f s\n", searches.load(),
 			     evaluations.load(), seconds_since(t0));

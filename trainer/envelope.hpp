@@ -1,9 +1,10 @@
 // The envelope of a cost model (onboard/models/README.md, "Envelope"): per
-// cell of edge distance (and, for flight, climb) and pair of speed nodes, a
-// lower bound of the model's predicted cost over every heading (ground,
-// marine) or level velocity direction (flight), exported as a float table
-// that the planner's search uses as an edge bound far tighter than the
-// per-metre floor. Computed at export from the fitted model with the onboard
+// cell of edge distance and turn (ground, marine: hylo_envelope_turn, 16
+// cells over [0, 2 pi]) or climb (flight) and pair of speed nodes, a lower
+// bound of the model's predicted cost over every heading of that turn
+// (ground, marine) or level velocity direction (flight), exported as a
+// float table that the planner's search uses as an edge bound far tighter
+// than the per-metre floor. Computed at export from the fitted model with the onboard
 // evaluator itself, so the values are the planner's; deterministic (the same
 // bytes for any number of jobs).
 #ifndef HYLO_TRAINER_ENVELOPE_HPP

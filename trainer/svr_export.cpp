@@ -154,9 +154,8 @@ void check(const SvrExport &m)
 		const hylo_mode mode = mode_enum(m.mode).value;
 		if (mode != HYLO_MODE_GROUND && mode != HYLO_MODE_MARINE && mode != HYLO_MODE_FLIGHT)
 			throw std::invalid_argument("svr export: mode " + m.mode + " has no envelope");
-		if (e.n_d == 0 || e.n_z == 0 || e.n_v == 0 || (mode != HYLO_MODE_FLIGHT && e.n_z != 1))
-			throw std::invalid_argument("svr export: envelope cell counts must be >= 1 "
-						    "(one climb cell on ground and water)");
+		if (e.n_d == 0 || e.n_z == 0 || e.n_v == 0)
+			throw std::invalid_argument("svr export: envelope cell counts must be >= 1");
 		const uint64_t n = static_cast<uint64_t>(e.n_d) * e.n_z * e.n_v * e.n_v;
 		if (n >= (uint64_t{1} << 32) || e.value.size() != n)
 			throw std::invalid_argument("svr export: envelope has " + std::to_string(e.value.size()) +
@@ -165,6 +164,13 @@ void check(const SvrExport &m)
 			require_finite(v, "an envelope step or origin");
 		if (!(e.d_step > 0) || !(e.v_step > 0) || (e.n_z > 1 && !(e.z_step > 0)))
 			throw std::invalid_argument("svr export: envelope steps must be > 0");
+		// hylo_svr_check's rule: ground and water tables have one climb cell
+		// or turn cells covering [0, 2 pi].
+		const double two_pi = 6.283185307179586476925286766559;
+		if (mode != HYLO_MODE_FLIGHT && e.n_z > 1 &&
+		    !(e.z_min == 0 && std::fabs(e.n_z * e.z_step - two_pi) <= 1e-12 * two_pi))
+			throw std::invalid_argument("svr export: a ground or water envelope has one climb cell "
+						    "or turn cells covering [0, 2 pi] (z_min 0, n_z * z_step = 2 pi)");
 		for (size_t i = 0; i < e.value.size(); i++)
 			if (!std::isfinite(e.value[i]) || !(e.value[i] >= 0))
 				throw std::invalid_argument("svr export: envelope value " + std::to_string(i) +

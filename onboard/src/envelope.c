@@ -3,6 +3,15 @@
 #include "hylo/envelope.h"
 #include "hylo/features.h"
 
+hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2)
+{
+	hylo_real b = hylo_wrap_angle(phi - theta1), s = b < 0 ? -1 : 1, dth;
+
+	b = fabs(b);
+	dth = s * hylo_wrap_angle(theta2 - theta1);
+	return b + fabs(hylo_wrap_angle(dth - b));
+}
+
 int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
 		       hylo_real *args)
 {
@@ -16,7 +25,10 @@ int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 	case HYLO_MODE_GROUND:
 	case HYLO_MODE_MARINE:
 		args[0] = sqrt(dx * dx + dy * dy);
-		args[1] = 0;
+		/* Coincident positions: turn 0 (the features' turn there depends
+		 * on the tail heading's quadrant; the table's first cell holds
+		 * every such edge). */
+		args[1] = dx == 0 && dy == 0 ? 0 : hylo_envelope_turn(atan2(dy, dx), tail[3], head[3]);
 		args[2] = tail[2];
 		args[3] = head[2];
 		return 1;

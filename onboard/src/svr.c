@@ -4,6 +4,8 @@
 #include "hylo/features.h"
 #include "hylo/svr.h"
 
+#define TWO_PI 6.283185307179586476925286766559
+
 /*
  * Four doubles per operation (GCC/Clang vector extension): two SSE2
  * operations on x86-64, or one AVX2 operation where the CPU has it (the hot
@@ -126,12 +128,10 @@ static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hyl
 				 "svr model %s: an envelope needs planar (%d) or flight (%d) features, "
 				 "not %u", name, HYLO_FEATURES_PLANAR, HYLO_FEATURES_FLIGHT,
 				 (unsigned)m->n_features);
-	if (e->n_d == 0 || e->n_z == 0 || e->n_v == 0 ||
-	    (m->n_features == HYLO_FEATURES_PLANAR && e->n_z != 1))
+	if (e->n_d == 0 || e->n_z == 0 || e->n_v == 0)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
-				 "svr model %s: envelope of %u x %u x %u cells (each >= 1, "
-				 "planar climb cells 1)", name, (unsigned)e->n_d, (unsigned)e->n_z,
-				 (unsigned)e->n_v);
+				 "svr model %s: envelope of %u x %u x %u cells (each >= 1)", name,
+				 (unsigned)e->n_d, (unsigned)e->n_z, (unsigned)e->n_v);
 	n = (uint64_t)e->n_d * e->n_z;
 	if (n >= ((uint64_t)1 << 32) || e->n_v >= ((uint32_t)1 << 16) ||
 	    n * e->n_v * e->n_v >= ((uint64_t)1 << 32))
@@ -145,6 +145,12 @@ static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hyl
 				 "svr model %s: envelope steps d %g, z %g, v %g m/s (finite, > 0) or "
 				 "origins z %g, v %g not finite", name, e->d_step, e->z_step, e->v_step,
 				 e->z_min, e->v_min);
+	if (m->n_features == HYLO_FEATURES_PLANAR && e->n_z > 1 &&
+	    !(e->z_min == 0 && fabs(e->n_z * e->z_step - TWO_PI) <= 1e-12 * TWO_PI))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: a planar envelope's %u turn cells of %g rad from %g "
+				 "must cover [0, 2 pi] (or one cell, the turn ignored)", name,
+				 (unsigned)e->n_z, e->z_step, e->z_min);
 	if (!e->value)
 		return hylo_fail(r, HYLO_E_NULL, "svr model %s: the envelope's values are NULL", name);
 	n *= (uint64_t)e->n_v * e->n_v;
@@ -307,6 +313,10 @@ double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, dou
 	k = (uint32_t)x;
 	if (e->n_z > 1) {
 		x = (dz - e->z_min) / e->z_step;
+		/* A planar turn of 2 pi (the goal straight behind with the same
+		 * heading) lies in the last turn cell. */
+		if (x == (double)e->n_z && m->n_features == HYLO_FEATURES_PLANAR)
+			x = e->n_z - 1;
 		if (!(x >= 0 && x < (double)e->n_z))
 			return 0;
 		j = (uint32_t)x;

@@ -14,9 +14,9 @@ tap_check "two exports (the envelope on 1 and on 2 threads) are byte-identical" 
   cmp "$T/a/testbot_ground.h" "$T/b/testbot_ground.h"
 if grep -q '^static const hylo_svr_envelope hylo_model_testbot_ground_envelope = {$' "$T/a/testbot_ground.h" &&
    grep -q '^	.envelope = &hylo_model_testbot_ground_envelope,$' "$T/a/testbot_ground.h" &&
-   grep -q '^ \* envelope: 61 x 1 x 6 cells, margin 0.001, worst sampled shortfall ' "$T/a/testbot_ground.h"; then
-  tap_ok "the header carries the envelope, its model field and its provenance line"; else
-  tap_not_ok "the header carries the envelope, its model field and its provenance line"; fi
+   grep -q '^ \* envelope: 61 x 16 x 6 cells, margin 0.001, worst sampled shortfall ' "$T/a/testbot_ground.h"; then
+  tap_ok "the header carries the envelope (16 turn cells), its model field and its provenance line"; else
+  tap_not_ok "the header carries the envelope (16 turn cells), its model field and its provenance line"; fi
 if grep -q -E '20[0-9]{2}-[0-9]{2}-[0-9]{2}' "$T/a/testbot_ground.h"; then
   tap_not_ok "no date in the header"; else tap_ok "no date in the header"; fi
 printf '#include "testbot_ground.h"\nint main(void) { return hylo_model_testbot_ground.n_sv > 0 ? 0 : 1; }\n' > "$T/use.c"

@@ -127,6 +127,11 @@ int main()
 	c.feature_scale = ground.feature_scale;
 	ground.feasibility = c;
 	round_trip(ground, "with its envelope and feasibility classifier too");
+	SvrExport turning = ground;
+	turning.envelope = table(3, 16, 2);
+	turning.envelope->z_min = 0;
+	turning.envelope->z_step = 2 * 3.14159265358979323846 / 16;
+	round_trip(turning, "with an envelope of 16 turn cells over [0, 2 pi]");
 	SvrExport flight = small("flight", 9);
 	flight.constants = {{"TAKEOFF_J", 375.33, "ground rest -> hover 1 m above [J]"},
 			    {"LANDING_J", 385.6, "hover 1 m above -> ground rest [J]"}};
@@ -175,7 +180,12 @@ int main()
 	check_throws([&] { svr_header_text(bad); }, "steps", "climb cells without a climb step: refused");
 	bad = ground;
 	bad.envelope = table(2, 3, 3);
-	check_throws([&] { svr_header_text(bad); }, "climb cell", "climb cells on a ground model: refused");
+	check_throws([&] { svr_header_text(bad); }, "climb cell",
+		     "climb cells on a ground model (not turn cells over [0, 2 pi]): refused");
+	bad = turning;
+	bad.envelope->z_step *= 1 + 1e-9;
+	check_throws([&] { svr_header_text(bad); }, "turn cells covering [0, 2 pi]",
+		     "turn cells that do not cover [0, 2 pi]: refused");
 	bad = di;
 	bad.envelope = table(2, 1, 3);
 	check_throws([&] { svr_header_text(bad); }, "no envelope", "an envelope on a double integrator: refused");

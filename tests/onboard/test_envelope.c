@@ -1,11 +1,13 @@
 /*
  * The envelope lookup (hylo_svr_envelope_bound, svr.h) and the edge
- * arguments it is looked up with (hylo_envelope_args and
- * hylo_envelope_of_edge, envelope.h) on small hand-made tables: a speed on a
- * node and within 1e-9 of it, between nodes, outside the table, flight
- * climbs and vertical velocities; hylo_svr_check refusing bad tables; and
- * the two feature symmetries the trainer's envelope relies on (a planar
- * goal's mirror image, a flight edge turned about z give the same features).
+ * arguments it is looked up with (hylo_envelope_args, hylo_envelope_turn
+ * and hylo_envelope_of_edge, envelope.h) on small hand-made tables: a speed
+ * on a node and within 1e-9 of it, between nodes, outside the table, flight
+ * climbs and vertical velocities, planar turn cells; the turn itself (known
+ * cases, symmetries, agreement with the features' turn); hylo_svr_check
+ * refusing bad tables; and the two feature symmetries the trainer's
+ * envelope relies on (a planar goal's mirror image, a flight edge turned
+ * about z give the same features).
  * The committed models' tables against their own predictions:
  * tests/export/test_envelope_models.c.
  */
@@ -36,6 +38,19 @@ static hylo_svr_envelope planar_env = { 3, 1, 3, 0.5, 0, 0, 0, 0.5, planar_value
  * 0, 4, 8; value 10000 + 1000 k + 100 j + 10 i1 + i2. */
 static float flight_values[2 * 4 * 3 * 3];
 static hylo_svr_envelope flight_env = { 2, 4, 3, 1.0, -2.0, 1.0, 0, 4.0, flight_values };
+/* Planar with turn cells: 2 distance cells of 1 m, 16 turn cells of 2 pi /
+ * 16, speed nodes 0, 1; value 1000 k + 10 j + 2 i1 + i2 + 1. */
+#define TURN_STEP (2 * PI / 16)
+static float turn_values[2 * 16 * 2 * 2];
+static hylo_svr_envelope turn_env = { 2, 16, 2, 1.0, 0, TURN_STEP, 0, 1.0, turn_values };
+
+static uint64_t rng_state = 12345;
+
+static double uniform(double lo, double hi)
+{
+	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
+	return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
+}
 
 static hylo_svr_model model(uint32_t n_features, const hylo_svr_envelope *env)
 {
@@ -70,6 +85,12 @@ static int setup(void **state)
 				for (b = 0; b < 3; b++)
 					flight_values[((k * 4 + j) * 3 + a) * 3 + b] =
 						(float)(10000 + 1000 * k + 100 * j + 10 * a + b);
+	for (k = 0; k < 2; k++)
+		for (j = 0; j < 16; j++)
+			for (a = 0; a < 2; a++)
+				for (b = 0; b < 2; b++)
+					turn_values[((k * 16 + j) * 2 + a) * 2 + b] =
+						(float)(1000 * k + 10 * j + 2 * a + b + 1);
 	return 0;
 }
 
@@ -166,7 +187,9 @@ static void test_edge_args(void **state)
 
 	(void)state;
 	assert_int_equal(hylo_envelope_args(HYLO_MODE_MARINE, tail, head, a), 1);
-	assert_true(fabs(a[0] - 0.75) < 1e-12 && a[1] == 0 && a[2] == 0.5 && a[3] == 1.0);
+	assert_true(fabs(a[0] - 0.75) < 1e-12 && a[2] == 0.5 && a[3] == 1.0);
+	assert_true(a[1] == hylo_envelope_turn(atan2(-0.6, 0.45), 2.0, -3.0));
+	/* One climb cell: the turn is ignored. */
 	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, head) == 212);
 	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_MARINE, tail, head) == 212);
 	/* The double integrator and invalid modes have none. */
@@ -178,6 +201,114 @@ static void test_edge_args(void **state)
 	assert_int_equal(hylo_envelope_args(HYLO_MODE_GROUND, NULL, head, a), 0);
 	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, NULL) == 0);
 	assert_true(hylo_envelope_of_edge(NULL, HYLO_MODE_GROUND, tail, head) == 0);
+}
+
+/* The turn (hylo_envelope_turn): the least total heading change of a path
+ * from the tail's pose to the head's. */
+static void test_turn_known(void **state)
+{
+	const double t1s[] = { 0, 0.7, -2.0, PI, -PI, 3 * PI / 4, 100.0 };
+	unsigned i;
+
+	(void)state;
+	for (i = 0; i < sizeof t1s / sizeof t1s[0]; i++) {
+		double t1 = t1s[i];
+
+		/* Straight ahead, the same heading: no turn. */
+		assert_true(fabs(hylo_envelope_turn(t1, t1, t1)) < 1e-12);
+		/* Straight ahead, arriving reversed: pi. */
+		assert_true(fabs(hylo_envelope_turn(t1, t1, t1 + PI) - PI) < 1e-12);
+		/* Straight behind: face it (pi) and keep that heading (pi in all)... */
+		assert_true(fabs(hylo_envelope_turn(t1 + PI, t1, t1 + PI) - PI) < 1e-12);
+		/* ... or arrive with the start's heading (turn round again: 2 pi). */
+		assert_true(fabs(hylo_envelope_turn(t1 + PI, t1, t1) - 2 * PI) < 1e-12);
+		/* To the left: face it (pi / 2), then back to the start's heading. */
+		assert_true(fabs(hylo_envelope_turn(t1 + PI / 2, t1, t1) - PI) < 1e-12);
+		assert_true(fabs(hylo_envelope_turn(t1 + PI / 2, t1, t1 + PI / 2) - PI / 2) < 1e-12);
+		/* To the right, arriving 45 degrees further right: pi / 2 + pi / 4. */
+		assert_true(fabs(hylo_envelope_turn(t1 - PI / 2, t1, t1 - 3 * PI / 4) - 3 * PI / 4) < 1e-12);
+		/* Ahead-left at 30 degrees, arriving 30 degrees to the right: 30 + 60. */
+		assert_true(fabs(hylo_envelope_turn(t1 + PI / 6, t1, t1 - PI / 6) - PI / 2) < 1e-12);
+	}
+	/* Exactly 0 and 2 pi where the arguments are exact. */
+	assert_true(hylo_envelope_turn(0, 0, 0) == 0);
+	assert_true(hylo_envelope_turn(PI, 0, 0) == 2 * PI);
+	assert_true(hylo_envelope_turn(-PI / 2, PI / 2, PI / 2) == 2 * PI);
+	assert_true(!isfinite(hylo_envelope_turn(0, NAN, 0)));
+	assert_true(!isfinite(hylo_envelope_turn(0, 0, INFINITY)));
+	assert_true(!isfinite(hylo_envelope_turn(-INFINITY, 0, 0)));
+	assert_true(!isfinite(hylo_envelope_turn(NAN, 0, 0)));
+}
+
+/* Mirror image (y -> -y, headings negated) and turns about z leave it; it
+ * lies in [0, 2 pi]; and it is the features' turn (feature 6) to 1e-12, with
+ * hylo_envelope_args() giving it bit for bit. */
+static void test_turn_symmetry_and_features(void **state)
+{
+	int i;
+
+	(void)state;
+	for (i = 0; i < 20000; i++) {
+		double phi = uniform(-PI, PI), t1 = uniform(-2 * PI, 2 * PI), t2 = uniform(-2 * PI, 2 * PI);
+		double a = uniform(-PI, PI), turn = hylo_envelope_turn(phi, t1, t2);
+		double t[4], h[4], f[HYLO_FEATURES_PLANAR], args[4], d = uniform(1e-6, 5);
+
+		assert_true(turn >= 0 && turn <= 2 * PI);
+		assert_true(fabs(hylo_envelope_turn(-phi, -t1, -t2) - turn) < 1e-12);
+		assert_true(fabs(hylo_envelope_turn(phi + a, t1 + a, t2 + a) - turn) < 1e-12);
+		t[0] = uniform(-50, 50), t[1] = uniform(-50, 50), t[2] = 0.5, t[3] = t1;
+		h[0] = t[0] + d * cos(phi), h[1] = t[1] + d * sin(phi), h[2] = 1, h[3] = t2;
+		hylo_features(i % 2 ? HYLO_MODE_GROUND : HYLO_MODE_MARINE, t, h, f);
+		assert_int_equal(hylo_envelope_args(HYLO_MODE_GROUND, t, h, args), 1);
+		assert_true(args[1] == hylo_envelope_turn(atan2(h[1] - t[1], h[0] - t[0]), t1, t2));
+		if (!(fabs(args[1] - f[6]) <= 1e-12))
+			fail_msg("edge %d: turn %.17g, the features' %.17g", i, args[1], f[6]);
+	}
+	/* Coincident positions: turn 0, whatever the headings. */
+	{
+		double t[4] = { 3, -4, 0.5, -2.0 }, h[4] = { 3, -4, 1, 1.0 }, args[4];
+
+		assert_int_equal(hylo_envelope_args(HYLO_MODE_MARINE, t, h, args), 1);
+		assert_true(args[0] == 0 && args[1] == 0);
+	}
+}
+
+/* Planar turn cells: [j 2 pi / 16, (j + 1) 2 pi / 16), the last also
+ * holding 2 pi; the lookup through hylo_envelope_of_edge. */
+static void test_turn_cells(void **state)
+{
+	hylo_svr_model m = model(HYLO_FEATURES_PLANAR, &turn_env), f = model(HYLO_FEATURES_FLIGHT, &turn_env);
+	const double tail[4] = { 1, 2, 0, PI / 2 };
+	double head[4] = { 1, 1.5, 1, PI / 2 };
+	int j;
+
+	(void)state;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	for (j = 0; j < 16; j++) {
+		assert_true(hylo_svr_envelope_bound(&m, 0.5, j * TURN_STEP * (1 + 1e-12), 0, 0) == 10 * j + 1);
+		assert_true(hylo_svr_envelope_bound(&m, 1.5, (j + 0.5) * TURN_STEP, 1, 0) == 1000 + 10 * j + 3);
+		if (j > 0)
+			assert_true(hylo_svr_envelope_bound(&m, 0.5, j * TURN_STEP * (1 - 1e-12), 0, 0) ==
+				    10 * (j - 1) + 1);
+	}
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, 0, 0, 1) == 2);
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, 2 * PI, 0, 1) == 152);  /* closed: the last cell */
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, nextafter(2 * PI, 0), 0, 1) == 152);
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, nextafter(2 * PI, 7), 0, 1) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, -1e-300, 0, 1) == 0);
+	assert_true(hylo_svr_envelope_bound(&m, 0.5, NAN, 0, 1) == 0);
+	/* Only planar tables close their last cell; flight climbs stay open. */
+	assert_true(hylo_svr_envelope_bound(&f, 0.5, 2 * PI, 0, 1) == 0);
+	/* Straight behind with the same heading: 2 pi. */
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, head) == 152);
+	/* Straight behind, arriving facing it: pi, cell 8. */
+	head[3] = -PI / 2;
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, head) == 82);
+	/* Ahead, the same heading: cell 0; in place: turn 0, cell 0. */
+	head[1] = 2.5, head[3] = PI / 2;
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_MARINE, tail, head) == 2);
+	head[1] = 2, head[3] = -PI / 2;
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_MARINE, tail, head) == 2);
 }
 
 static void expect_refused(hylo_svr_model *m, hylo_status want)
@@ -204,7 +335,18 @@ static void test_check_refuses_bad_tables(void **state)
 	expect_refused(&m, HYLO_E_BAD_VALUE);
 	e = planar_env, e.n_z = 0;
 	expect_refused(&m, HYLO_E_BAD_VALUE);
-	e = planar_env, e.n_z = 2, e.z_step = 1;  /* planar tables have one climb cell */
+	/* Planar tables have one climb cell or turn cells covering [0, 2 pi]. */
+	e = planar_env, e.n_z = 2, e.z_step = 1;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = turn_env;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	e = turn_env, e.z_min = -1e-9;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = turn_env, e.n_z = 15;
+	expect_refused(&m, HYLO_E_BAD_VALUE);
+	e = turn_env, e.n_z = 8, e.z_step = 2 * TURN_STEP;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	e = turn_env, e.z_step = TURN_STEP * (1 + 1e-9);
 	expect_refused(&m, HYLO_E_BAD_VALUE);
 	e = planar_env, e.d_step = 0;
 	expect_refused(&m, HYLO_E_BAD_VALUE);
@@ -237,14 +379,6 @@ static void test_check_refuses_bad_tables(void **state)
 	expect_refused(&f, HYLO_E_BAD_VALUE);
 	/* The double integrator has no envelope. */
 	expect_refused(&di, HYLO_E_BAD_VALUE);
-}
-
-static uint64_t rng_state = 12345;
-
-static double uniform(double lo, double hi)
-{
-	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
-	return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
 }
 
 static void assert_features_close(const double *a, const double *b, unsigned n)
@@ -313,6 +447,9 @@ int main(void)
 		cmocka_unit_test(test_out_of_range),
 		cmocka_unit_test(test_flight),
 		cmocka_unit_test(test_edge_args),
+		cmocka_unit_test(test_turn_known),
+		cmocka_unit_test(test_turn_symmetry_and_features),
+		cmocka_unit_test(test_turn_cells),
 		cmocka_unit_test(test_check_refuses_bad_tables),
 		cmocka_unit_test(test_symmetries),
 	};

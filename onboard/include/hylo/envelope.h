@@ -3,15 +3,18 @@
  * (hylo_svr_envelope, svr.h) is looked up with, computed from the edge's two
  * sampled states, so that the planner, the tools and the trainer measure
  * edges the same way.
- *   ground, marine: (d, 0, vx1, vx2), d = |(x2 - x1, y2 - y1)|
+ *   ground, marine: (d, turn, vx1, vx2), d = |(x2 - x1, y2 - y1)| and turn =
+ *                   hylo_envelope_turn(atan2(y2 - y1, x2 - x1), theta1,
+ *                   theta2), 0 when the two positions coincide
  *   flight:         (d, z2 - z1, |(vx1, vy1)|, |(vx2, vy2)|), d the
  *                   horizontal distance; only level velocities (vz = 0):
  *                   the roadmap uses no others and the model was trained on
  *                   no others, so an edge with a vertical velocity has none
  *   double integrator: none (its features are absolute positions)
- * The bound holds for every heading (ground, marine: the tail's and the
- * head's; flight: every direction of either level velocity and of the
- * displacement), because the table is the least cost over all of them.
+ * The bound holds for every heading (ground, marine: every tail and head
+ * heading of that turn; flight: every direction of either level velocity
+ * and of the displacement), because the table is the least cost over all
+ * of them.
  */
 #ifndef HYLO_ENVELOPE_H
 #define HYLO_ENVELOPE_H
@@ -20,13 +23,32 @@
 #include "hylo/types.h"
 
 /**
- * Writes the envelope arguments (distance [m], climb [m], tail speed, head
- * speed [m/s]; see above) of the edge tail_xs -> head_xs (sampled
- * coordinates of mode, HYLO_XS_DIM at most) into args[4] and returns 1;
- * returns 0 and leaves args untouched when the edge has none (the double
- * integrator, an invalid mode, a flight state with vz != 0). Uses sqrt
- * only (correctly rounded: the same bits on every target). No allocation;
- * safe in a control loop.
+ * The turn of a planar edge [rad], in [0, 2 pi]: the least total heading
+ * change of a path from the tail's pose to the head's (face the goal, drive,
+ * turn to the goal's heading), the SVR's turn feature (features.h, feature
+ * 6), computed from the world bearing phi = atan2(dy, dx) of the
+ * displacement and the tail and head headings theta1, theta2 [rad]:
+ *   b = wrap(phi - theta1), s = b < 0 ? -1 : 1, b = |b|,
+ *   dth = s * wrap(theta2 - theta1), turn = b + |wrap(dth - b)|
+ * (wrap: hylo_wrap_angle). Straight ahead with the same heading 0; the goal
+ * straight behind with the same heading 2 pi. A caller can compute phi once
+ * per pair of positions; the result is bit for bit hylo_envelope_args()'s.
+ * The features compute it along another path (in the tail's frame), so the
+ * two may differ in the last bits: every envelope turn cell holds for edges
+ * on either side of its boundaries (onboard/models/README.md, "Envelope").
+ * fmod and fabs only (exact). Not finite when an argument is not (the
+ * lookup then gives no bound). No allocation; safe in a control loop.
+ */
+hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2);
+
+/**
+ * Writes the envelope arguments (distance [m], turn [rad] or climb [m],
+ * tail speed, head speed [m/s]; see above) of the edge tail_xs -> head_xs
+ * (sampled coordinates of mode, HYLO_XS_DIM at most) into args[4] and
+ * returns 1; returns 0 and leaves args untouched when the edge has none
+ * (the double integrator, an invalid mode, a flight state with vz != 0).
+ * Uses sqrt and, for ground and marine, atan2 (libm's, as the features
+ * do). No allocation; safe in a control loop.
  */
 int hylo_envelope_args(hylo_mode mode, const hylo_real *tail_xs, const hylo_real *head_xs,
                        hylo_real *args);

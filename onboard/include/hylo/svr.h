@@ -24,13 +24,19 @@
 /*
  * A cost model's envelope (onboard/models/README.md, "Envelope"): a table of
  * lower bounds of the model's predicted cost (hylo_svr_predict, before the
- * planner's floor) that depend only on an edge's distance (and climb) and its
- * speeds, each the least predicted cost over every heading / velocity
- * direction of the edges in its cell, minus a measured margin. The planner's
- * A* uses it as an admissible edge bound far tighter than the per-metre floor.
+ * planner's floor) that depend only on an edge's distance, its turn (ground,
+ * marine) or climb (flight) and its speeds, each the least predicted cost
+ * over every heading / velocity direction of the edges in its cell, minus a
+ * measured margin. The planner's A* uses it as an admissible edge bound far
+ * tighter than the per-metre floor.
  *   distance cell k: [k d_step, (k+1) d_step), k < n_d
  *   climb cell j:    [z_min + j z_step, z_min + (j+1) z_step), j < n_z
- *                    (n_z = 1: the climb is ignored; ground and marine)
+ *                    flight: the climb [m]; ground and marine: the turn
+ *                    (hylo_envelope_turn) [rad], z_min = 0 and n_z z_step =
+ *                    2 pi, the last cell closed (it holds 2 pi), each cell
+ *                    also holding turns within 1e-9 rad of its ends (the
+ *                    features' turn may differ from hylo_envelope_turn's in
+ *                    the last bits); n_z = 1: the climb or turn is ignored
  *   speed node i:    v_min + i v_step, i < n_v
  *   value[((k * n_z + j) * n_v + i1) * n_v + i2] [J]: the bound for tail
  *   speed node i1 and head speed node i2.
@@ -39,9 +45,9 @@
  * double, so the lookup needs no libm and gives the same bits everywhere.
  */
 typedef struct {
-	uint32_t n_d, n_z, n_v;        /* distance cells, climb cells, speed nodes; each >= 1 */
+	uint32_t n_d, n_z, n_v;        /* distance, climb (turn) cells, speed nodes; each >= 1 */
 	double d_step;                 /* distance cell width [m], > 0 */
-	double z_min, z_step;          /* climb cells [m]; z_step > 0 when n_z > 1 */
+	double z_min, z_step;          /* climb [m] or turn [rad] cells; z_step > 0 when n_z > 1 */
 	double v_min, v_step;          /* speed nodes [m/s]; v_step > 0 */
 	const float *value;            /* n_d * n_z * n_v * n_v bounds [J], finite, >= 0 */
 } hylo_svr_envelope;
@@ -71,9 +77,11 @@ typedef struct {
 /**
  * Checks a model: non-NULL arrays, sizes within capacity (HYLO_E_CAP_SV),
  * finite numbers, positive gamma and scales (HYLO_E_BAD_VALUE); and its
- * envelope, if any: only on a planar (8 features, n_z = 1) or flight (9)
- * model, every count >= 1 and n_d * n_z * n_v * n_v below 2^32, steps finite
- * and > 0 (z_step only when n_z > 1), every value finite and >= 0
+ * envelope, if any: only on a planar (8 features) or flight (9) model,
+ * every count >= 1 and n_d * n_z * n_v * n_v below 2^32, steps finite and
+ * > 0 (z_step only when n_z > 1), a planar table's turn cells (n_z > 1)
+ * covering [0, 2 pi] (z_min = 0, n_z z_step = 2 pi to 1e-12 relative), every
+ * value finite and >= 0
  * (HYLO_E_BAD_VALUE; a NULL value array: HYLO_E_NULL). O(n_sv * n_features
  * + envelope values). No allocation.
  */
@@ -99,9 +107,10 @@ int hylo_svr_speed_trained(const hylo_svr_model *m, double speed);
 
 /**
  * m's envelope bound [J] for an edge of horizontal distance d [m], climb dz
- * [m] (ignored when the envelope has one climb cell) and tail and head
- * speeds v1, v2 [m/s] (hylo_envelope_args() computes these from two sampled
- * states): the table value of the cell holding (d, dz) for the speed nodes
+ * [m] (flight) or turn dz [rad] (ground, marine; ignored when the envelope
+ * has one climb cell) and tail and head speeds v1, v2 [m/s]
+ * (hylo_envelope_args() computes these from two sampled states): the table
+ * value of the cell holding (d, dz) for the speed nodes
  * v1 and v2, a lower bound of hylo_svr_predict for every such edge. A speed
  * within 1e-9 m/s of a node uses that node; a speed between two nodes uses
  * the least value over the bracketing nodes, which is NOT a guaranteed bound
