@@ -81,6 +81,8 @@ void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hyl
 			    mm->model->n_features == hylo_feature_count(pb->mode)
 		    ? mm->model : NULL;
 	/* As hylo_envelope_args measures them. */
+	pb->dx = dx;
+	pb->dy = dy;
 	pb->d = sqrt(dx * dx + dy * dy);
 	pb->dz = b.z - a.z;
 	pb->phi = atan2(dy, dx);
@@ -99,7 +101,11 @@ hylo_real hylo_planner_bound(const hylo_pair_bound *pb, const hylo_real *tail, c
 					    sqrt(tail[3] * tail[3] + tail[4] * tail[4]),
 					    sqrt(head[3] * head[3] + head[4] * head[4]));
 	} else {
-		e = hylo_svr_envelope_bound(pb->model, pb->d, 0, tail[2], head[2]);
+		/* As hylo_envelope_args: the turn in the climb axis, 0 in place. */
+		hylo_real turn = pb->model->envelope->n_z == 1 || (pb->dx == 0 && pb->dy == 0)
+					 ? 0 : hylo_envelope_turn(pb->phi, tail[3], head[3]);
+
+		e = hylo_svr_envelope_bound(pb->model, pb->d, turn, tail[2], head[2]);
 	}
 	return e > pb->floor ? e : pb->floor;
 }

@@ -41,6 +41,7 @@ typedef struct {
 	hylo_real floor;                /* the model's floor for the distance [J] */
 	const hylo_svr_model *model;    /* with an envelope, else NULL */
 	hylo_mode mode;
+	hylo_real dx, dy;               /* displacement */
 	hylo_real d, dz, phi;           /* horizontal distance, climb, bearing */
 } hylo_pair_bound;
 

@@ -22,7 +22,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hylo/envelope.h"
 #include "onboard/testutil_models.h"
+#include "src/planner_internal.h"
 
 #define PAIRS 4
 
@@ -225,6 +227,63 @@ static void test_optimal_every_robot(void **state)
 	tu_map_free(&m);
 }
 
+/* ---- edge bounds --------------------------------------------------------- */
+
+/* The planner's per-pair bounds equal the floor raised to
+ * hylo_envelope_of_edge, bit for bit, on every edge of the graphs: the
+ * heuristic, the lazy keys and the costs' clamp all use the same numbers. */
+static void check_bounds(const tu_map *m, hylo_goal g)
+{
+	const hylo_roadmap *rm;
+	uint32_t *heads = malloc(HYLO_MAX_SUCCESSORS * sizeof *heads), u, n, k, checked = 0;
+
+	assert_non_null(heads);
+	set_map(m);
+	hylo_planner_plan(planner, &g, plan);
+	assert_int_equal(plan->outcome, HYLO_FOUND);
+	rm = hylo_planner_roadmap(planner);
+	for (u = 0; u < rm->n_nodes + 1; u++) {
+		uint32_t i = rm->node_pos[u];
+		hylo_real tail[HYLO_XS_DIM];
+
+		hylo_planner_node_state(planner, i, u - rm->pos[i].node_base, tail);
+		assert_int_equal(hylo_planner_successors(planner, u, heads, &n), HYLO_OK);
+		for (k = 0; k < n; k++) {
+			uint32_t j = rm->node_pos[heads[k]];
+			const hylo_mode_model *mm = hylo_planner_mode_model(planner, (hylo_mode)rm->pos[i].mode);
+			hylo_real head[HYLO_XS_DIM], want, got, e;
+			hylo_pair_bound pb;
+
+			if (rm->pos[j].mode != rm->pos[i].mode)
+				continue;   /* a switch edge */
+			hylo_planner_node_state(planner, j, heads[k] - rm->pos[j].node_base, head);
+			hylo_planner_pair_bound(planner, i, j, &pb);
+			got = hylo_planner_bound(&pb, tail, head);
+			want = mm->model->cost_floor_j + mm->model->cost_floor_per_m * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
+			e = hylo_envelope_of_edge(mm->model, (hylo_mode)rm->pos[i].mode, tail, head);
+			if (e > want)
+				want = e;
+			assert_memory_equal(&got, &want, sizeof got);
+			checked++;
+		}
+	}
+	assert_true(checked > 1000);
+	free(heads);
+}
+
+static void test_bounds_match_envelope(void **state)
+{
+	tu_map m;
+
+	(void)state;
+	tm_small_river(&m);
+	check_bounds(&m, tm_river_goal());
+	tu_map_free(&m);
+	tm_small_chasm(&m);
+	check_bounds(&m, tm_chasm_goal());
+	tu_map_free(&m);
+}
+
 /* ---- anytime ------------------------------------------------------------ */
 
 static void test_anytime(void **state)
@@ -332,6 +391,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_optimal_every_robot),
+		cmocka_unit_test(test_bounds_match_envelope),
 		cmocka_unit_test(test_anytime),
 		cmocka_unit_test(test_sizing),
 	};
