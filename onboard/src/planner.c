@@ -113,7 +113,9 @@ hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_
 	pl->cache.enabled = 0;
 	pl->h_valid = 0;
 	pl->n_goal_adj = 0;
+	pl->n_start_adj = 0;
 	memset(pl->links_goal, 0, sizeof pl->links_goal);
+	memset(pl->links_start, 0, sizeof pl->links_start);
 	if (cfg->n_robots > HYLO_MAX_ROBOTS)
 		return hylo_fail(&pl->reason, HYLO_E_CAP_ROBOTS,
 				 "%u robots, more than HYLO_MAX_ROBOTS = %d",
@@ -413,6 +415,8 @@ static hylo_status connect_terminals(hylo_planner *pl, const hylo_goal *g, hylo_
 
 	for (k = 0; k < pl->n_goal_adj; k++)
 		pl->links_goal[pl->goal_adj[k]] = 0;
+	for (k = 0; k < pl->n_start_adj; k++)
+		pl->links_start[pl->start_adj[k]] = 0;
 	pl->n_goal_adj = 0;
 	pl->n_start_adj = 0;
 	pl->start_pos = rm->n_positions;
@@ -431,6 +435,8 @@ static hylo_status connect_terminals(hylo_planner *pl, const hylo_goal *g, hylo_
 		return st;
 	for (k = 0; k < pl->n_goal_adj; k++)
 		pl->links_goal[pl->goal_adj[k]] = 1;
+	for (k = 0; k < pl->n_start_adj; k++)
+		pl->links_start[pl->start_adj[k]] = 1;
 	pl->start_goal_linked =
 		g->start_mode == g->goal_mode &&
 		hylo_roadmap_distance(ps, pg) <= hylo_roadmap_radius(rm, (hylo_mode)g->goal_mode) &&
@@ -547,7 +553,9 @@ static hylo_status roadmap_for(hylo_planner *pl, const hylo_sampling *s, hylo_pl
 		return st;
 	/* The old goal's links refer to positions that no longer exist. */
 	memset(pl->links_goal, 0, sizeof pl->links_goal);
+	memset(pl->links_start, 0, sizeof pl->links_start);
 	pl->n_goal_adj = 0;
+	pl->n_start_adj = 0;
 	pl->h_valid = 0;
 	hylo_edge_cache_reset(&pl->cache, rm);
 	return HYLO_OK;

@@ -5,17 +5,43 @@
 
 /*
  * The A* heuristic: exact shortest distances to the goal on the search graph
- * itself, every edge weighted by its bound (hylo_planner_bound: the
- * model's floor raised to its envelope for the edge's distance, speeds and,
- * where the envelope has them, turn or climb; the switch cost). Edge costs
- * are raised to their bound, so the heuristic is admissible and consistent,
- * and it sees obstacles, water, mode changes and the costs of changing
- * speed and heading. Computed by one backward Dijkstra over every node (no
- * model evaluation, one envelope lookup per edge), with one extra node that
- * is never reached so that it runs to exhaustion; nodes that cannot reach
- * the goal get +inf and are never expanded. It depends on the goal and the
- * roadmap only: a new start on the same goal reuses it.
+ * itself, every edge weighted by its bound (hylo_planner_bound: the model's
+ * floor raised to its envelope for the edge's distance, speeds and, where
+ * the envelope has them, turn or climb; the switch cost). Edge costs are
+ * raised to their bound, so the heuristic is admissible and consistent, and
+ * it sees obstacles, water, mode switches and the costs of changing speed
+ * and heading. One backward Dijkstra from the goal (no model evaluation, one
+ * envelope lookup per edge) settles the nodes in order of their distance;
+ * it stops once it has passed the start's own distance by HEURISTIC_REACH,
+ * and every node not settled by then gets that radius R, no more: still
+ * admissible and consistent (an unsettled node's distance is at least R),
+ * and a node beyond R could only be on a plan costing more than R. A new
+ * start on the same goal reuses the distances when it lies well inside R.
  */
+
+/* How far past the start's distance the backward search goes. */
+#define HEURISTIC_REACH 1.25
+
+/* Node ids around the graph's: the goal's, and a sentinel the search
+ * reaches once the radius is HEURISTIC_REACH times the start's distance. */
+static uint32_t sentinel(const hylo_planner *pl)
+{
+	return pl->roadmap.n_nodes + 2;
+}
+
+static hylo_status push(hylo_planner *pl, const hylo_search *s, uint32_t u, hylo_real cost,
+			uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
+{
+	if (hylo_search_closed(s, u))
+		return HYLO_OK;
+	if (*n >= cap)
+		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+				 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
+				 HYLO_MAX_SUCCESSORS);
+	heads[*n] = u;
+	costs[(*n)++] = cost;
+	return HYLO_OK;
+}
 
 /* The switch edges into node v (position j) from j's guard twin. */
 static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t v,
@@ -23,27 +49,40 @@ static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, u
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	uint32_t j = rm->node_pos[v], t = rm->pos[j].twin, c, k, m, combos[HYLO_MAX_COMBOS];
+	hylo_status st = HYLO_OK;
 
 	if (j >= rm->n_positions || t == HYLO_NO_POSITION)
 		return HYLO_OK;
-	for (c = 0; c < rm->pos[t].n_combos; c++) {
-		uint32_t u = rm->pos[t].node_base + c;
-
-		if (hylo_search_closed(s, u))
-			continue;
+	for (c = 0; c < rm->pos[t].n_combos && st == HYLO_OK; c++) {
 		m = hylo_roadmap_switch_heads(rm, t, c, combos);
-		for (k = 0; k < m; k++) {
-			if (rm->pos[j].node_base + combos[k] != v)
-				continue;
-			if (*n >= cap)
-				return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
-						 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
-						 HYLO_MAX_SUCCESSORS);
-			heads[*n] = u;
-			costs[(*n)++] = hylo_planner_switch_cost(pl, t);
-		}
+		for (k = 0; k < m && st == HYLO_OK; k++)
+			if (rm->pos[j].node_base + combos[k] == v)
+				st = push(pl, s, rm->pos[t].node_base + c, hylo_planner_switch_cost(pl, t),
+					  heads, costs, cap, n);
 	}
-	return HYLO_OK;
+	return st;
+}
+
+/* The edges from the nodes of position i into node v (position j, state head). */
+static hylo_status position_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t i,
+					 uint32_t j, const hylo_real *head, uint32_t *heads,
+					 hylo_real *costs, uint32_t cap, uint32_t *n)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_position *p = &rm->pos[i];
+	hylo_real tail[HYLO_XS_DIM];
+	hylo_pair_bound pb;
+	uint32_t c;
+	hylo_status st = HYLO_OK;
+
+	hylo_planner_pair_bound(pl, i, j, &pb);
+	for (c = 0; c < p->n_combos && st == HYLO_OK; c++) {
+		if (hylo_search_closed(s, p->node_base + c))
+			continue;
+		hylo_planner_node_state(pl, i, c, tail);
+		st = push(pl, s, p->node_base + c, hylo_planner_bound(&pb, tail, head), heads, costs, cap, n);
+	}
+	return st;
 }
 
 static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32_t *heads,
@@ -51,17 +90,19 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 {
 	hylo_planner *pl = ctx;
 	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t j, k, c, n_pred;
+	uint32_t j, k, n_pred;
 	const uint32_t *pred;
-	hylo_real head[HYLO_XS_DIM], tail[HYLO_XS_DIM];
+	hylo_real head[HYLO_XS_DIM];
+	hylo_status st = HYLO_OK;
 
 	(void)r;
 	*n = 0;
 	if (v >= rm->n_nodes + 2)
 		return HYLO_OK;
 	j = rm->node_pos[v];
-	if (j == pl->start_pos)
-		return HYLO_OK;
+	if (j == pl->start_pos)   /* its distance is known: go on to the sentinel */
+		return push(pl, s, sentinel(pl), (HEURISTIC_REACH - 1) * hylo_search_cost(s, v), heads,
+			    costs, cap, n);
 	hylo_planner_node_state(pl, j, v - rm->pos[j].node_base, head);
 	/* Same-mode neighbours are symmetric: j's list is also its predecessors. */
 	if (j == pl->goal_pos) {
@@ -70,37 +111,19 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 	} else {
 		pred = hylo_planner_neighbours(pl, j, &n_pred);
 	}
-	for (k = 0; k < n_pred; k++) {
-		const hylo_position *p = &rm->pos[pred[k]];
-		hylo_pair_bound pb;
-
-		hylo_planner_pair_bound(pl, pred[k], j, &pb);
-		for (c = 0; c < p->n_combos; c++) {
-			uint32_t u = p->node_base + c;
-
-			if (hylo_search_closed(s, u))
-				continue;
-			if (*n >= cap)
-				return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
-						 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
-						 HYLO_MAX_SUCCESSORS);
-			hylo_roadmap_state(rm, pred[k], c, tail);
-			heads[*n] = u;
-			costs[(*n)++] = hylo_planner_bound(&pb, tail, head);
-		}
-	}
-	return switch_predecessors(pl, s, v, heads, costs, cap, n);
+	for (k = 0; k < n_pred && st == HYLO_OK; k++)
+		st = position_predecessors(pl, s, pred[k], j, head, heads, costs, cap, n);
+	if (st == HYLO_OK && ((j == pl->goal_pos && pl->start_goal_linked) ||
+			      (j < rm->n_positions && pl->links_start[j])))
+		st = position_predecessors(pl, s, pl->start_pos, j, head, heads, costs, cap, n);
+	if (st == HYLO_OK)
+		st = switch_predecessors(pl, s, v, heads, costs, cap, n);
+	return st;
 }
 
-/* 1 when h was computed for this goal on this roadmap. */
-static int still_valid(const hylo_planner *pl)
-{
-	return pl->h_valid && pl->h_goal_mode == pl->roadmap.pos[pl->goal_pos].mode &&
-	       memcmp(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs) == 0;
-}
-
-/* The start has no incoming edges; its bound comes from its edges out. */
-static void start_heuristic(hylo_planner *pl)
+/* The start's distance from the kept distances (its successors'), to see
+ * whether they reach far enough for it. */
+static hylo_real start_distance(const hylo_planner *pl)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	uint32_t k, c, n_adj;
@@ -125,7 +148,23 @@ static void start_heuristic(hylo_planner *pl)
 				best = v;
 		}
 	}
-	pl->h_node[rm->n_nodes] = best;
+	return best;
+}
+
+/* 1 when the kept distances were computed for this goal on this roadmap
+ * and reach well past the start's. */
+static int still_valid(hylo_planner *pl)
+{
+	hylo_real d;
+
+	if (!pl->h_valid || pl->h_goal_mode != pl->roadmap.pos[pl->goal_pos].mode ||
+	    memcmp(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs) != 0)
+		return 0;
+	d = start_distance(pl);
+	if (!(HEURISTIC_REACH * d <= pl->h_radius))
+		return 0;
+	pl->h_node[pl->roadmap.n_nodes] = d;
+	return 1;
 }
 
 hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget)
@@ -133,27 +172,32 @@ hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget)
 	const hylo_roadmap *rm = &pl->roadmap;
 	hylo_graph g;
 	hylo_outcome outcome;
+	hylo_real radius, h;
 	uint32_t v;
 	hylo_status st;
 
-	if (!still_valid(pl)) {
-		pl->h_valid = 0;
-		g.n_nodes = rm->n_nodes + 3;
-		g.expand = expand_backward;
-		g.resolve = NULL;
-		g.heuristic = NULL;
-		g.weight = 1;
-		g.ctx = pl;
-		st = hylo_search_run(&pl->search, &g, rm->n_nodes + 1, rm->n_nodes + 2, budget, &outcome,
-				     &pl->reason);
-		if (st != HYLO_OK)
-			return st;
-		for (v = 0; v < rm->n_nodes + 2; v++)
-			pl->h_node[v] = hylo_search_cost(&pl->search, v);
-		pl->h_valid = 1;
-		pl->h_goal_mode = rm->pos[pl->goal_pos].mode;
-		memcpy(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs);
+	if (still_valid(pl))
+		return HYLO_OK;
+	pl->h_valid = 0;
+	g.n_nodes = rm->n_nodes + 3;
+	g.expand = expand_backward;
+	g.resolve = NULL;
+	g.heuristic = NULL;
+	g.weight = 1;
+	g.ctx = pl;
+	st = hylo_search_run(&pl->search, &g, rm->n_nodes + 1, sentinel(pl), budget, &outcome,
+			     &pl->reason);
+	if (st != HYLO_OK)
+		return st;
+	/* Found: every node with a distance below the radius is settled. */
+	radius = outcome == HYLO_FOUND ? hylo_search_cost(&pl->search, sentinel(pl)) : INFINITY;
+	for (v = 0; v < rm->n_nodes + 2; v++) {
+		h = hylo_search_cost(&pl->search, v);
+		pl->h_node[v] = h < radius ? h : radius;
 	}
-	start_heuristic(pl);
+	pl->h_radius = radius;
+	pl->h_valid = 1;
+	pl->h_goal_mode = rm->pos[pl->goal_pos].mode;
+	memcpy(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs);
 	return HYLO_OK;
 }

@@ -128,9 +128,11 @@ typedef struct {
 	uint32_t goal_adj[HYLO_MAX_SUCCESSORS];
 	int start_goal_linked;          /* a direct start -> goal edge exists */
 	uint8_t links_goal[HYLO_MAX_POSITIONS];
+	uint8_t links_start[HYLO_MAX_POSITIONS];
 	/* the heuristic: a lower bound of each node's cost to the goal, kept
 	 * while the roadmap and the goal stay (planner_heuristic.c) */
 	hylo_real h_node[HYLO_MAX_NODES];
+	hylo_real h_radius;             /* exact up to here, this beyond */
 	int h_valid;
 	uint8_t h_goal_mode;
 	hylo_real h_goal_xs[HYLO_XS_DIM];
