@@ -3,13 +3,16 @@
 #include "hylo/envelope.h"
 #include "hylo/features.h"
 
+hylo_real hylo_envelope_turn_of(hylo_real bearing, hylo_real dtheta)
+{
+	hylo_real s = bearing < 0 ? -1 : 1, b = fabs(bearing);
+
+	return b + fabs(hylo_wrap_angle(s * dtheta - b));
+}
+
 hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2)
 {
-	hylo_real b = hylo_wrap_angle(phi - theta1), s = b < 0 ? -1 : 1, dth;
-
-	b = fabs(b);
-	dth = s * hylo_wrap_angle(theta2 - theta1);
-	return b + fabs(hylo_wrap_angle(dth - b));
+	return hylo_envelope_turn_of(hylo_wrap_angle(phi - theta1), hylo_wrap_angle(theta2 - theta1));
 }
 
 int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *head,

@@ -558,6 +558,7 @@ static hylo_status roadmap_for(hylo_planner *pl, const hylo_sampling *s, hylo_pl
 	pl->n_start_adj = 0;
 	pl->h_valid = 0;
 	hylo_edge_cache_reset(&pl->cache, rm);
+	hylo_planner_bound_tables(pl);
 	return HYLO_OK;
 }
 

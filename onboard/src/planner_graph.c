@@ -67,15 +67,54 @@ const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint
 	return &pl->roadmap.adjacency[p->adj_begin];
 }
 
+/* The envelope's speed nodes of every combination of each mode, and the
+ * heading changes of the heading grid, for the bounds' fast path (as
+ * hylo_envelope_args would compute them from the combinations' states). */
+void hylo_planner_bound_tables(hylo_planner *pl)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_sampling *s = &rm->sampling;
+	uint32_t k, c, h1, h2;
+
+	for (k = 0; k < pl->robot->n_modes; k++) {
+		hylo_mode mode = pl->robot->modes[k].mode;
+		const hylo_svr_model *m = pl->robot->modes[k].model;
+		uint32_t n = hylo_roadmap_combos(rm, mode);
+
+		for (c = 0; c < n && c < HYLO_MAX_COMBOS; c++) {
+			hylo_real xs[HYLO_XS_DIM], v;
+
+			memset(xs, 0, sizeof xs);
+			pl->combo_speed_ok[k][c] = 0;
+			if (mode == HYLO_MODE_FLIGHT) {
+				xs[3] = rm->air_velocity[c][0];
+				xs[4] = rm->air_velocity[c][1];
+				v = sqrt(xs[3] * xs[3] + xs[4] * xs[4]);
+			} else if (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) {
+				v = s->speeds[c / s->n_headings];
+			} else {
+				continue;   /* the double integrator: no envelope */
+			}
+			pl->combo_speed_ok[k][c] = (uint8_t)hylo_svr_envelope_speed(m, v, pl->combo_speed[k][c]);
+		}
+	}
+	for (h1 = 0; h1 < s->n_headings; h1++)
+		for (h2 = 0; h2 < s->n_headings; h2++)
+			pl->heading_change[h1][h2] = hylo_wrap_angle(s->headings[h2] - s->headings[h1]);
+}
+
 void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	const hylo_point a = rm->pos[i].p, b = rm->pos[j].p;
 	const hylo_mode_model *mm;
 	hylo_real dx = b.x - a.x, dy = b.y - a.y;
+	uint32_t h;
 
+	pb->pl = pl;
 	pb->mode = (hylo_mode)rm->pos[i].mode;
-	mm = hylo_planner_mode_model(pl, pb->mode);
+	pb->slot = hylo_robot_mode_index(pl->robot, pb->mode);
+	mm = &pl->robot->modes[pb->slot];
 	pb->floor = floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(a, b);
 	pb->model = mm->model && mm->model->envelope &&
 			    mm->model->n_features == hylo_feature_count(pb->mode)
@@ -86,28 +125,121 @@ void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hyl
 	pb->d = sqrt(dx * dx + dy * dy);
 	pb->dz = b.z - a.z;
 	pb->phi = atan2(dy, dx);
+	pb->roadmap_ends = i < rm->n_positions && j < rm->n_positions;
+	pb->by_turn = pb->model && pb->mode != HYLO_MODE_FLIGHT && pb->model->envelope->n_z > 1 &&
+		      !(dx == 0 && dy == 0);
+	/* A cell for the whole pair (flight: the climb; planar without turns:
+	 * distance only, or in place: turn 0), else per heading pair. */
+	pb->cell_ok = pb->model && !pb->by_turn &&
+		      hylo_svr_envelope_cell(pb->model, pb->d, pb->mode == HYLO_MODE_FLIGHT ? pb->dz : 0,
+					     &pb->cell);
+	if (pb->by_turn && pb->roadmap_ends)
+		for (h = 0; h < rm->sampling.n_headings; h++)
+			pb->bearing[h] = hylo_wrap_angle(pb->phi - rm->sampling.headings[h]);
 }
 
-hylo_real hylo_planner_bound(const hylo_pair_bound *pb, const hylo_real *tail, const hylo_real *head)
+/* The envelope from the states: hylo_envelope_of_edge's arithmetic, for
+ * edges from or to the start and the goal. */
+static hylo_real envelope_of_states(const hylo_pair_bound *pb, const hylo_real *tail,
+				    const hylo_real *head)
+{
+	if (pb->mode == HYLO_MODE_FLIGHT) {
+		if (tail[5] != 0 || head[5] != 0)
+			return 0;
+		return hylo_svr_envelope_bound(pb->model, pb->d, pb->dz,
+					       sqrt(tail[3] * tail[3] + tail[4] * tail[4]),
+					       sqrt(head[3] * head[3] + head[4] * head[4]));
+	}
+	return hylo_svr_envelope_bound(pb->model, pb->d,
+				       pb->by_turn ? hylo_envelope_turn(pb->phi, tail[3], head[3]) : 0,
+				       tail[2], head[2]);
+}
+
+/* The same from the combinations' precomputed speed nodes and bearings. */
+static hylo_real envelope_of_combos(const hylo_pair_bound *pb, uint32_t ci, uint32_t cj)
+{
+	const hylo_planner *pl = pb->pl;
+	uint32_t nh = pl->roadmap.sampling.n_headings;
+	size_t cell = pb->cell;
+
+	if (!pl->combo_speed_ok[pb->slot][ci] || !pl->combo_speed_ok[pb->slot][cj])
+		return 0;
+	if (pb->by_turn) {
+		if (!hylo_svr_envelope_cell(pb->model, pb->d,
+					    hylo_envelope_turn_of(pb->bearing[ci % nh],
+								  pl->heading_change[ci % nh][cj % nh]),
+					    &cell))
+			return 0;
+	} else if (!pb->cell_ok) {
+		return 0;
+	}
+	return hylo_svr_envelope_value(pb->model, cell, pl->combo_speed[pb->slot][ci],
+				       pl->combo_speed[pb->slot][cj]);
+}
+
+hylo_real hylo_planner_bound(const hylo_pair_bound *pb, uint32_t ci, const hylo_real *tail,
+			     uint32_t cj, const hylo_real *head)
 {
 	hylo_real e;
 
 	if (!pb->model)
 		return pb->floor;
-	if (pb->mode == HYLO_MODE_FLIGHT) {
-		if (tail[5] != 0 || head[5] != 0)
-			return pb->floor;
-		e = hylo_svr_envelope_bound(pb->model, pb->d, pb->dz,
-					    sqrt(tail[3] * tail[3] + tail[4] * tail[4]),
-					    sqrt(head[3] * head[3] + head[4] * head[4]));
-	} else {
-		/* As hylo_envelope_args: the turn in the climb axis, 0 in place. */
-		hylo_real turn = pb->model->envelope->n_z == 1 || (pb->dx == 0 && pb->dy == 0)
-					 ? 0 : hylo_envelope_turn(pb->phi, tail[3], head[3]);
-
-		e = hylo_svr_envelope_bound(pb->model, pb->d, turn, tail[2], head[2]);
-	}
+	e = pb->roadmap_ends ? envelope_of_combos(pb, ci, cj) : envelope_of_states(pb, tail, head);
 	return e > pb->floor ? e : pb->floor;
+}
+
+/* The bounds of the edges between one combination (fixed, at end `at` of
+ * the pair: 0 the tail, 1 the head) and every combination of the other
+ * position, into out[]: hylo_planner_bound()'s numbers, each cell and turn
+ * computed once for all the speeds that share it. */
+static void bounds_batch(const hylo_pair_bound *pb, int at, uint32_t fixed, const hylo_real *fixed_xs,
+			 uint32_t other, hylo_real *out)
+{
+	const hylo_planner *pl = pb->pl;
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_position *q = &rm->pos[other];
+	uint32_t nh = rm->sampling.n_headings, h, sp, c;
+	hylo_real xs[HYLO_XS_DIM];
+
+	if (!pb->model || !pb->roadmap_ends || !pb->by_turn) {
+		for (c = 0; c < q->n_combos; c++) {
+			hylo_planner_node_state(pl, other, c, xs);
+			out[c] = at == 0 ? hylo_planner_bound(pb, fixed, fixed_xs, c, xs)
+					 : hylo_planner_bound(pb, c, xs, fixed, fixed_xs);
+		}
+		return;
+	}
+	for (h = 0; h < nh; h++) {
+		uint32_t h1 = at == 0 ? fixed % nh : h, h2 = at == 0 ? h : fixed % nh;
+		hylo_real turn = hylo_envelope_turn_of(pb->bearing[h1], pl->heading_change[h1][h2]);
+		size_t cell;
+		int ok = hylo_svr_envelope_cell(pb->model, pb->d, turn, &cell);
+
+		for (sp = 0; sp * nh + h < q->n_combos; sp++) {
+			uint32_t ci, cj;
+			hylo_real e = 0;
+
+			c = sp * nh + h;
+			ci = at == 0 ? fixed : c;
+			cj = at == 0 ? c : fixed;
+			if (ok && pl->combo_speed_ok[pb->slot][ci] && pl->combo_speed_ok[pb->slot][cj])
+				e = hylo_svr_envelope_value(pb->model, cell, pl->combo_speed[pb->slot][ci],
+							    pl->combo_speed[pb->slot][cj]);
+			out[c] = e > pb->floor ? e : pb->floor;
+		}
+	}
+}
+
+void hylo_planner_bounds_from(const hylo_pair_bound *pb, uint32_t ci, const hylo_real *tail,
+			      uint32_t j, hylo_real *out)
+{
+	bounds_batch(pb, 0, ci, tail, j, out);
+}
+
+void hylo_planner_bounds_into(const hylo_pair_bound *pb, uint32_t i, uint32_t cj,
+			      const hylo_real *head, hylo_real *out)
+{
+	bounds_batch(pb, 1, cj, head, i, out);
 }
 
 hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i)
@@ -135,8 +267,8 @@ static void head_states(hylo_planner *pl, uint32_t j, const uint32_t *combos, ui
  * cost callback's) raised to the edge bound, +inf where the mode's
  * feasibility classifier rejects the edge.
  */
-static hylo_status evaluate(hylo_planner *pl, uint32_t i, const hylo_real *tail, uint32_t j,
-			    const uint32_t *combos, uint32_t n, hylo_real *costs)
+static hylo_status evaluate(hylo_planner *pl, uint32_t i, uint32_t c, const hylo_real *tail,
+			    uint32_t j, const uint32_t *combos, uint32_t n, hylo_real *costs)
 {
 	hylo_mode mode = (hylo_mode)pl->roadmap.pos[i].mode;
 	const hylo_mode_model *mm = hylo_planner_mode_model(pl, mode);
@@ -165,7 +297,7 @@ static hylo_status evaluate(hylo_planner *pl, uint32_t i, const hylo_real *tail,
 			return st;
 	}
 	for (m = 0; m < n; m++) {
-		hylo_real lo = hylo_planner_bound(&pb, tail, pl->head_xs[m]);
+		hylo_real lo = hylo_planner_bound(&pb, c, tail, combos[m], pl->head_xs[m]);
 
 		if (!isfinite(costs[m]))
 			return hylo_fail(&pl->reason, HYLO_E_BAD_COST,
@@ -245,24 +377,24 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 	const hylo_position *q = &rm->pos[j];
 	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
 	hylo_real *cached = group_costs(pl, u, group, 1);
-	hylo_real got[HYLO_MAX_COMBOS], tail[HYLO_XS_DIM], head[HYLO_XS_DIM], hv, fresh[HYLO_MAX_COMBOS];
+	hylo_real got[HYLO_MAX_COMBOS], tail[HYLO_XS_DIM], lb[HYLO_MAX_COMBOS], hv, fresh[HYLO_MAX_COMBOS];
 	hylo_pair_bound pb;
 	uint32_t c2, m = 0;
 	hylo_status st;
 
 	hylo_planner_node_state(pl, i, c, tail);
 	hylo_planner_pair_bound(pl, i, j, &pb);
+	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 	for (c2 = 0; c2 < q->n_combos; c2++) {
 		got[c2] = NAN;
-		hylo_planner_node_state(pl, j, c2, head);
-		if (!wanted(pl, o, q->node_base + c2, hylo_planner_bound(&pb, tail, head), &hv))
+		if (!wanted(pl, o, q->node_base + c2, lb[c2], &hv))
 			continue;
 		if (cached && !isnan(cached[c2]))
 			got[c2] = cached[c2];
 		else
 			pl->eval_idx[m++] = c2;
 	}
-	st = evaluate(pl, i, tail, j, pl->eval_idx, m, fresh);
+	st = evaluate(pl, i, c, tail, j, pl->eval_idx, m, fresh);
 	if (st != HYLO_OK)
 		return st;
 	for (c2 = 0; c2 < m; c2++) {
@@ -290,18 +422,18 @@ static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uin
 	const hylo_position *q = &rm->pos[j];
 	uint32_t i = rm->node_pos[u], c2;
 	const hylo_real *cached = group_costs(pl, u, group, 0);
-	hylo_real key = INFINITY, hv, tail[HYLO_XS_DIM], head[HYLO_XS_DIM];
+	hylo_real key = INFINITY, hv, tail[HYLO_XS_DIM], lb[HYLO_MAX_COMBOS];
 	hylo_pair_bound pb;
 	hylo_status st = HYLO_OK;
+	uint32_t c = u - rm->pos[i].node_base;
 	int need = 0;
 
-	hylo_planner_node_state(pl, i, u - rm->pos[i].node_base, tail);
+	hylo_planner_node_state(pl, i, c, tail);
 	hylo_planner_pair_bound(pl, i, j, &pb);
+	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++) {
-		hylo_real b, f;
+		hylo_real b = lb[c2], f;
 
-		hylo_planner_node_state(pl, j, c2, head);
-		b = hylo_planner_bound(&pb, tail, head);
 		if (!wanted(pl, o, q->node_base + c2, b, &hv))
 			continue;
 		if (cached && !isnan(cached[c2])) {
@@ -539,7 +671,7 @@ hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint3
 		if (rm->pos[j].mode != rm->pos[i].mode)
 			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "node %u is not a successor of %u",
 					 (unsigned)heads[k], (unsigned)tail);
-		st = evaluate(pl, i, xs, j, pl->eval_idx, m, &costs[k]);
+		st = evaluate(pl, i, c, xs, j, pl->eval_idx, m, &costs[k]);
 	}
 	return st;
 }

@@ -65,23 +65,19 @@ static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, u
 
 /* The edges from the nodes of position i into node v (position j, state head). */
 static hylo_status position_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t i,
-					 uint32_t j, const hylo_real *head, uint32_t *heads,
+					 uint32_t j, uint32_t cj, const hylo_real *head, uint32_t *heads,
 					 hylo_real *costs, uint32_t cap, uint32_t *n)
 {
-	const hylo_roadmap *rm = &pl->roadmap;
-	const hylo_position *p = &rm->pos[i];
-	hylo_real tail[HYLO_XS_DIM];
+	const hylo_position *p = &pl->roadmap.pos[i];
+	hylo_real lb[HYLO_MAX_COMBOS];
 	hylo_pair_bound pb;
 	uint32_t c;
 	hylo_status st = HYLO_OK;
 
 	hylo_planner_pair_bound(pl, i, j, &pb);
-	for (c = 0; c < p->n_combos && st == HYLO_OK; c++) {
-		if (hylo_search_closed(s, p->node_base + c))
-			continue;
-		hylo_planner_node_state(pl, i, c, tail);
-		st = push(pl, s, p->node_base + c, hylo_planner_bound(&pb, tail, head), heads, costs, cap, n);
-	}
+	hylo_planner_bounds_into(&pb, i, cj, head, lb);
+	for (c = 0; c < p->n_combos && st == HYLO_OK; c++)
+		st = push(pl, s, p->node_base + c, lb[c], heads, costs, cap, n);
 	return st;
 }
 
@@ -94,16 +90,18 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 	const uint32_t *pred;
 	hylo_real head[HYLO_XS_DIM];
 	hylo_status st = HYLO_OK;
+	uint32_t cj;
 
 	(void)r;
 	*n = 0;
 	if (v >= rm->n_nodes + 2)
 		return HYLO_OK;
 	j = rm->node_pos[v];
+	cj = v - rm->pos[j].node_base;
 	if (j == pl->start_pos)   /* its distance is known: go on to the sentinel */
 		return push(pl, s, sentinel(pl), (HEURISTIC_REACH - 1) * hylo_search_cost(s, v), heads,
 			    costs, cap, n);
-	hylo_planner_node_state(pl, j, v - rm->pos[j].node_base, head);
+	hylo_planner_node_state(pl, j, cj, head);
 	/* Same-mode neighbours are symmetric: j's list is also its predecessors. */
 	if (j == pl->goal_pos) {
 		pred = pl->goal_adj;
@@ -112,10 +110,10 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 		pred = hylo_planner_neighbours(pl, j, &n_pred);
 	}
 	for (k = 0; k < n_pred && st == HYLO_OK; k++)
-		st = position_predecessors(pl, s, pred[k], j, head, heads, costs, cap, n);
+		st = position_predecessors(pl, s, pred[k], j, cj, head, heads, costs, cap, n);
 	if (st == HYLO_OK && ((j == pl->goal_pos && pl->start_goal_linked) ||
 			      (j < rm->n_positions && pl->links_start[j])))
-		st = position_predecessors(pl, s, pl->start_pos, j, head, heads, costs, cap, n);
+		st = position_predecessors(pl, s, pl->start_pos, j, cj, head, heads, costs, cap, n);
 	if (st == HYLO_OK)
 		st = switch_predecessors(pl, s, v, heads, costs, cap, n);
 	return st;
@@ -133,7 +131,7 @@ static hylo_real start_distance(const hylo_planner *pl)
 
 	if (pl->start_goal_linked) {
 		hylo_planner_pair_bound(pl, pl->start_pos, pl->goal_pos, &pb);
-		best = hylo_planner_bound(&pb, pl->start_xs, pl->goal_xs);
+		best = hylo_planner_bound(&pb, 0, pl->start_xs, 0, pl->goal_xs);
 	}
 	for (k = 0; k < n_adj; k++) {
 		const hylo_position *q = &rm->pos[adj[k]];
@@ -143,7 +141,7 @@ static hylo_real start_distance(const hylo_planner *pl)
 			hylo_real v;
 
 			hylo_roadmap_state(rm, adj[k], c, head);
-			v = hylo_planner_bound(&pb, pl->start_xs, head) + pl->h_node[q->node_base + c];
+			v = hylo_planner_bound(&pb, 0, pl->start_xs, c, head) + pl->h_node[q->node_base + c];
 			if (v < best)
 				best = v;
 		}

@@ -38,16 +38,39 @@ const uint32_t *hylo_planner_neighbours(const hylo_planner *pl, uint32_t i, uint
  * built from it is consistent.
  */
 typedef struct {
+	const hylo_planner *pl;
 	hylo_real floor;                /* the model's floor for the distance [J] */
 	const hylo_svr_model *model;    /* with an envelope, else NULL */
 	hylo_mode mode;
+	int slot;                       /* the mode's index in the robot */
 	hylo_real dx, dy;               /* displacement */
 	hylo_real d, dz, phi;           /* horizontal distance, climb, bearing */
+	int roadmap_ends;               /* both positions sampled (not start or goal) */
+	int by_turn;                    /* planar, turn cells: a cell per heading pair */
+	int cell_ok;                    /* else: the pair's one cell */
+	size_t cell;
+	hylo_real bearing[HYLO_MAX_GRID];   /* wrap(phi - heading) per grid heading */
 } hylo_pair_bound;
 
 void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb);
 
-hylo_real hylo_planner_bound(const hylo_pair_bound *pb, const hylo_real *tail, const hylo_real *head);
+/* The bound of the edge from combination ci (state tail) of the pair's
+ * first position to combination cj (state head) of its second. */
+hylo_real hylo_planner_bound(const hylo_pair_bound *pb, uint32_t ci, const hylo_real *tail,
+			     uint32_t cj, const hylo_real *head);
+
+/* The bounds of every edge from combination ci (state tail) of the pair's
+ * first position to the combinations of its second, j, into out[], and of
+ * every edge from the combinations of its first, i, into combination cj
+ * (state head) of its second: hylo_planner_bound()'s numbers. */
+void hylo_planner_bounds_from(const hylo_pair_bound *pb, uint32_t ci, const hylo_real *tail,
+			      uint32_t j, hylo_real *out);
+void hylo_planner_bounds_into(const hylo_pair_bound *pb, uint32_t i, uint32_t cj,
+			      const hylo_real *head, hylo_real *out);
+
+/* Fills the planner's tables for the bounds' fast path (after a roadmap is
+ * built). */
+void hylo_planner_bound_tables(hylo_planner *pl);
 
 /* Cost of the switch edges from guard copy i to its twin. */
 hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i);

@@ -298,12 +298,16 @@ static int envelope_nodes(const hylo_svr_envelope *e, double v, uint32_t *i)
 	return 1;
 }
 
-double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, double v1, double v2)
+int hylo_svr_envelope_speed(const hylo_svr_model *m, double v, uint32_t nodes[2])
+{
+	return m && m->envelope && m->envelope->value && envelope_nodes(m->envelope, v, nodes);
+}
+
+int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t *cell)
 {
 	const hylo_svr_envelope *e;
-	uint32_t k, j = 0, a[2], b[2], p, q;
-	double x, best = 0;
-	size_t row;
+	uint32_t k, j = 0;
+	double x;
 
 	if (!m || !(e = m->envelope) || !e->value)
 		return 0;
@@ -321,17 +325,35 @@ double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, dou
 			return 0;
 		j = (uint32_t)x;
 	}
-	if (!envelope_nodes(e, v1, a) || !envelope_nodes(e, v2, b))
-		return 0;
-	row = ((size_t)k * e->n_z + j) * e->n_v;
-	for (p = 0; p < 2; p++)
-		for (q = 0; q < 2; q++) {
-			double v = e->value[(row + a[p]) * e->n_v + b[q]];
+	*cell = ((size_t)k * e->n_z + j) * e->n_v * e->n_v;
+	return 1;
+}
 
-			if ((p == 0 && q == 0) || v < best)
-				best = v;
-		}
+double hylo_svr_envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
+			       const uint32_t head[2])
+{
+	const float *v = &m->envelope->value[cell];
+	uint32_t n = m->envelope->n_v;
+	double best = v[tail[0] * n + head[0]], x;
+
+	if ((x = v[tail[0] * n + head[1]]) < best)
+		best = x;
+	if ((x = v[tail[1] * n + head[0]]) < best)
+		best = x;
+	if ((x = v[tail[1] * n + head[1]]) < best)
+		best = x;
 	return best;
+}
+
+double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, double v1, double v2)
+{
+	uint32_t a[2], b[2];
+	size_t cell;
+
+	if (!hylo_svr_envelope_cell(m, d, dz, &cell) || !hylo_svr_envelope_speed(m, v1, a) ||
+	    !hylo_svr_envelope_speed(m, v2, b))
+		return 0;
+	return hylo_svr_envelope_value(m, cell, a, b);
 }
 
 double hylo_svr_predict(const hylo_svr_model *m, const double *x)

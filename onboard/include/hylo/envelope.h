@@ -42,6 +42,14 @@
 hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2);
 
 /**
+ * The same turn from its parts: bearing = wrap(phi - theta1), the
+ * displacement's bearing in the tail's frame, and dtheta = wrap(theta2 -
+ * theta1); hylo_envelope_turn() is exactly this of those. For callers that
+ * turn many heading pairs of one pair of positions. No allocation.
+ */
+hylo_real hylo_envelope_turn_of(hylo_real bearing, hylo_real dtheta);
+
+/**
  * Writes the envelope arguments (distance [m], turn [rad] or climb [m],
  * tail speed, head speed [m/s]; see above) of the edge tail_xs -> head_xs
  * (sampled coordinates of mode, HYLO_XS_DIM at most) into args[4] and

@@ -137,6 +137,11 @@ typedef struct {
 	uint8_t h_goal_mode;
 	hylo_real h_goal_xs[HYLO_XS_DIM];
 	hylo_real weight;               /* the goal's suboptimality w */
+	/* the edge bounds' tables (planner_graph.c): the envelope's speed nodes
+	 * of each combination of each mode, the heading grid's changes */
+	uint32_t combo_speed[2][HYLO_MAX_COMBOS][2];
+	uint8_t combo_speed_ok[2][HYLO_MAX_COMBOS];
+	hylo_real heading_change[HYLO_MAX_GRID][HYLO_MAX_GRID];
 	/* scratch of one evaluation (the combinations of one position) */
 	hylo_real head_xs[HYLO_MAX_COMBOS][HYLO_XS_DIM];
 	hylo_real features[HYLO_MAX_COMBOS * HYLO_MAX_FEATURES];

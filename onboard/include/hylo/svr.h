@@ -123,6 +123,19 @@ int hylo_svr_speed_trained(const hylo_svr_model *m, double speed);
 double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, double v1,
                                double v2);
 
+/*
+ * The same lookup in its three parts, for callers that look up many edges
+ * sharing a distance or speeds (the planner): the speed nodes of a speed
+ * (0: none), the cell of a distance and climb or turn (0: outside), and the
+ * value of a cell for two speeds' nodes. hylo_svr_envelope_bound() is
+ * exactly hylo_svr_envelope_value() of the other two. No allocation; safe
+ * in a control loop.
+ */
+int hylo_svr_envelope_speed(const hylo_svr_model *m, double v, uint32_t nodes[2]);
+int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t *cell);
+double hylo_svr_envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
+                               const uint32_t head[2]);
+
 /** The floor the planner raises m's prediction for an edge of length
  * distance_m to: cost_floor_j + cost_floor_per_m * distance_m [J]. */
 double hylo_svr_cost_floor(const hylo_svr_model *m, double distance_m);
