@@ -258,7 +258,8 @@ static void check_bounds(const tu_map *m, hylo_goal g)
 				continue;   /* a switch edge */
 			hylo_planner_node_state(planner, j, heads[k] - rm->pos[j].node_base, head);
 			hylo_planner_pair_bound(planner, i, j, &pb);
-			got = hylo_planner_bound(&pb, tail, head);
+			got = hylo_planner_bound(&pb, u - rm->pos[i].node_base, tail,
+						 heads[k] - rm->pos[j].node_base, head);
 			want = mm->model->cost_floor_j + mm->model->cost_floor_per_m * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
 			e = hylo_envelope_of_edge(mm->model, (hylo_mode)rm->pos[i].mode, tail, head);
 			if (e > want)
