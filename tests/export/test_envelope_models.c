@@ -8,7 +8,10 @@
  * hylo_envelope_of_edge, and the bound is not 0 (no edge of the training
  * range falls outside the table). Negative control: the same table with
  * every value 5% higher must be caught, so that the check would fail on an
- * envelope that is not a bound. The trainer measures the same on 10^6 edges
+ * envelope that is not a bound. Ground and marine tables have 16 turn cells
+ * over [0, 2 pi], and also bound the edges that stay in place (turn 0 by
+ * definition, whose features depend on the tail heading's quadrant), which
+ * random edges never hit. The trainer measures the random edges on 10^6
  * per model before it exports a table (trainer/envelope.cpp).
  */
 #include <stdarg.h>
@@ -75,6 +78,37 @@ static void random_edge(const hylo_svr_model *m, hylo_mode mode, double *tail, d
 
 static float scaled[MAX_VALUES];
 
+/* Ground, marine: the turn axis, and edges in place for 12 x 12 tail and
+ * head headings and every speed pair. */
+static void check_turns_and_in_place(const hylo_svr_model *m, hylo_mode mode)
+{
+	const hylo_svr_envelope *e = m->envelope;
+	uint32_t i, l, a, b, below = 0, zero = 0;
+
+	if (e->n_z != 16 || e->z_min != 0 || e->z_step != 2 * PI / 16)
+		fail_msg("%s: %u turn cells of %g rad from %g, not 16 over [0, 2 pi]", m->name, e->n_z,
+			 e->z_step, e->z_min);
+	for (i = 0; i < 12; i++)
+		for (l = 0; l < 12; l++)
+			for (a = 0; a < e->n_v; a++)
+				for (b = 0; b < e->n_v; b++) {
+					double t[4], h[4], f[HYLO_FEATURES_PLANAR], cost, bound;
+
+					t[0] = h[0] = 7.5, t[1] = h[1] = -3.25;
+					t[2] = e->v_min + a * e->v_step, h[2] = e->v_min + b * e->v_step;
+					t[3] = -PI + (i + 0.5) * 2 * PI / 12, h[3] = t[3] + l * 2 * PI / 12;
+					hylo_features(mode, t, h, f);
+					cost = hylo_svr_predict(m, f);
+					bound = hylo_envelope_of_edge(m, mode, t, h);
+					below += cost < bound;
+					zero += bound == 0;
+				}
+	printf("# %s: %u of %u edges in place below the envelope, %u with no bound\n", m->name, below,
+	       144 * e->n_v * e->n_v, zero);
+	if (below > 0 || zero > 0)
+		fail_msg("%s: %u edges in place cost less than the envelope, %u have none", m->name, below, zero);
+}
+
 static void check_model(const hylo_registry_model *r)
 {
 	const hylo_svr_model *m = r->model;
@@ -121,6 +155,8 @@ static void check_model(const hylo_registry_model *r)
 		fail_msg("%s: %u of %d edges within the training range have no bound", m->name, zero, EDGES);
 	if (caught == 0)
 		fail_msg("%s: the check does not notice a table 5%% too high", m->name);
+	if (r->mode == HYLO_MODE_GROUND || r->mode == HYLO_MODE_MARINE)
+		check_turns_and_in_place(m, r->mode);
 }
 
 /* One model, named by the test's state. */

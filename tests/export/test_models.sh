@@ -62,6 +62,18 @@ if [ -n "$env" ] && [ -n "$cost" ] && awk -v e="$env" -v c="$cost" 'BEGIN { exit
    [[ $none == *'"envelope_j":null'* ]]; then
   tap_ok "hylo-cost prints the envelope bound ($env J) below the cost ($cost J), none for a vertical velocity"; else
   tap_not_ok "hylo-cost prints the envelope bound below the cost, none for a vertical velocity" "$out" "$none"; fi
+# Ground and water: the bound depends on the turn, which hylo-cost prints
+# (the goal straight behind with the start's heading: 2 pi).
+out=$("$B/bin/hylo-cost" --robot ambot --mode ground --json 0,0,0.5,0 -1,0,0.5,0 2>&1)
+env=$(echo "$out" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
+cost=$(echo "$out" | sed -n 's/.*"predicted_cost_j":\([-0-9.e+]*\),.*/\1/p')
+ahead=$("$B/bin/hylo-cost" --robot ambot --mode ground --json 0,0,0.5,0 1,0,0.5,0 2>&1)
+env_ahead=$(echo "$ahead" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
+if [[ $out == *'"envelope_turn_rad":6.2831853071795862,'* && $ahead == *'"envelope_turn_rad":0,'* ]] &&
+   [ -n "$env" ] && [ -n "$cost" ] && [ -n "$env_ahead" ] &&
+   awk -v e="$env" -v c="$cost" -v a="$env_ahead" 'BEGIN { exit !(e > 0 && e <= c && a < e) }'; then
+  tap_ok "hylo-cost prints a ground edge's turn and its bound ($env J turning round, $env_ahead J ahead)"; else
+  tap_not_ok "hylo-cost prints a ground edge's turn and its bound" "$out" "$ahead"; fi
 # Refit a model from its committed dataset and export it: the same bytes.
 refit() {
   local h=$1 base robot mode rows

@@ -4,13 +4,17 @@
  * model's predicted cost. For N seeded random edges per ground, marine and
  * flight model (random positions and headings, distances up to
  * max_distance_m, flight climbs within that ball and level velocities of
- * any direction, speeds on the table's nodes), and for as many with the
+ * any direction, speeds on the table's nodes), for as many with the
  * headings aligned (ground, marine: the goal straight ahead with the
  * start's heading; flight: both velocities along the horizontal
- * displacement), prints the 10th, 50th and 90th percentiles of
- * envelope / cost and floor / cost, the least cost / envelope, and the
- * table's size. See --help. Exit codes: 0 printed, 1 a model without an
- * envelope or an edge below it, 2 usage error.
+ * displacement) and for as many that turn round (ground, marine: the goal
+ * within 10 degrees of straight behind the start, the goal's heading
+ * random; flight: the start's velocity within 10 degrees of pointing away
+ * from the horizontal displacement, the goal's random), prints the 10th,
+ * 50th and 90th percentiles of envelope / cost and floor / cost, the least
+ * cost / envelope, and the table's size. See --help. Exit codes: 0
+ * printed, 1 a model without an envelope or an edge below it, 2 usage
+ * error.
  */
 #include <math.h>
 #include <stdio.h>
@@ -39,7 +43,11 @@ static double node(const hylo_svr_envelope *e)
 	return e->v_min + (i < e->n_v ? i : e->n_v - 1) * e->v_step;
 }
 
-static void random_edge(const hylo_svr_model *m, hylo_mode mode, int aligned, double *t, double *h)
+enum kind { RANDOM, ALIGNED, TURNING };
+
+static const char *kind_name[] = { "random", "aligned", "turning" };
+
+static void random_edge(const hylo_svr_model *m, hylo_mode mode, enum kind kind, double *t, double *h)
 {
 	double r = m->max_distance_m, s1 = node(m->envelope), s2 = node(m->envelope);
 
@@ -51,8 +59,10 @@ static void random_edge(const hylo_svr_model *m, hylo_mode mode, int aligned, do
 			dh = uniform(0, r);
 			dz = uniform(-r, r);
 		} while (dh * dh + dz * dz > r * r);
-		if (aligned)
+		if (kind == ALIGNED)
 			a1 = a2 = phi;
+		else if (kind == TURNING)
+			a1 = phi + PI + uniform(-PI / 18, PI / 18);
 		for (k = 0; k < 3; k++)
 			t[k] = uniform(-50, 50);
 		t[3] = s1 * cos(a1), t[4] = s1 * sin(a1), t[5] = 0;
@@ -61,8 +71,10 @@ static void random_edge(const hylo_svr_model *m, hylo_mode mode, int aligned, do
 	} else {
 		double d = uniform(0, r), bearing = uniform(-PI, PI), turn = uniform(-PI, PI);
 
-		if (aligned)
+		if (kind == ALIGNED)
 			bearing = turn = 0;
+		else if (kind == TURNING)
+			bearing = PI + uniform(-PI / 18, PI / 18);
 		t[0] = uniform(-50, 50), t[1] = uniform(-50, 50), t[2] = s1, t[3] = uniform(-PI, PI);
 		h[0] = t[0] + d * cos(t[3] + bearing), h[1] = t[1] + d * sin(t[3] + bearing);
 		h[2] = s2, h[3] = t[3] + turn;
@@ -84,7 +96,7 @@ static double quantile(double *v, int n, double q)
 static double env_ratio[MAX_EDGES], floor_ratio[MAX_EDGES];
 
 /* Returns the number of edges below the envelope. */
-static int measure(const hylo_registry_model *r, int aligned, int n, uint64_t seed)
+static int measure(const hylo_registry_model *r, enum kind kind, int n, uint64_t seed)
 {
 	const hylo_svr_model *m = r->model;
 	double least = INFINITY;
@@ -94,7 +106,7 @@ static int measure(const hylo_registry_model *r, int aligned, int n, uint64_t se
 	for (i = 0; i < n; i++) {
 		double t[HYLO_XS_DIM], h[HYLO_XS_DIM], f[HYLO_MAX_FEATURES], a[4], cost, env;
 
-		random_edge(m, r->mode, aligned, t, h);
+		random_edge(m, r->mode, kind, t, h);
 		hylo_features(r->mode, t, h, f);
 		cost = hylo_svr_predict(m, f);
 		env = hylo_envelope_of_edge(m, r->mode, t, h);
@@ -109,7 +121,7 @@ static int measure(const hylo_registry_model *r, int aligned, int n, uint64_t se
 	qsort(floor_ratio, (size_t)n, sizeof floor_ratio[0], compare);
 	printf("  %-8s envelope/cost p10 %.4f  median %.4f  p90 %.4f | floor/cost p10 %.4f  median %.4f  "
 	       "p90 %.4f | least cost/envelope %.6f, %d below\n",
-	       aligned ? "aligned" : "random", quantile(env_ratio, n, 0.1), quantile(env_ratio, n, 0.5),
+	       kind_name[kind], quantile(env_ratio, n, 0.1), quantile(env_ratio, n, 0.5),
 	       quantile(env_ratio, n, 0.9), quantile(floor_ratio, n, 0.1), quantile(floor_ratio, n, 0.5),
 	       quantile(floor_ratio, n, 0.9), least, below);
 	return below;
@@ -119,7 +131,8 @@ static void usage(FILE *f)
 {
 	fprintf(f, "usage: hylo-envelope-tightness [--edges N] [--seed S]\n"
 		   "Envelope / cost and floor / cost over N random edges (default 100000, at most\n"
-		   "1000000) and N aligned ones per ground, marine and flight model compiled in.\n");
+		   "1000000), N aligned ones and N that turn round (the goal behind the start) per\n"
+		   "ground, marine and flight model compiled in.\n");
 }
 
 int main(int argc, char **argv)
@@ -156,13 +169,16 @@ int main(int argc, char **argv)
 			bad = 1;
 			continue;
 		}
-		printf("%s: %u x %u x %u cells (distance %.3g m, climb %.3g m, speed %.3g m/s), %u floats, "
+		printf("%s: %u x %u x %u cells (distance %.3g m, %s %.3g %s, speed %.3g m/s), %u floats, "
 		       "%u bytes; %d edges each\n",
-		       r->model->name, e->n_d, e->n_z, e->n_v, e->d_step, e->z_step, e->v_step,
+		       r->model->name, e->n_d, e->n_z, e->n_v, e->d_step,
+		       r->mode == HYLO_MODE_FLIGHT ? "climb" : "turn", e->z_step,
+		       r->mode == HYLO_MODE_FLIGHT ? "m" : "rad", e->v_step,
 		       e->n_d * e->n_z * e->n_v * e->n_v, (unsigned)(e->n_d * e->n_z * e->n_v * e->n_v * sizeof(float)),
 		       n);
-		bad |= measure(r, 0, n, seed) > 0;
-		bad |= measure(r, 1, n, seed + 1) > 0;
+		bad |= measure(r, RANDOM, n, seed) > 0;
+		bad |= measure(r, ALIGNED, n, seed + 1) > 0;
+		bad |= measure(r, TURNING, n, seed + 2) > 0;
 	}
 	return bad;
 }

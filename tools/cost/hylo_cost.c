@@ -22,8 +22,9 @@ static void usage(FILE *f)
 		"flight px,py,pz,vx,vy,vz; di_neg/di_pos p,v) and whether the mode's\n"
 		"feasibility classifier, if any, predicts a solution, and the model's envelope:\n"
 		"the lower bound of its cost over every heading that the planner's search may\n"
-		"use for an edge of this distance and these speeds (JSON envelope_j, null when\n"
-		"there is none). Notes when the displacement or a speed lies outside the\n"
+		"use for an edge of this distance, these speeds and (ground, marine) this turn,\n"
+		"the least total heading change of a path to X2 (JSON envelope_j, null when\n"
+		"there is none; envelope_turn_rad, null for flight). Notes when the displacement or a speed lies outside the\n"
 		"model's training range (JSON: beyond_training_range).\n"
 		"\n"
 		"  --robot R    robot (ambot, drivocopter, di, ...; see hylo-planner --list-robots)\n"
@@ -60,7 +61,8 @@ int main(int argc, char **argv)
 	uint32_t n, k;
 	hylo_reason reason;
 	const hylo_mode_model *mm = NULL;
-	double cost, floor_cost, dist, feas = NAN, speeds[2], envelope;
+	double cost, floor_cost, dist, feas = NAN, speeds[2], envelope, args[4];
+	int planar;
 	int far, slow_or_fast[2];
 
 	for (i = 1; i < argc; i++) {
@@ -115,6 +117,8 @@ int main(int argc, char **argv)
 	hylo_features((hylo_mode)mode, x1, x2, f);
 	cost = hylo_svr_predict(mm->model, f);
 	envelope = hylo_envelope_of_edge(mm->model, (hylo_mode)mode, x1, x2);
+	planar = (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) &&
+		 hylo_envelope_args((hylo_mode)mode, x1, x2, args);
 	dist = mode == HYLO_MODE_FLIGHT
 		       ? sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]) +
 			      (x2[2] - x1[2]) * (x2[2] - x1[2]))
@@ -135,6 +139,11 @@ int main(int argc, char **argv)
 			printf("%.17g", envelope);
 		else
 			printf("null");
+		printf(",\"envelope_turn_rad\":");
+		if (planar)
+			printf("%.17g", args[1]);
+		else
+			printf("null");
 		printf(",\"distance_m\":%.17g,\"feasibility\":", dist);
 		if (mm->feasibility)
 			printf("{\"decision\":%.17g,\"feasible\":%s}", feas, feas >= 0 ? "true" : "false");
@@ -148,7 +157,10 @@ int main(int argc, char **argv)
 	if (cost < floor_cost)
 		printf(" (the planner raises it to the floor %.6g J)", floor_cost);
 	printf("\n");
-	if (envelope > 0)
+	if (envelope > 0 && planar)
+		printf("envelope: %.6g J (the least cost over every heading with a turn of %.4g rad, at "
+		       "this distance and these speeds)\n", envelope, args[1]);
+	else if (envelope > 0)
 		printf("envelope: %.6g J (the least cost over every heading at this distance and these "
 		       "speeds)\n", envelope);
 	else
