@@ -3,7 +3,8 @@
 #   build/bin/trainer
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/sha256.cpp \
-	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp
+	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp \
+	trainer/numerics.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <dlfcn.h>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -207,27 +206,12 @@ private:
 	std::vector<double> z_, warm_;
 };
 
-// MUMPS calls BLAS on small fronts; OpenBLAS's worker threads only add
-// spinning there (and the trainer is already parallel over processes). Found
-// at run time so that any BLAS works.
-void single_threaded_blas()
-{
-	static bool done = false;
-	if (done)
-		return;
-	done = true;
-	using set_threads_fn = void (*)(int);
-	if (void *sym = dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))
-		reinterpret_cast<set_threads_fn>(sym)(1);
-}
-
 // Ipopt's mumps_permuting_scaling (MUMPS ICNTL(6)): Ipopt's default lets
 // MUMPS choose; 0 skips the column permutation and scaling (MC64).
 constexpr int kMumpsChoosesPermutingScaling = 7;
 
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm, int permuting_scaling)
 {
-	single_threaded_blas();
 	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
 	bool ok = app->Options()->SetIntegerValue("print_level", 0);
 	ok = ok && app->Options()->SetStringValue("sb", "yes");

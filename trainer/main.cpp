@@ -1,7 +1,8 @@
-// trainer: the offline half of hylo. main() parses flags and calls run();
-// see --help. Exit codes: 0 done, 1 failure while running (I/O, a worker),
-// 2 bad usage or input (unknown mode or robot, malformed vector, a state out
-// of bounds, an unusable output directory or dataset).
+// trainer: the offline half of hylo. main() pins the numerics, parses flags
+// and calls run(); see --help. Exit codes: 0 done, 1 failure while running
+// (I/O, a worker, numerics that cannot be pinned), 2 bad usage or input
+// (unknown mode or robot, malformed vector, a state out of bounds, an unusable
+// output directory or dataset).
 #include <malloc.h>
 
 #include <cmath>
@@ -14,6 +15,7 @@
 
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/pipeline.hpp"
 #include "trainer/switching.hpp"
@@ -60,7 +62,13 @@ void usage(FILE *f)
 		"  --json            --solve: print JSON\n"
 		"  --trajectory      --solve --json: include time, state and input samples\n"
 		"  --quiet           no progress output\n"
+		"  --version         the version and what labels depend on (BLAS, LAPACK, libm,\n"
+		"                    Ipopt, MUMPS), then exit\n"
 		"  --help            this text\n"
+		"\n"
+		"Labels do not depend on the CPU: the reference BLAS and LAPACK are linked, and\n"
+		"on x86-64 the trainer re-executes itself once with libm's AVX2/FMA variants\n"
+		"masked (GLIBC_TUNABLES glibc.cpu.hwcaps); it refuses to run with another BLAS.\n"
 		"\n"
 		"Exit codes: 0 done, 1 failure while running, 2 bad usage or input.\n");
 }
@@ -192,6 +200,9 @@ int run(int argc, char **argv)
 		if (a == "--help" || a == "-h") {
 			usage(stdout);
 			return 0;
+		} else if (a == "--version") {
+			std::printf("hylo trainer %s\n%s", kHyloVersion, numerics_description().c_str());
+			return 0;
 		} else if (a == "--mode") {
 			mode = val();
 		} else if (a == "--robot") {
@@ -273,6 +284,8 @@ int run(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	// Keep freed memory in the heap. MUMPS allocates and frees its
 	// workspace at every factorization; with glibc's defaults each one was
 	// mapped afresh and zeroed page by page, 11% of a flight generator's CPU

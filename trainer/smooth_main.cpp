@@ -16,6 +16,7 @@
 #include "hylo/map_t.hpp"
 #include "hylo/plan_t.hpp"
 #include "hylo/traj_t.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/smoother.hpp"
 
@@ -53,7 +54,8 @@ void usage(FILE *out)
 		"  --help                this text\n"
 		"\n"
 		"Exit codes: 0 clean stop (signal, --once/--request-id done, end of an input\n"
-		"log), 1 start-up failure, 2 usage error.\n",
+		"log), 1 start-up failure (also numerics that cannot be pinned, as the\n"
+		"trainer's), 2 usage error.\n",
 		out);
 }
 
@@ -268,6 +270,8 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 
 int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	Options o;
 	int code = 0;
 	if (!parse(argc, argv, o, code))

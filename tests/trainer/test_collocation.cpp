@@ -13,6 +13,7 @@
 #include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
 
@@ -51,8 +52,10 @@ void derivative_test(const std::string &robot, const std::string &mode, const do
 
 }  // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	// Generic states (not at rest) so that no term sits at a kink of its smoothing.
 	double da[2] = {-0.5, 0.1}, db[2] = {-0.2, -0.1}, pa[2] = {0.5, 0.1}, pb[2] = {0.2, -0.1};
 	double ga[4] = {0.1, 0.2, 0.3, 0.4}, gb[4] = {0.7, 0.8, 0.9, 0.5};

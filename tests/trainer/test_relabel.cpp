@@ -15,6 +15,7 @@
 
 #include "tests/tap.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 
 namespace {
@@ -60,8 +61,10 @@ std::string refusal(const RobotParams &robot, const GenOptions &o)
 
 }  // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	const fs::path dir = fs::temp_directory_path() / ("hylo_relabel_" + std::to_string(getpid()));
 	fs::create_directories(dir);
 	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
