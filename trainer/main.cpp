@@ -51,6 +51,9 @@ void usage(FILE *f)
 		"  --out DIR         dataset directory (default: build/datasets/<robot>)\n"
 		"  --shard K/N       generate only the K-th of N slices of the stream (default: 1/1)\n"
 		"  --segments N      collocation segments (default: 20)\n"
+		"  --ipopt-option NAME=VALUE\n"
+		"                    set an Ipopt option on every solve, after hylo's own settings\n"
+		"                    (repeatable; recorded in a dataset's .meta; default: none)\n"
 		"  --relabel FILE    gen, ground and marine: FILE is this stream's dataset as\n"
 		"                    labelled before the backing-up and goal-facing starts\n"
 		"                    (its .meta has no 'starts: 2'); its results are reused\n"
@@ -62,6 +65,8 @@ void usage(FILE *f)
 		"  --json            --solve: print JSON\n"
 		"  --trajectory      --solve --json: include time, state and input samples\n"
 		"  --quiet           no progress output\n"
+		"  --debug           trace every Ipopt solve, replay and cross-validation point on\n"
+		"                    stderr (default: off)\n"
 		"  --version         the version and what labels depend on (BLAS, LAPACK, libm,\n"
 		"                    Ipopt, MUMPS), then exit\n"
 		"  --help            this text\n"
@@ -203,6 +208,15 @@ int run(int argc, char **argv)
 		} else if (a == "--version") {
 			std::printf("hylo trainer %s\n%s", kHyloVersion, numerics_description().c_str());
 			return 0;
+		} else if (a == "--ipopt-option") {
+			std::string v = val();
+			try {
+				po.gen.solve.ipopt_options.push_back(parse_ipopt_option(v));
+			} catch (const std::invalid_argument &e) {
+				throw Usage("--ipopt-option: " + std::string(e.what()));
+			}
+		} else if (a == "--debug") {
+			po.gen.solve.debug = true;
 		} else if (a == "--mode") {
 			mode = val();
 		} else if (a == "--robot") {
