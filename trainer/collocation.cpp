@@ -872,6 +872,29 @@ IpoptOption parse_ipopt_option(const std::string &text)
 	return o;
 }
 
+std::string solve_options_text(const SolveOptions &opt)
+{
+	auto num = [](double v) {
+		char buf[64];
+		auto r = std::to_chars(buf, buf + sizeof buf, v);   // shortest round trip
+		return std::string(buf, r.ptr);
+	};
+	std::string T_guesses, ipopt;
+	for (double T : opt.T_guesses)
+		T_guesses += (T_guesses.empty() ? "" : " ") + num(T);
+	for (const IpoptOption &o : opt.ipopt_options)
+		ipopt += (ipopt.empty() ? "" : " ") + o.name + "=" + o.value;
+	return "segments: " + std::to_string(opt.segments) + "\ntol: " + num(opt.tol) +
+	       "\nmax_iter: " + std::to_string(opt.max_iter) + "\nT_fixed: " + num(opt.T_fixed) +
+	       "\nT_guesses: " + (T_guesses.empty() ? "from distance and speed" : T_guesses) +
+	       "\nrefinements: " + std::to_string(opt.refinements) +
+	       "\nreplay_state_tol: " + num(opt.replay_state_tol) + "\nmax_step_s: " + num(opt.max_step_s) +
+	       "\nstep_max_iter: " + std::to_string(opt.step_max_iter) +
+	       "\nobjective_scale: " + num(opt.objective_scale) + "\nrefine_within: " + num(opt.refine_within) +
+	       "\nreplay: " + (opt.replay ? "on" : "off") + "\ncontinuation: " + (opt.continuation ? "on" : "off") +
+	       "\nipopt_options: " + (ipopt.empty() ? "none" : ipopt) + "\n";
+}
+
 MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhaseProblem &prob,
 				    const SolveOptions &opt)
 {

@@ -23,6 +23,8 @@ struct IpoptOption {
 	std::string name, value;
 };
 
+// Fields that can change a result are recorded in a dataset's .meta
+// (solve_options_text): a new one must be added there.
 struct SolveOptions {
 	int segments = 20;
 	double tol = 1e-8;
@@ -58,6 +60,13 @@ struct SolveOptions {
 // (the name known, the value of its type and in its range or list). Throws
 // std::invalid_argument saying what is wrong.
 IpoptOption parse_ipopt_option(const std::string &text);
+
+// The fields of opt that can change a solve's result, one "name: value" line
+// each (newline-terminated): what a dataset's .meta records of the solver.
+// Not debug, nor the derivative checker's (a checker run labels nothing),
+// nor strategy_starts: only ground and marine have strategies, and their
+// datasets' meta says so itself ("starts: 2").
+std::string solve_options_text(const SolveOptions &opt);
 
 struct Trajectory {
 	int nx = 0, nu = 0;

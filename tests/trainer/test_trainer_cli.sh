@@ -83,7 +83,7 @@ gen --samples 200 --jobs 1 --out "$T/full" > /dev/null
 if cmp -s "$T/kill/di_neg.csv" "$T/full/di_neg.csv" && [ "$before" -lt 200 ]; then
   tap_ok "killed after $before rows and re-run: the same file as an uninterrupted run"; else
   tap_not_ok "killed and re-run: the same file as an uninterrupted run" "$before rows before; $(cat "$T/resume.out")"; fi
-expect_fail "a dataset made with other arguments is not silently extended" 1 "other arguments" \
+expect_fail "a dataset made with other arguments is not silently extended" 1 "made under other settings: seed: 3 vs seed: 4" \
   "$TR" --mode di_neg --robot di --stage gen --quiet --samples 200 --seed 4 --out "$T/kill"
 
 # A small pipeline: gen -> fit -> export, and the header compiles into the planner.
