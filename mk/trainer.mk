@@ -40,8 +40,12 @@ $(RELABEL_TEST): tests/trainer/test_relabel.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
+# Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
+# test_collocation under several OpenBLAS kernel settings and hwcaps masks.
+tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
 ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) tests/trainer/test_trainer_cli.sh
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) tests/trainer/test_trainer_cli.sh \
+	tests/trainer/test_numerics.sh
 
 # make models: regenerates every committed model (datasets resume; see the
 # README for the time it takes). MODEL_SAMPLES= overrides the sample counts.
