@@ -137,7 +137,7 @@ std::vector<std::pair<std::string, std::string>> meta_lines(const std::string &m
 std::string meta_differences(const std::string &old_meta, const std::string &new_meta)
 {
 	auto a = meta_lines(old_meta), b = meta_lines(new_meta);
-	auto find = [](const std::vector<std::pair<std::string, std::string>> &v, const std::string &key) {
+	auto line_of = [](const std::vector<std::pair<std::string, std::string>> &v, const std::string &key) {
 		for (const auto &kv : v)
 			if (kv.first == key)
 				return kv.second;
@@ -145,14 +145,14 @@ std::string meta_differences(const std::string &old_meta, const std::string &new
 	};
 	std::string out;
 	auto add = [&](const std::string &key) {
-		std::string x = find(a, key), y = find(b, key);
+		std::string x = line_of(a, key), y = line_of(b, key);
 		if (x != y)
 			out += (out.empty() ? "" : "; ") + x + " vs " + y;
 	};
 	for (const auto &kv : b)
 		add(kv.first);
-	for (const auto &kv : a)
-		if (find(b, kv.first) == kv.first + ": (not recorded)")
+	for (const auto &kv : a)   // lines only the old meta has
+		if (line_of(b, kv.first) == kv.first + ": (not recorded)")
 			add(kv.first);
 	return out;
 }
