@@ -15,7 +15,14 @@ SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-
 # Third-party headers are included as system headers so that -Wextra stays
 # about our code. Ipopt needs -DHAVE_CSTDDEF (deps.md).
 IPOPT_CFLAGS := -isystem /usr/include/coin -DHAVE_CSTDDEF
-IPOPT_LIBS := -lipopt
+# Labels must not depend on the CPU (trainer/numerics.hpp): every program
+# that links Ipopt loads Debian's reference BLAS and LAPACK (libblas3,
+# liblapack3), not the libblas.so.3/liblapack.so.3 alternatives (OpenBLAS).
+# DT_RPATH, not RUNPATH: it also applies to libipopt's and MUMPS's own
+# dependencies (they have no RUNPATH of their own).
+MULTIARCH := $(shell $(CC) -print-multiarch)
+NUMERICS_LDFLAGS := -Wl,--disable-new-dtags,-rpath,/usr/lib/$(MULTIARCH)/blas:/usr/lib/$(MULTIARCH)/lapack
+IPOPT_LIBS := $(NUMERICS_LDFLAGS) -lipopt
 SUNDIALS_LIBS := -lsundials_cvode
 EIGEN_CFLAGS := -isystem /usr/include/eigen3
 YAML_LIBS := -lyaml-cpp

@@ -3,7 +3,8 @@
 #   build/bin/trainer
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
-	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp
+	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp \
+	trainer/numerics.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread
@@ -41,8 +42,12 @@ $(RELABEL_TEST): tests/trainer/test_relabel.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
+# Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
+# test_collocation under several OpenBLAS kernel settings and hwcaps masks.
+tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
 ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) tests/trainer/test_trainer_cli.sh
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) tests/trainer/test_trainer_cli.sh \
+	tests/trainer/test_numerics.sh
 
 # make models: regenerates every committed model (datasets resume; see the
 # README for the time it takes). MODEL_SAMPLES= overrides the sample counts.

@@ -1,11 +1,11 @@
 #include "trainer/collocation.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <dlfcn.h>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -207,18 +207,31 @@ private:
 	std::vector<double> z_, warm_;
 };
 
-// MUMPS calls BLAS on small fronts; OpenBLAS's worker threads only add
-// spinning there (and the trainer is already parallel over processes). Found
-// at run time so that any BLAS works.
-void single_threaded_blas()
+// Sets o by the type Ipopt registered for its name; false if there is none,
+// the value does not parse as that type, or Ipopt refuses it (silently).
+bool set_ipopt_option(Ipopt::IpoptApplication &app, const IpoptOption &o)
 {
-	static bool done = false;
-	if (done)
-		return;
-	done = true;
-	using set_threads_fn = void (*)(int);
-	if (void *sym = dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))
-		reinterpret_cast<set_threads_fn>(sym)(1);
+	Ipopt::SmartPtr<const Ipopt::RegisteredOption> reg = app.RegOptions()->GetOption(o.name);
+	if (!Ipopt::IsValid(reg))
+		return false;
+	Ipopt::SmartPtr<Ipopt::OptionsList> list = app.Options();
+	const char *begin = o.value.c_str(), *end = begin + o.value.size();
+	switch (reg->Type()) {
+	case Ipopt::OT_Number: {
+		double v = 0;
+		auto r = std::from_chars(begin, end, v);
+		return r.ec == std::errc() && r.ptr == end && list->SetNumericValue(o.name, v, true, true);
+	}
+	case Ipopt::OT_Integer: {
+		int v = 0;
+		auto r = std::from_chars(begin, end, v);
+		return r.ec == std::errc() && r.ptr == end && list->SetIntegerValue(o.name, v, true, true);
+	}
+	case Ipopt::OT_String:
+		return list->SetStringValue(o.name, o.value, true, true);
+	default:
+		return false;
+	}
 }
 
 // Ipopt's mumps_permuting_scaling (MUMPS ICNTL(6)): Ipopt's default lets
@@ -227,7 +240,6 @@ constexpr int kMumpsChoosesPermutingScaling = 7;
 
 Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm, int permuting_scaling)
 {
-	single_threaded_blas();
 	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
 	bool ok = app->Options()->SetIntegerValue("print_level", 0);
 	ok = ok && app->Options()->SetStringValue("sb", "yes");
@@ -256,27 +268,8 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool 
 		ok = ok && app->Options()->SetIntegerValue("print_level", 0);
 		ok = ok && app->Options()->SetIntegerValue("max_iter", 0);
 	}
-	if (const char *extra = std::getenv("HYLO_IPOPT_OPTS")) {   // name=value,... for experiments
-		std::string all = extra;
-		size_t pos = 0;
-		while (pos < all.size()) {
-			size_t end = all.find(',', pos);
-			std::string kv = all.substr(pos, end == std::string::npos ? std::string::npos : end - pos);
-			size_t eq = kv.find('=');
-			std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
-			char *e = nullptr;
-			double num = std::strtod(v.c_str(), &e);
-			if (e && *e == '\0' && !v.empty())
-				ok = ok && (v.find('.') == std::string::npos && v.find('e') == std::string::npos
-						    ? app->Options()->SetIntegerValue(k, static_cast<int>(num))
-						    : app->Options()->SetNumericValue(k, num));
-			else
-				ok = ok && app->Options()->SetStringValue(k, v);
-			if (end == std::string::npos)
-				break;
-			pos = end + 1;
-		}
-	}
+	for (const IpoptOption &o : opt.ipopt_options)
+		ok = ok && set_ipopt_option(*app, o);
 	if (!ok)
 		throw std::logic_error("an Ipopt option was refused");
 	// An empty options file name: never read ./ipopt.opt (deps.md).
@@ -480,7 +473,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	MultiPhaseSolution best;
 	best.modes = base.modes;
 	best.cost = std::numeric_limits<double>::infinity();
-	const bool debug = std::getenv("HYLO_TRAINER_DEBUG") != nullptr;
+	const bool debug = opt.debug;
 	bool smoothed = false, first_accepted = true;
 	for (const ModeInfo &i : base.info) {
 		smoothed = smoothed || i.smoothed;
@@ -861,6 +854,45 @@ Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot,
 			      const double *x2s, const SolveOptions &opt, const Solution &line)
 {
 	return add_strategies(robot, bvp(mode, robot, x1s, x2s, opt), opt, line);
+}
+
+IpoptOption parse_ipopt_option(const std::string &text)
+{
+	size_t eq = text.find('=');
+	if (eq == std::string::npos || eq == 0)
+		throw std::invalid_argument("'" + text + "' is not NAME=VALUE");
+	IpoptOption o{text.substr(0, eq), text.substr(eq + 1)};
+	// No console journal: Ipopt would print the option's documentation.
+	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication(false);
+	if (!Ipopt::IsValid(app->RegOptions()->GetOption(o.name)))
+		throw std::invalid_argument("Ipopt has no option '" + o.name + "'");
+	if (!set_ipopt_option(*app, o))
+		throw std::invalid_argument("Ipopt refuses '" + o.value + "' for " + o.name +
+					    " (its type, range or list of values)");
+	return o;
+}
+
+std::string solve_options_text(const SolveOptions &opt)
+{
+	auto num = [](double v) {
+		char buf[64];
+		auto r = std::to_chars(buf, buf + sizeof buf, v);   // shortest round trip
+		return std::string(buf, r.ptr);
+	};
+	std::string T_guesses, ipopt;
+	for (double T : opt.T_guesses)
+		T_guesses += (T_guesses.empty() ? "" : " ") + num(T);
+	for (const IpoptOption &o : opt.ipopt_options)
+		ipopt += (ipopt.empty() ? "" : " ") + o.name + "=" + o.value;
+	return "segments: " + std::to_string(opt.segments) + "\ntol: " + num(opt.tol) +
+	       "\nmax_iter: " + std::to_string(opt.max_iter) + "\nT_fixed: " + num(opt.T_fixed) +
+	       "\nT_guesses: " + (T_guesses.empty() ? "from distance and speed" : T_guesses) +
+	       "\nrefinements: " + std::to_string(opt.refinements) +
+	       "\nreplay_state_tol: " + num(opt.replay_state_tol) + "\nmax_step_s: " + num(opt.max_step_s) +
+	       "\nstep_max_iter: " + std::to_string(opt.step_max_iter) +
+	       "\nobjective_scale: " + num(opt.objective_scale) + "\nrefine_within: " + num(opt.refine_within) +
+	       "\nreplay: " + (opt.replay ? "on" : "off") + "\ncontinuation: " + (opt.continuation ? "on" : "off") +
+	       "\nipopt_options: " + (ipopt.empty() ? "none" : ipopt) + "\n";
 }
 
 MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhaseProblem &prob,

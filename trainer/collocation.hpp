@@ -17,6 +17,14 @@
 
 namespace hylo::trainer {
 
+// An Ipopt option for every solve (trainer --ipopt-option NAME=VALUE), set
+// after hylo's own settings, so it overrides them.
+struct IpoptOption {
+	std::string name, value;
+};
+
+// Fields that can change a result are recorded in a dataset's .meta
+// (solve_options_text): a new one must be added there.
 struct SolveOptions {
 	int segments = 20;
 	double tol = 1e-8;
@@ -42,9 +50,23 @@ struct SolveOptions {
 	bool strategy_starts = false;
 	bool replay = true;               // check every solution with CVODE
 	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
+	std::vector<IpoptOption> ipopt_options;  // set on every solve, in order (parse_ipopt_option)
+	bool debug = false;               // a line per Ipopt solve and per replay on stderr
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here
 	double derivative_test_perturbation = 1e-8;  // relative finite-difference step of the checker
 };
+
+// NAME=VALUE as an Ipopt option, checked against Ipopt's registered options
+// (the name known, the value of its type and in its range or list). Throws
+// std::invalid_argument saying what is wrong.
+IpoptOption parse_ipopt_option(const std::string &text);
+
+// The fields of opt that can change a solve's result, one "name: value" line
+// each (newline-terminated): what a dataset's .meta records of the solver.
+// Not debug, nor the derivative checker's (a checker run labels nothing),
+// nor strategy_starts: only ground and marine have strategies, and their
+// datasets' meta says so itself ("starts: 2").
+std::string solve_options_text(const SolveOptions &opt);
 
 struct Trajectory {
 	int nx = 0, nu = 0;

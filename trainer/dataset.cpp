@@ -19,6 +19,7 @@
 extern "C" {
 #include "hylo/features.h"
 }
+#include "trainer/numerics.hpp"
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
@@ -115,8 +116,94 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	// line) and with the backing-up and goal-facing ones (starts: 2).
 	if ((opt.mode == "ground" || opt.mode == "marine") && opt.solve.strategy_starts)
 		m << "starts: 2\n";
-	m << "segments: " << opt.solve.segments << "\nparams_sha256: " << sha256_file(robot.path) << "\n";
+	m << "params_sha256: " << sha256_file(robot.path) << "\n";
+	// What else a label depends on: the solver's settings and the numerics.
+	m << solve_options_text(opt.solve) << numerics_description();
 	return m.str();
+}
+
+// A meta's lines by key (the text before the first ": "), in order.
+std::vector<std::pair<std::string, std::string>> meta_lines(const std::string &meta)
+{
+	std::vector<std::pair<std::string, std::string>> out;
+	std::istringstream in(meta);
+	for (std::string line; std::getline(in, line);)
+		out.emplace_back(line.substr(0, line.find(": ")), line);
+	return out;
+}
+
+// The lines in which two metas differ: "old vs new; ...", a line one of them
+// lacks shown as "key: (not recorded)".
+std::string meta_differences(const std::string &old_meta, const std::string &new_meta)
+{
+	auto a = meta_lines(old_meta), b = meta_lines(new_meta);
+	auto line_of = [](const std::vector<std::pair<std::string, std::string>> &v, const std::string &key) {
+		for (const auto &kv : v)
+			if (kv.first == key)
+				return kv.second;
+		return key + ": (not recorded)";
+	};
+	std::string out;
+	auto add = [&](const std::string &key) {
+		std::string x = line_of(a, key), y = line_of(b, key);
+		if (x != y)
+			out += (out.empty() ? "" : "; ") + x + " vs " + y;
+	};
+	for (const auto &kv : b)
+		add(kv.first);
+	for (const auto &kv : a)   // lines only the old meta has
+		if (line_of(b, kv.first) == kv.first + ": (not recorded)")
+			add(kv.first);
+	return out;
+}
+
+// Whether two metas describe the same stream of pairs (robot, mode, seed,
+// robot file, draws, shard), whatever labelled them.
+bool same_stream(const std::string &a, const std::string &b)
+{
+	auto stream = [](const std::string &meta) {
+		std::string s;
+		for (const auto &kv : meta_lines(meta))
+			for (const char *key : {"robot", "mode", "seed", "samples", "shard", "draws", "params_sha256"})
+				if (kv.first == key)
+					s += kv.second + "\n";
+		return s;
+	};
+	return stream(a) == stream(b);
+}
+
+// Where a dataset file resumes: the bytes to keep (the header and complete
+// rows; a torn last row dropped) and how many rows they hold.
+struct ResumePoint {
+	size_t keep = 0;
+	uint64_t rows = 0;
+};
+
+ResumePoint resume_point(const std::string &existing, const std::string &header)
+{
+	ResumePoint r;
+	size_t end = existing.rfind('\n');
+	end = end == std::string::npos ? 0 : end + 1;
+	if (end < header.size())
+		return r;
+	r.keep = end;
+	r.rows = static_cast<uint64_t>(std::count(existing.begin() + static_cast<std::ptrdiff_t>(header.size()),
+						  existing.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+	return r;
+}
+
+// Writes a dataset's .meta atomically (a temporary file renamed).
+void write_meta(const std::string &path, const std::string &meta)
+{
+	std::string tmp = path + ".tmp";
+	int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+	if (fd < 0)
+		throw std::runtime_error("cannot write " + tmp + ": " + std::strerror(errno));
+	write_all(fd, meta, tmp);
+	fsync(fd);
+	close(fd);
+	if (rename(tmp.c_str(), path.c_str()) != 0)
+		throw std::runtime_error("cannot rename " + tmp);
 }
 
 // The straight-line results of --relabel's dataset, by index: its file must
@@ -134,10 +221,12 @@ std::string straight_meta_text(const RobotParams &robot, const GenOptions &opt)
 std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &opt)
 {
 	const std::string &path = opt.relabel;
-	if (read_file(path + ".meta") != straight_meta_text(robot, opt))
+	const std::string meta = read_file(path + ".meta"), want = straight_meta_text(robot, opt);
+	if (meta != want)
 		throw std::runtime_error("--relabel " + path + ": its " + path + ".meta is not that of a " +
 					 robot.robot + " " + opt.mode + " dataset with seed " +
-					 std::to_string(opt.seed) + " from straight-line starts alone");
+					 std::to_string(opt.seed) + " from straight-line starts alone under these " +
+					 "settings (" + meta_differences(meta, want) + ")");
 	std::ifstream f(path);
 	std::string text;
 	std::vector<std::string> names = csv_columns(opt.mode);
@@ -402,31 +491,27 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	uint64_t next = lo;
 	std::string existing = read_file(sum.path);
 	if (!existing.empty() || access(meta_path.c_str(), F_OK) == 0) {
-		if (read_file(meta_path) != meta)
-			throw std::runtime_error(sum.path + " was made with other arguments or another robot "
-						 "file (see " + meta_path + "); remove it or use another --out");
-		size_t keep = existing.rfind('\n');
-		keep = keep == std::string::npos ? 0 : keep + 1;
-		if (keep < header.size())
-			keep = 0;
-		std::string body = existing.substr(keep < header.size() ? 0 : header.size(),
-						   keep - std::min(keep, header.size()));
-		uint64_t rows = static_cast<uint64_t>(std::count(body.begin(), body.end(), '\n'));
-		if (keep == 0)
-			rows = 0;
-		next = lo + rows;
-		if (truncate(sum.path.c_str(), static_cast<off_t>(keep)) != 0 && errno != ENOENT)
+		ResumePoint r = resume_point(existing, header);
+		std::string old_meta = read_file(meta_path);
+		if (old_meta != meta) {
+			// Labelled under other settings: it may be fitted, not extended.
+			if (r.rows >= hi - lo && same_stream(old_meta, meta)) {
+				if (opt.progress)
+					std::fprintf(stderr, "%s: every row asked for is there (labelled under other "
+							     "settings, see its .meta); nothing to generate\n",
+						     sum.path.c_str());
+				sum.resumed_from = hi - lo;
+				return sum;
+			}
+			throw std::runtime_error(sum.path + " was made under other settings: " +
+						 meta_differences(old_meta, meta) +
+						 "; regenerate it into another --out directory");
+		}
+		next = lo + r.rows;
+		if (truncate(sum.path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + sum.path);
 	} else {
-		std::string tmp = meta_path + ".tmp";
-		int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-		if (fd < 0)
-			throw std::runtime_error("cannot write " + tmp + ": " + std::strerror(errno));
-		write_all(fd, meta, tmp);
-		fsync(fd);
-		close(fd);
-		if (rename(tmp.c_str(), meta_path.c_str()) != 0)
-			throw std::runtime_error("cannot rename " + tmp);
+		write_meta(meta_path, meta);
 	}
 	sum.resumed_from = next - lo;
 	int fd = open(sum.path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);

@@ -1,7 +1,8 @@
-// trainer: the offline half of hylo. main() parses flags and calls run();
-// see --help. Exit codes: 0 done, 1 failure while running (I/O, a worker),
-// 2 bad usage or input (unknown mode or robot, malformed vector, a state out
-// of bounds, an unusable output directory or dataset).
+// trainer: the offline half of hylo. main() pins the numerics, parses flags
+// and calls run(); see --help. Exit codes: 0 done, 1 failure while running
+// (I/O, a worker, numerics that cannot be pinned), 2 bad usage or input
+// (unknown mode or robot, malformed vector, a state out of bounds, an unusable
+// output directory or dataset).
 #include <malloc.h>
 
 #include <cmath>
@@ -14,6 +15,7 @@
 
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/pipeline.hpp"
 #include "trainer/switching.hpp"
@@ -53,6 +55,9 @@ void usage(FILE *f)
 		"  --out DIR         dataset directory (default: build/datasets/<robot>)\n"
 		"  --shard K/N       generate only the K-th of N slices of the stream (default: 1/1)\n"
 		"  --segments N      collocation segments (default: 20)\n"
+		"  --ipopt-option NAME=VALUE\n"
+		"                    set an Ipopt option on every solve, after hylo's own settings\n"
+		"                    (repeatable; recorded in a dataset's .meta; default: none)\n"
 		"  --relabel FILE    gen, ground and marine: FILE is this stream's dataset as\n"
 		"                    labelled before the backing-up and goal-facing starts\n"
 		"                    (its .meta has no 'starts: 2'); its results are reused\n"
@@ -64,7 +69,15 @@ void usage(FILE *f)
 		"  --json            --solve: print JSON\n"
 		"  --trajectory      --solve --json: include time, state and input samples\n"
 		"  --quiet           no progress output\n"
+		"  --debug           trace every Ipopt solve, replay and cross-validation point on\n"
+		"                    stderr (default: off)\n"
+		"  --version         the version and what labels depend on (BLAS, LAPACK, libm,\n"
+		"                    Ipopt, MUMPS), then exit\n"
 		"  --help            this text\n"
+		"\n"
+		"Labels do not depend on the CPU: the reference BLAS and LAPACK are linked, and\n"
+		"on x86-64 the trainer re-executes itself once with libm's AVX2/FMA variants\n"
+		"masked (GLIBC_TUNABLES glibc.cpu.hwcaps); it refuses to run with another BLAS.\n"
 		"\n"
 		"Exit codes: 0 done, 1 failure while running, 2 bad usage or input.\n");
 }
@@ -196,6 +209,18 @@ int run(int argc, char **argv)
 		if (a == "--help" || a == "-h") {
 			usage(stdout);
 			return 0;
+		} else if (a == "--version") {
+			std::printf("hylo trainer %s\n%s", kHyloVersion, numerics_description().c_str());
+			return 0;
+		} else if (a == "--ipopt-option") {
+			std::string v = val();
+			try {
+				po.gen.solve.ipopt_options.push_back(parse_ipopt_option(v));
+			} catch (const std::invalid_argument &e) {
+				throw Usage("--ipopt-option: " + std::string(e.what()));
+			}
+		} else if (a == "--debug") {
+			po.gen.solve.debug = true;
 		} else if (a == "--mode") {
 			mode = val();
 		} else if (a == "--robot") {
@@ -277,6 +302,8 @@ int run(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	// Keep freed memory in the heap. MUMPS allocates and frees its
 	// workspace at every factorization; with glibc's defaults each one was
 	// mapped afresh and zeroed page by page, 11% of a flight generator's CPU

@@ -133,6 +133,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	FitOptions fo;
 	fo.seed = g.seed;
 	fo.jobs = g.jobs;
+	fo.debug = g.solve.debug;   // trainer --debug: the solver's and the fit's traces
 	fo.symmetries = feature_symmetries(g.mode);
 	SvrExport m;
 	FitReport rep = fit_cost(nf, rows.x_conv, rows.cost, fo, m);

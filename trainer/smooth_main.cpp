@@ -9,13 +9,16 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <lcm/lcm-cpp.hpp>
 
 #include "hylo/map_t.hpp"
 #include "hylo/plan_t.hpp"
 #include "hylo/traj_t.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/smoother.hpp"
 
@@ -49,11 +52,15 @@ void usage(FILE *out)
 		"                        phase has 10 to 48)\n"
 		"  --compare-graph       also solve every edge of the plan on its own and print\n"
 		"                        the exact cost of the graph path (slow)\n"
+		"  --ipopt-option NAME=VALUE\n"
+		"                        set an Ipopt option on every solve, after hylo's own\n"
+		"                        settings (repeatable; default: none)\n"
 		"  --quiet               no summary lines\n"
 		"  --help                this text\n"
 		"\n"
 		"Exit codes: 0 clean stop (signal, --once/--request-id done, end of an input\n"
-		"log), 1 start-up failure, 2 usage error.\n",
+		"log), 1 start-up failure (also numerics that cannot be pinned, as the\n"
+		"trainer's), 2 usage error.\n",
 		out);
 }
 
@@ -62,6 +69,7 @@ struct Options {
 	long long request_id = -1;
 	bool once = false, compare = false, quiet = false;
 	int segments_per_edge = 6;
+	std::vector<IpoptOption> ipopt_options;
 };
 
 class Smoother {
@@ -122,6 +130,14 @@ private:
 		std::fprintf(stderr, "hylo-smooth: request %lld: %s\n", static_cast<long long>(t.request_id), why.c_str());
 	}
 
+	// The default solver options with --ipopt-option's.
+	SolveOptions solve_options() const
+	{
+		SolveOptions s;
+		s.ipopt_options = o_.ipopt_options;
+		return s;
+	}
+
 	const RobotParams &robot(const std::string &name)
 	{
 		auto it = robots_.find(name);
@@ -136,7 +152,7 @@ private:
 			return {};
 		auto it = costs_.find(name);
 		if (it == costs_.end())
-			it = costs_.emplace(name, takeoff_landing(r, SolveOptions())).first;
+			it = costs_.emplace(name, takeoff_landing(r, solve_options())).first;
 		return it->second;
 	}
 
@@ -163,6 +179,7 @@ private:
 			}
 			SmoothOptions so;
 			so.segments_per_edge = o_.segments_per_edge;
+			so.ipopt_options = o_.ipopt_options;
 			MultiPhaseSolution s = smooth_best(r, wps, m->second.grid, costs, so);
 			if (!s.converged)
 				return fail(t, hylo::plan_t::STATUS_NO_PATH, "the smoothing optimization failed: " + s.status_text);
@@ -198,7 +215,7 @@ private:
 				if (o_.compare)
 					std::printf("request %lld: graph path, every edge solved exactly: %.6g J\n",
 						    static_cast<long long>(p.request_id),
-						    graph_path_cost(r, wps, costs, SolveOptions()));
+						    graph_path_cost(r, wps, costs, solve_options()));
 				std::fflush(stdout);
 			}
 		} catch (const std::exception &e) {
@@ -233,7 +250,7 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			(a == "--once" ? o.once : a == "--quiet" ? o.quiet : o.compare) = true;
 			continue;
 		}
-		bool text = a == "--lcm-url" || a == "--out-url" || a == "--channel-prefix";
+		bool text = a == "--lcm-url" || a == "--out-url" || a == "--channel-prefix" || a == "--ipopt-option";
 		bool number = a == "--request-id" || a == "--segments-per-edge";
 		if (!text && !number) {
 			std::fprintf(stderr, "hylo-smooth: unknown option '%s' (see --help)\n", a.c_str());
@@ -244,6 +261,15 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			return false;
 		}
 		const char *v = argv[++i];
+		if (a == "--ipopt-option") {
+			try {
+				o.ipopt_options.push_back(parse_ipopt_option(v));
+			} catch (const std::invalid_argument &e) {
+				std::fprintf(stderr, "hylo-smooth: --ipopt-option: %s\n", e.what());
+				return false;
+			}
+			continue;
+		}
 		if (text) {
 			(a == "--lcm-url" ? o.in_url : a == "--out-url" ? o.out_url : o.prefix) = v;
 			continue;
@@ -268,6 +294,8 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 
 int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	Options o;
 	int code = 0;
 	if (!parse(argc, argv, o, code))

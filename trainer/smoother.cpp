@@ -364,7 +364,9 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 		MultiPhaseProblem prob = smoothing_problem(robot, attempt ? straightened(plan) : plan, map, costs, opt);
 		if (!T_scales.empty())
 			prob.T_scales = T_scales;
-		s = solve_multiphase(robot, prob, smoothing_solve_options());
+		SolveOptions so = smoothing_solve_options();
+		so.ipopt_options = opt.ipopt_options;
+		s = solve_multiphase(robot, prob, so);
 		seconds += s.solve_seconds;
 		s.solve_seconds = seconds;
 		if (s.converged)

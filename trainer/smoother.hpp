@@ -48,6 +48,7 @@ struct SmoothOptions {
 	int segments_per_edge = 6;     // collocation segments per plan edge of a phase
 	int min_segments = 10, max_segments = 48;
 	double guard_half_length_m = 6; // how far a switch point may slide each way (per axis on platforms)
+	std::vector<IpoptOption> ipopt_options;  // added to smoothing_solve_options() (hylo-smooth --ipopt-option)
 };
 
 // The multi-phase problem of a plan. Throws std::invalid_argument for a plan

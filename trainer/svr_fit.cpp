@@ -265,7 +265,7 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 		if (grid[g].err < grid[best].err)
 			best = g;
 	}
-	if (std::getenv("HYLO_TRAINER_DEBUG"))
+	if (opt.debug)
 		for (const Point &pt : grid)
 			std::fprintf(stderr, "cv: C %g gamma %g epsilon %g: relative error mean %.5f, median %.5f\n",
 				     pt.C, pt.gamma, pt.eps, pt.err, pt.median);

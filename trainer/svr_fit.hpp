@@ -39,6 +39,7 @@ struct FitOptions {
 	size_t sparse_min_train = 2000;
 	size_t cv_max_samples = 2000;      // cross-validate on at most this many training samples
 	int jobs = 1;                      // threads for the cross-validation fits
+	bool debug = false;                // each grid point's cross-validated errors on stderr
 	// Sign flips of the features under which the cost is invariant: every
 	// training row is also fitted flipped (held-out and validation rows
 	// are not; a fold's flipped copies stay in its fold).

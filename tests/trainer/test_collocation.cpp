@@ -13,6 +13,7 @@
 #include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
 
@@ -51,8 +52,10 @@ void derivative_test(const std::string &robot, const std::string &mode, const do
 
 }  // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	// Generic states (not at rest) so that no term sits at a kink of its smoothing.
 	double da[2] = {-0.5, 0.1}, db[2] = {-0.2, -0.1}, pa[2] = {0.5, 0.1}, pb[2] = {0.2, -0.1};
 	double ga[4] = {0.1, 0.2, 0.3, 0.4}, gb[4] = {0.7, 0.8, 0.9, 0.5};
@@ -114,11 +117,19 @@ int main()
 	check(!gbad.replay_ok, "Ambot ground: a corrupted control is detected", std::to_string(gbad.replay_error));
 
 	// A goal behind and to the right (Ambot ground sample 11): straight-line
-	// starts settle on driving forward and turning round (100.5 J); the
-	// backing-up start of the training options finds a cheaper optimum
-	// (74.0 J). Taking a straight-line result as given (--relabel) and
+	// starts may settle on driving forward and turning round (100.5 J), the
+	// backing-up start finds the cheaper basin. Which basin the straight lines
+	// reach depends on rounding (under OpenBLAS it changed with the CPU), so
+	// only the all-starts label is checked: within 0.5% of the best known
+	// optimum on its 80-segment mesh, 73.67 J (the cheapest accepted of runs
+	// from 20 and 40 segments under Prescott, Haswell and SkylakeX OpenBLAS
+	// kernels, the reference BLAS with and without the libm pin, and Ipopt's
+	// mu_init, tol and bound_push varied; starts from 20 segments reached
+	// 73.70-73.97 J, the other basin 98-100.5 J; finer meshes go lower, 73.41 J
+	// at 240 segments). Taking a straight-line result as given (--relabel) and
 	// adding the other starts is the same solve, to the bit.
 	{
+		const double best_known = 73.67;
 		double r1[4] = {0, 0, 1.0402846739878517, 0};
 		double r2[4] = {-2.4252428002639377, -2.0063291583354816, 0.21825319163565951, -0.11808062740665326};
 		SolveOptions line_opt = training_solve_options();
@@ -126,15 +137,15 @@ int main()
 		Solution line = solve_bvp("ground", ambot, r1, r2, line_opt);
 		Solution all = solve_bvp("ground", ambot, r1, r2, training_solve_options());
 		Solution added = solve_bvp_strategies("ground", ambot, r1, r2, training_solve_options(), line);
-		check(line.converged && all.converged && all.replay_ok && all.cost < 0.9 * line.cost,
-		      "Ambot ground, goal behind: the backing-up start is >10% cheaper than the straight lines'",
-		      std::to_string(all.cost) + " J vs " + std::to_string(line.cost) + " J");
+		check(all.converged && all.replay_ok && std::fabs(all.cost - best_known) <= 5e-3 * best_known,
+		      "Ambot ground, goal behind: every start's label within 0.5% of the best known optimum (73.67 J)",
+		      std::to_string(all.cost) + " J");
 		check(all.starts == line.starts + 2 && added.cost == all.cost && added.T == all.T &&
 			      added.iterations == all.iterations && added.segments == all.segments,
 		      "solve_bvp_strategies on a straight-line result = solve_bvp with every start",
 		      std::to_string(added.cost) + " vs " + std::to_string(all.cost));
-		std::printf("# ambot ground goal behind: %.4f J straight lines, %.4f J all starts\n", line.cost,
-			    all.cost);
+		std::printf("# ambot ground goal behind: %.4f J straight lines (%s), %.4f J all starts, best known %.2f J\n",
+			    line.cost, line.converged ? "converged" : line.status_text.c_str(), all.cost, best_known);
 	}
 
 	// Flight replays segment by segment (unstable open loop): a solution

@@ -17,6 +17,7 @@
 
 #include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
 #include "trainer/smoother.hpp"
@@ -279,8 +280,10 @@ void wall_gates(const RobotParams &drivo)
 
 }  // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	RobotParams di = load_robot("trainer/params/di.yaml");
 	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
 	RobotParams drivo = load_robot("trainer/params/drivocopter.yaml");

@@ -2,9 +2,12 @@
 // (trainer --relabel, GenOptions::relabel): a dataset labelled from straight
 // lines alone, relabelled, is byte for byte the dataset a fresh run with
 // every start writes, and so is one relabelled in place by a plain run; no
-// label gets dearer and at least one cheaper; a relabel file of another stream, a corrupted row or a dataset already
+// label gets dearer, and sample 6 (a goal behind) gets the cheaper basin's;
+// a relabel file of another stream, a corrupted row or a dataset already
 // relabelled is refused with its name and line. Prints TAP.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -15,6 +18,7 @@
 
 #include "tests/tap.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 
 namespace {
@@ -60,14 +64,16 @@ std::string refusal(const RobotParams &robot, const GenOptions &o)
 
 }  // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	const fs::path dir = fs::temp_directory_path() / ("hylo_relabel_" + std::to_string(getpid()));
 	fs::create_directories(dir);
 	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
 	GenOptions o;
 	o.mode = "ground";
-	o.samples = 8;   // sample 6's goal is behind: a backing-up start is 3.6% cheaper
+	o.samples = 8;   // sample 6's goal is behind
 	o.jobs = 2;
 	o.progress = false;
 
@@ -104,9 +110,21 @@ int main()
 		if (lv[k] == "1" && fv[k] == "1" && std::stod(fc[k]) < 0.99 * std::stod(lc[k]))
 			cheaper++;
 	}
-	check(lc.size() == 8 && dearer == 0 && cheaper >= 1,
-	      "every start: no label dearer, at least one >1% cheaper than straight lines alone",
-	      std::to_string(cheaper) + " cheaper, " + std::to_string(dearer) + " dearer");
+	check(lc.size() == 8 && dearer == 0, "every start: no label dearer than straight lines alone",
+	      std::to_string(dearer) + " dearer");
+	std::printf("# %d of 8 labels more than 1%% cheaper than straight lines alone\n", cheaper);
+	// Sample 6: which basin the straight lines reach depends on rounding
+	// (3.6% dearer here); every start's label must be in the cheaper one.
+	// Its local optima on the 80-segment mesh spread over 96.47-97.76 J
+	// (starts from 20 and 40 segments, Ipopt's mu_init, tol and bound_push
+	// varied; best known 96.47 J), the other basin's over 100.3-101 J:
+	// within 2% of the best known is the basin, not one of its optima.
+	const double best6 = 96.47;
+	bool basin = fc.size() == 8 && fv[6] == "1" && std::fabs(std::stod(fc[6]) - best6) <= 0.02 * best6;
+	check(basin, "sample 6, a goal behind: every start's label within 2% of the best known optimum (96.47 J)",
+	      fc.size() == 8 ? fc[6] + " J" : "no row 6");
+	if (lc.size() == 8 && fc.size() == 8)
+		std::printf("# sample 6: %s J straight lines, %s J every start\n", lc[6].c_str(), fc[6].c_str());
 
 	// In place: a run over a straight-line dataset relabels it (moved to
 	// ground.csv.straight meanwhile, removed when done).

@@ -126,6 +126,9 @@ else tap_not_ok "unknown option: exit 2 and says which" "rc $rc"; fi
 "$B/bin/hylo-smooth" --segments-per-edge 0 > /dev/null 2> "$T/u.err"; rc=$?
 if [ $rc -eq 2 ] && grep -q "an integer in \[1, 48\]" "$T/u.err"; then tap_ok "bad --segments-per-edge: exit 2"
 else tap_not_ok "bad --segments-per-edge: exit 2" "rc $rc $(cat "$T/u.err")"; fi
-if "$B/bin/hylo-smooth" --help | grep -q -- "--segments-per-edge N"; then tap_ok "--help lists the options"
+"$B/bin/hylo-smooth" --ipopt-option mu_strategy=fancy > /dev/null 2> "$T/u.err"; rc=$?
+if [ $rc -eq 2 ] && grep -q "Ipopt refuses 'fancy' for mu_strategy" "$T/u.err"; then tap_ok "bad --ipopt-option: exit 2 and says why"
+else tap_not_ok "bad --ipopt-option: exit 2 and says why" "rc $rc $(cat "$T/u.err")"; fi
+if "$B/bin/hylo-smooth" --help | grep -q -- "--segments-per-edge N" && "$B/bin/hylo-smooth" --help | grep -q -- "--ipopt-option NAME=VALUE"; then tap_ok "--help lists the options"
 else tap_not_ok "--help lists the options"; fi
 tap_finish

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The trainer's command line and datasets (on the cheap double-integrator
-# mode): usage errors, parameter-file errors, --solve --json, determinism
+# mode): usage errors, parameter-file errors, --ipopt-option and --debug,
+# the settings a dataset's .meta records, --solve --json, determinism
 # across worker counts, resume after a kill, shards that concatenate to the
 # unsharded file, and a small gen -> fit -> export run whose header compiles.
 set -u
@@ -21,6 +22,21 @@ expect_fail() {  # NAME CODE NEEDLE CMD...
 "$TR" --help > "$T/help"; rc=$?
 if [ "$rc" -eq 0 ] && grep -q -- "--samples N" "$T/help" && grep -q "default: 11520" "$T/help" && grep -q -- "--shard K/N" "$T/help"; then
   tap_ok "--help lists the options with their defaults"; else tap_not_ok "--help lists the options with their defaults"; fi
+if grep -q -- "--ipopt-option NAME=VALUE" "$T/help" && grep -A2 -- "--ipopt-option NAME=VALUE" "$T/help" | grep -q "default: none" &&
+   grep -A1 -- "--debug" "$T/help" | grep -q "default: off" && grep -q -- "--version" "$T/help"; then
+  tap_ok "--help lists --ipopt-option, --debug and --version with their defaults"; else
+  tap_not_ok "--help lists --ipopt-option, --debug and --version with their defaults"; fi
+expect_fail "unknown Ipopt option: exit 2" 2 "Ipopt has no option 'bogus'" \
+  "$TR" --mode di_neg --robot di --solve -0.5,0 -0.3,0 --ipopt-option bogus=1
+expect_fail "an Ipopt option value of the wrong type: exit 2" 2 "Ipopt refuses '1.5' for max_iter" \
+  "$TR" --mode di_neg --robot di --solve -0.5,0 -0.3,0 --ipopt-option max_iter=1.5
+expect_fail "--ipopt-option without a value: exit 2" 2 "'tol' is not NAME=VALUE" \
+  "$TR" --mode di_neg --robot di --solve -0.5,0 -0.3,0 --ipopt-option tol
+"$TR" --mode di_neg --robot di --solve -0.5,0 -0.3,0 --debug --ipopt-option mu_strategy=adaptive > "$T/out" 2> "$T/err"
+if grep -q "^start T=.* relax 1: solved" "$T/err" && grep -q "^  replay di_neg: error" "$T/err" && grep -q "converged" "$T/out" &&
+   ! grep -q "^start" "$T/out"; then
+  tap_ok "--debug traces every solve and replay on stderr"; else
+  tap_not_ok "--debug traces every solve and replay on stderr" "$(head -3 "$T/err")"; fi
 expect_fail "unknown mode: exit 2" 2 "unknown mode 'swim'" "$TR" --mode swim --robot ambot --solve 0 0
 expect_fail "unknown robot: exit 2 naming the file" 2 "trainer/params/nobot.yaml" "$TR" --mode ground --robot nobot --solve 0 0
 expect_fail "malformed --solve vector: exit 2" 2 "'x' in '0,x,0,0'" "$TR" --mode ground --robot ambot --solve 0,x,0,0 1,0,0,0
@@ -83,7 +99,16 @@ gen --samples 200 --jobs 1 --out "$T/full" > /dev/null
 if cmp -s "$T/kill/di_neg.csv" "$T/full/di_neg.csv" && [ "$before" -lt 200 ]; then
   tap_ok "killed after $before rows and re-run: the same file as an uninterrupted run"; else
   tap_not_ok "killed and re-run: the same file as an uninterrupted run" "$before rows before; $(cat "$T/resume.out")"; fi
-expect_fail "a dataset made with other arguments is not silently extended" 1 "other arguments" \
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 4 --seed 3 --out "$T/opt" --ipopt-option mu_init=0.1 \
+  --ipopt-option tol=1e-9 > /dev/null
+if grep -q "^ipopt_options: mu_init=0.1 tol=1e-9$" "$T/opt/di_neg.csv.meta" && grep -q "^tol: 1e-08$" "$T/opt/di_neg.csv.meta" &&
+   grep -q "^refine_within: 0.05$" "$T/opt/di_neg.csv.meta" && grep -q "^blas: " "$T/opt/di_neg.csv.meta"; then
+  tap_ok "the .meta records the solver settings, the --ipopt-option list and the numerics"; else
+  tap_not_ok "the .meta records the solver settings, the --ipopt-option list and the numerics" "$(cat "$T/opt/di_neg.csv.meta")"; fi
+expect_fail "extending it without those Ipopt options is refused, naming the line" 1 \
+  "ipopt_options: mu_init=0.1 tol=1e-9 vs ipopt_options: none" \
+  "$TR" --mode di_neg --robot di --stage gen --quiet --samples 8 --seed 3 --out "$T/opt"
+expect_fail "a dataset made with other arguments is not silently extended" 1 "made under other settings: seed: 3 vs seed: 4" \
   "$TR" --mode di_neg --robot di --stage gen --quiet --samples 200 --seed 4 --out "$T/kill"
 
 # A small pipeline: gen -> fit -> export, and the header compiles into the planner.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "trainer/collocation.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 
 namespace {
@@ -79,6 +80,8 @@ int bare_solves(const std::vector<Case> &cases, const char *path)
 
 int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	if (argc < 2 || argc > 3) {
 		std::fprintf(stderr, "usage: %s RESULTS.json [BARE_SOLVES.json]\n", argv[0]);
 		return 2;

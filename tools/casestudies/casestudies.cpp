@@ -41,6 +41,7 @@ extern "C" {
 #include "tools/casestudies/chasm.hpp"
 #include "tools/scene/scene.hpp"
 #include "trainer/collocation.hpp"
+#include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
@@ -1182,6 +1183,8 @@ int run(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+	if (!pin_numerics(argc, argv))
+		return 1;
 	try {
 		return run(argc, argv);
 	} catch (const std::invalid_argument &e) {
