@@ -1,7 +1,9 @@
 #include "trainer/params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <dirent.h>
 #include <unistd.h>
 #include <set>
 #include <vector>
@@ -11,7 +13,7 @@
 namespace hylo::trainer {
 namespace {
 
-// Required parameters of each mode (models.md sections 2-5, 8).
+// Required parameters of each mode (docs/models.md sections 2-5, 8).
 const std::map<std::string, std::vector<std::string>> kRequired = {
 	{"ground", {"m", "Iz", "B", "Lc", "r", "G", "kt", "R", "Vcc", "crr", "mut", "Cy", "Pd", "vmax"}},
 	{"marine", {"m", "Iz", "B", "Jm", "kt", "R", "Vcc", "kT", "kq", "dx", "dy", "Cy_w", "dw", "Pd",
@@ -81,6 +83,24 @@ const ModeParams &RobotParams::mode(const std::string &name) const
 	return it->second;
 }
 
+namespace {
+
+// The checkout the binary was built in (build/bin/trainer -> its root), or "".
+std::string checkout_root()
+{
+	char exe[4096];
+	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+	if (n <= 0)
+		return "";
+	exe[n] = '\0';
+	std::string root = exe;
+	for (int up = 0; up < 3 && root.find('/') != std::string::npos; up++)
+		root = root.substr(0, root.rfind('/'));
+	return root;
+}
+
+}  // namespace
+
 std::string robot_file(const std::string &name)
 {
 	const char *dir = std::getenv("HYLO_PARAMS_DIR");
@@ -90,18 +110,55 @@ std::string robot_file(const std::string &name)
 	if (access(here.c_str(), F_OK) == 0)
 		return here;
 	// Run from elsewhere: the files beside the binary's checkout (build/bin/trainer).
-	char exe[4096];
-	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-	if (n > 0) {
-		exe[n] = '\0';
-		std::string root = exe;
-		for (int up = 0; up < 3 && root.find('/') != std::string::npos; up++)
-			root = root.substr(0, root.rfind('/'));
+	std::string root = checkout_root();
+	if (!root.empty()) {
 		std::string there = root + "/trainer/params/" + name + ".yaml";
 		if (access(there.c_str(), F_OK) == 0)
 			return there;
 	}
 	return here;
+}
+
+std::string robot_dir()
+{
+	const char *dir = std::getenv("HYLO_PARAMS_DIR");
+	if (dir && *dir)
+		return dir;
+	if (access("trainer/params", F_OK) == 0)
+		return "trainer/params";
+	std::string root = checkout_root();
+	if (!root.empty() && access((root + "/trainer/params").c_str(), F_OK) == 0)
+		return root + "/trainer/params";
+	return "trainer/params";
+}
+
+std::vector<std::pair<std::string, std::vector<std::string>>> list_robots()
+{
+	std::vector<std::pair<std::string, std::vector<std::string>>> robots;
+	std::string dir = robot_dir();
+	DIR *d = opendir(dir.c_str());
+	if (!d)
+		return robots;
+	std::vector<std::string> names;
+	while (struct dirent *e = readdir(d)) {
+		std::string f = e->d_name;
+		if (f.size() > 5 && f.compare(f.size() - 5, 5, ".yaml") == 0 && f[0] != '.')
+			names.push_back(f.substr(0, f.size() - 5));
+	}
+	closedir(d);
+	std::sort(names.begin(), names.end());
+	for (const std::string &name : names) {
+		std::vector<std::string> modes;
+		try {
+			RobotParams r = load_robot(dir + "/" + name + ".yaml");
+			for (const auto &m : r.modes)
+				modes.push_back(m.first);
+		} catch (const std::exception &) {
+			// A file that does not load is listed without modes.
+		}
+		robots.emplace_back(name, modes);
+	}
+	return robots;
 }
 
 RobotParams load_robot(const std::string &path)
