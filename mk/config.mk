@@ -6,14 +6,14 @@ CXX := g++
 AR := ar
 
 # Onboard code is strict C99; -std=c99 also rules out FMA contraction, which
-# keeps results bit-identical across x86-64 and aarch64 (deps.md).
+# keeps results bit-identical across x86-64 and aarch64 (docs/deps.md).
 C99_FLAGS := -std=c99 -Wall -Wextra -Werror -pedantic -O2 -g
 CXX17_FLAGS := -std=c++17 -Wall -Wextra -Werror -O2 -g
 DEP_FLAGS := -MMD -MP
 SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 # Third-party headers are included as system headers so that -Wextra stays
-# about our code. Ipopt needs -DHAVE_CSTDDEF (deps.md).
+# about our code. Ipopt needs -DHAVE_CSTDDEF (docs/deps.md).
 IPOPT_CFLAGS := -isystem /usr/include/coin -DHAVE_CSTDDEF
 # Labels must not depend on the CPU (trainer/numerics.hpp): every program
 # that links Ipopt loads Debian's reference BLAS and LAPACK (libblas3,

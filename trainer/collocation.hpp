@@ -92,7 +92,7 @@ struct Solution {
 	Trajectory traj;
 };
 
-// Mode names the trainer knows and their sampled dimension (models.md section 7).
+// Mode names the trainer knows and their sampled dimension (docs/models.md section 7).
 bool known_mode(const std::string &mode);
 int sampled_dim(const std::string &mode);
 // Modes as numbered in goal_t (MODE_*) and onboard (hylo_mode); "" or 0 for
@@ -121,7 +121,7 @@ Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot,
 			      const double *x2s, const SolveOptions &opt, const Solution &line);
 
 // State and input sizes of a mode, and the full state its sampled
-// coordinates stand for (the virtual constraints of models.md section 7).
+// coordinates stand for (the virtual constraints of docs/models.md section 7).
 int state_dim(const std::string &mode);
 int input_dim(const std::string &mode);
 std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs);
