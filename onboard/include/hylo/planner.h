@@ -142,6 +142,11 @@ typedef struct {
 	uint32_t combo_speed[2][HYLO_MAX_COMBOS][2];
 	uint8_t combo_speed_ok[2][HYLO_MAX_COMBOS];
 	hylo_real heading_change[HYLO_MAX_GRID][HYLO_MAX_GRID];
+	/* the envelope's turn cell of the edges into each roadmap position from
+	 * each neighbour, per heading pair: adjacency entry a's at pair_turn[a *
+	 * pair_turn_stride], kept with the roadmap (0: it does not fit) */
+	uint8_t pair_turn[HYLO_MAX_PAIR_TURNS];
+	uint32_t pair_turn_stride;
 	/* scratch of one evaluation (the combinations of one position) */
 	hylo_real head_xs[HYLO_MAX_COMBOS][HYLO_XS_DIM];
 	hylo_real features[HYLO_MAX_COMBOS * HYLO_MAX_FEATURES];
