@@ -28,7 +28,7 @@ EIGEN_CFLAGS := -isystem /usr/include/eigen3
 YAML_LIBS := -lyaml-cpp
 SVM_LIBS := -lsvm
 CMOCKA_LIBS := -lcmocka
-LCM_LIBS := -llcm
+LCM_LIBS := -llcm -pthread
 
 ALL_TARGETS :=
 BENCH_TARGETS :=

@@ -14,9 +14,10 @@
 
 /**
  * Checks an encoded goal_t (buf, len bytes) before decoding: fingerprint,
- * non-negative array counts, exact length. HYLO_OK, or HYLO_E_BAD_VALUE with
- * a reason naming the field. *request_id gets the goal's request id when the
- * buffer reaches it, else -1, so that even a corrupt goal can be answered.
+ * non-negative array counts and max_expansions, exact length. HYLO_OK, or
+ * HYLO_E_BAD_VALUE with a reason naming the field. *request_id gets the
+ * goal's request id when the buffer reaches it, else
+ * HYLO_GOAL_T_REQUEST_ID_UNREADABLE, so that even a corrupt goal can be answered.
  * No allocation.
  */
 hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,

@@ -200,6 +200,17 @@ hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map);
  */
 hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan *plan);
 
+/**
+ * Checks the fields of goal g that need no map: algorithm and mode numbers,
+ * every entry of start and goal (also those the mode does not use), every
+ * spacing and radius finite and >= 0, time_budget_ms finite and >= 0,
+ * suboptimality, and each sampling grid (at most HYLO_MAX_GRID finite
+ * entries). hylo_planner_plan runs it first; a node may run it when a goal
+ * arrives. HYLO_OK, or a status with a reason naming the field in r (may be
+ * NULL). Does not allocate; safe in a control loop.
+ */
+hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r);
+
 /** The reason for the last failure ("ok" after a success). Never NULL. */
 const char *hylo_planner_reason(const hylo_planner *pl);
 
