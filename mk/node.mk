@@ -133,7 +133,7 @@ $(PLAN_CHECK): $(BUILD)/obj/node-tests/plan_check.o $(BUILD)/obj/node/registry.o
 ALL_TARGETS += $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK)
 
 # Process-level tests (shell, TAP): file:// logs, signals, usage.
-NODE_SCRIPT_TESTS := tests/node/test_logs.sh tests/node/test_udp.sh
+NODE_SCRIPT_TESTS := tests/node/test_logs.sh tests/node/test_udp.sh tests/node/test_load.sh
 $(NODE_SCRIPT_TESTS): $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK) $(HYLO_SCENE) $(HYLO_LISTEN)
 TESTS += $(NODE_SCRIPT_TESTS)
 
@@ -172,3 +172,11 @@ $(HYLO_COST_SYNTH): $(BUILD)/obj/tools/cost/hylo_cost.o $(BUILD)/obj/node/regist
 	$(CC) $^ -lm -o $@
 ALL_TARGETS += $(HYLO_COST_SYNTH)
 tests/node/test_logs.sh: $(HYLO_COST_SYNTH)
+tests/node/test_load.sh: $(GOAL_BURST)
+
+# goal_burst: the load client of tests/node/test_load.sh (and make bench).
+GOAL_BURST := $(BUILD)/test/node/goal_burst
+$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(MSG_OBJS) $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(MSG_OBJS) $(YAML_LIBS) $(LCM_LIBS) -o $@
+ALL_TARGETS += $(GOAL_BURST)
