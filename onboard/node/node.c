@@ -186,9 +186,13 @@ static void slot_fill(hylo_node_slot *s, const hylo_goal *g, int64_t requester_i
 {
 	s->goal = *g;
 	s->requester_id = requester_id;
-	memcpy(s->speeds, g->speeds, g->n_speeds * sizeof *s->speeds);
-	memcpy(s->headings, g->headings, g->n_headings * sizeof *s->headings);
-	memcpy(s->air_speeds, g->air_speeds, g->n_air_speeds * sizeof *s->air_speeds);
+	/* Counts are at most HYLO_MAX_GRID (hylo_goal_check); an empty grid may be NULL. */
+	if (g->n_speeds)
+		memcpy(s->speeds, g->speeds, g->n_speeds * sizeof *s->speeds);
+	if (g->n_headings)
+		memcpy(s->headings, g->headings, g->n_headings * sizeof *s->headings);
+	if (g->n_air_speeds)
+		memcpy(s->air_speeds, g->air_speeds, g->n_air_speeds * sizeof *s->air_speeds);
 	s->goal.speeds = s->goal.headings = s->goal.air_speeds = NULL;
 }
 
