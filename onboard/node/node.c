@@ -27,9 +27,16 @@ static int64_t utime_now(void)
 	return (int64_t)tv.tv_sec * 1000000 + tv.tv_usec;
 }
 
+/* Publishing is serialized: udpm:// locks its socket, but an --out-url log
+ * (file://) would be written from both threads. pub_lock nests inside lock. */
 static void publish(hylo_node *node, const hylo_plan_t *msg)
 {
-	if (hylo_plan_t_publish(node->out, node->ch_plan, msg) != 0) {
+	int r;
+
+	pthread_mutex_lock(&node->pub_lock);
+	r = hylo_plan_t_publish(node->out, node->ch_plan, msg);
+	pthread_mutex_unlock(&node->pub_lock);
+	if (r != 0) {
 		node->n_publish_errors++;
 		if (node->log)
 			fprintf(node->log, "hylo-planner: could not publish on %s\n", node->ch_plan);
@@ -118,7 +125,12 @@ static void fill_status(hylo_node *node, hylo_node_status_t *s, int8_t event)
 
 static void publish_status_msg(hylo_node *node, const hylo_node_status_t *s)
 {
-	if (hylo_node_status_t_publish(node->out, node->ch_status, s) != 0)
+	int r;
+
+	pthread_mutex_lock(&node->pub_lock);
+	r = hylo_node_status_t_publish(node->out, node->ch_status, s);
+	pthread_mutex_unlock(&node->pub_lock);
+	if (r != 0)
 		node->n_publish_errors++;
 }
 
@@ -497,7 +509,12 @@ int hylo_node_init(hylo_node *node, lcm_t *in, lcm_t *out, const char *prefix,
 	node->map_status = HYLO_PLAN_T_STATUS_NO_MAP;
 	if (pthread_mutex_init(&node->lock, NULL) != 0)
 		return -1;
+	if (pthread_mutex_init(&node->pub_lock, NULL) != 0) {
+		pthread_mutex_destroy(&node->lock);
+		return -1;
+	}
 	if (pthread_cond_init(&node->wake, NULL) != 0) {
+		pthread_mutex_destroy(&node->pub_lock);
 		pthread_mutex_destroy(&node->lock);
 		return -1;
 	}
@@ -519,6 +536,7 @@ int hylo_node_init(hylo_node *node, lcm_t *in, lcm_t *out, const char *prefix,
 	return 0;
 fail:
 	pthread_cond_destroy(&node->wake);
+	pthread_mutex_destroy(&node->pub_lock);
 	pthread_mutex_destroy(&node->lock);
 	return -1;
 }
@@ -526,5 +544,6 @@ fail:
 void hylo_node_destroy(hylo_node *node)
 {
 	pthread_cond_destroy(&node->wake);
+	pthread_mutex_destroy(&node->pub_lock);
 	pthread_mutex_destroy(&node->lock);
 }

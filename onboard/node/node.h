@@ -78,6 +78,7 @@ typedef struct {
 
 	/* Everything below is shared by admission and work: under lock. */
 	pthread_mutex_t lock;
+	pthread_mutex_t pub_lock;       /* serializes publishing; taken inside lock, never around it */
 	pthread_cond_t wake;            /* a goal or map is waiting, or stop */
 	int stop;
 	hylo_node_slot queue[HYLO_NODE_QUEUE_LEN];   /* FIFO ring */
