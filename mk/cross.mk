@@ -20,7 +20,7 @@ cross-deps:
 		$$( [ "$$(id -u)" -eq 0 ] || echo sudo ) apt-get update -qq; }
 	@tools/install-deps libcmocka-dev:arm64 libsvm-dev:arm64
 
-$(CROSS_DIR)/lib/libhylo.a: $(ONBOARD_SRCS) $(wildcard onboard/include/hylo/*.h) | cross-deps
+$(CROSS_DIR)/lib/libhylo.a: $(ONBOARD_SRCS) $(ONBOARD_HEADERS) | cross-deps
 	@mkdir -p $(CROSS_DIR)/obj $(@D)
 	cd $(CROSS_DIR)/obj && $(CROSS_CC) $(C99_FLAGS) $(addprefix -I$(CURDIR)/,onboard/include onboard) \
 		-c $(addprefix $(CURDIR)/,$(ONBOARD_SRCS))
@@ -50,7 +50,7 @@ $(NATIVE_DIGEST): tools/cross/plan_digest.c $(ONBOARD_LIB) $(MODEL_HEADERS) $(wi
 
 # The same without the SVR evaluator's AVX2 clones (tests/cross/test_paths.sh).
 NATIVE_DIGEST_SSE2 := $(BUILD)/cross/plan_digest_sse2
-$(NATIVE_DIGEST_SSE2): tools/cross/plan_digest.c $(ONBOARD_SRCS) $(MODEL_HEADERS) $(wildcard onboard/include/hylo/*.h tests/onboard/testutil_*.h)
+$(NATIVE_DIGEST_SSE2): tools/cross/plan_digest.c $(ONBOARD_SRCS) $(MODEL_HEADERS) $(ONBOARD_HEADERS) $(wildcard tests/onboard/testutil_*.h)
 	@mkdir -p $(@D)
 	$(CC) $(C99_FLAGS) -DHYLO_NO_CLONES $(ONBOARD_INC) -Itests -Ionboard/models $< $(ONBOARD_SRCS) -lm -o $@
 

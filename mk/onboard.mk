@@ -6,6 +6,12 @@
 #   build/san/test/onboard/test_*  the same binaries under ASan+UBSan
 
 ONBOARD_INC := -Ionboard/include -Ionboard
+# The API (hylo/*.h) and the workspace's layout (hylo/internal/*.h: struct
+# hylo_planner embeds their types; not API). Both are installed; the core's
+# own private header, onboard/src/planner_internal.h, is not.
+ONBOARD_PUBLIC_HEADERS := $(sort $(wildcard onboard/include/hylo/*.h))
+ONBOARD_INTERNAL_HEADERS := $(sort $(wildcard onboard/include/hylo/internal/*.h))
+ONBOARD_HEADERS := $(ONBOARD_PUBLIC_HEADERS) $(ONBOARD_INTERNAL_HEADERS)
 ONBOARD_SRCS := \
 	onboard/src/status.c \
 	onboard/src/types.c \
@@ -90,11 +96,11 @@ CAPACITY_FLAGS := -DHYLO_MAX_POSITIONS=400 -DHYLO_MAX_NODES=2000 -DHYLO_MAX_ADJA
 CAPACITY_TEST := $(BUILD)/test/capacity/test_capacity
 CAPACITY_TEST_SAN := $(BUILD)/san/test/capacity/test_capacity
 
-$(CAPACITY_TEST): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(wildcard onboard/include/hylo/*.h tests/onboard/*.h)
+$(CAPACITY_TEST): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(ONBOARD_HEADERS) $(wildcard tests/onboard/*.h)
 	@mkdir -p $(@D)
 	$(CC) $(C99_FLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
 
-$(CAPACITY_TEST_SAN): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(wildcard onboard/include/hylo/*.h tests/onboard/*.h)
+$(CAPACITY_TEST_SAN): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(ONBOARD_HEADERS) $(wildcard tests/onboard/*.h)
 	@mkdir -p $(@D)
 	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
 

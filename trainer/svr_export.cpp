@@ -8,9 +8,7 @@
 #include <stdexcept>
 #include <system_error>
 
-extern "C" {
 #include "hylo/features.h"
-}
 
 namespace hylo::trainer {
 namespace {

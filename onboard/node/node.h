@@ -14,6 +14,10 @@
 #include "hylo/planner.h"
 #include "hylo_msg.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define HYLO_NODE_CHANNEL_LEN 128
 
 typedef struct {
@@ -46,5 +50,9 @@ void hylo_node_goal(hylo_node *node, const void *data, int len);
 
 /** Takes one encoded map message as the subscription does (for tests). */
 void hylo_node_map(hylo_node *node, const void *data, int len);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -22,10 +22,8 @@
 #include <string>
 #include <vector>
 
-extern "C" {
 #include "hylo/planner.h"
 #include "node/registry.h"
-}
 #include "tools/scene/scene.hpp"
 
 namespace {

@@ -21,6 +21,10 @@
 #include "hylo/status.h"
 #include "hylo/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * A cost model's envelope (onboard/models/README.md, "Envelope"): a table of
  * lower bounds of the model's predicted cost (hylo_svr_predict, before the
@@ -202,5 +206,9 @@ void hylo_svr_cache_reset(hylo_svr_cache *c);
  */
 hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
                                    const double *x, uint32_t n, double *cost);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
