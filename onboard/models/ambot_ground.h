@@ -19,6 +19,10 @@
 
 #include "hylo/svr.h"
 
+#define HYLO_MODEL_AMBOT_GROUND_FORMAT_VERSION 1
+#if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_AMBOT_GROUND_FORMAT_VERSION
+#error "ambot_ground.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#endif
 #define HYLO_MODEL_AMBOT_GROUND_MODE HYLO_MODE_GROUND
 #define HYLO_MODEL_AMBOT_GROUND_N_SV 4394
 #define HYLO_MODEL_AMBOT_GROUND_N_FEATURES 8

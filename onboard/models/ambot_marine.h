@@ -19,6 +19,10 @@
 
 #include "hylo/svr.h"
 
+#define HYLO_MODEL_AMBOT_MARINE_FORMAT_VERSION 1
+#if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_AMBOT_MARINE_FORMAT_VERSION
+#error "ambot_marine.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#endif
 #define HYLO_MODEL_AMBOT_MARINE_MODE HYLO_MODE_MARINE
 #define HYLO_MODEL_AMBOT_MARINE_N_SV 3542
 #define HYLO_MODEL_AMBOT_MARINE_N_FEATURES 8

@@ -18,6 +18,10 @@
 
 #include "hylo/svr.h"
 
+#define HYLO_MODEL_DI_DI_POS_FORMAT_VERSION 1
+#if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_DI_DI_POS_FORMAT_VERSION
+#error "di_di_pos.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#endif
 #define HYLO_MODEL_DI_DI_POS_MODE HYLO_MODE_DI_POS
 #define HYLO_MODEL_DI_DI_POS_N_SV 708
 #define HYLO_MODEL_DI_DI_POS_N_FEATURES 4

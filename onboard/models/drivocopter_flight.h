@@ -20,6 +20,10 @@
 
 #include "hylo/svr.h"
 
+#define HYLO_MODEL_DRIVOCOPTER_FLIGHT_FORMAT_VERSION 1
+#if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_DRIVOCOPTER_FLIGHT_FORMAT_VERSION
+#error "drivocopter_flight.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#endif
 #define HYLO_MODEL_DRIVOCOPTER_FLIGHT_MODE HYLO_MODE_FLIGHT
 #define HYLO_MODEL_DRIVOCOPTER_FLIGHT_N_SV 8852
 #define HYLO_MODEL_DRIVOCOPTER_FLIGHT_N_FEATURES 9

@@ -21,6 +21,17 @@
 #include "hylo/status.h"
 #include "hylo/types.h"
 
+/*
+ * The model-header format this library reads (onboard/models/README.md).
+ * Every exported header states the format it was written in,
+ * HYLO_MODEL_<NAME>_FORMAT_VERSION, and stops the compilation with an #error
+ * naming both when they differ (or when this macro is missing: a library
+ * older than format versions). The trainer writes this format. Bump it with
+ * any change to hylo_svr_model, hylo_svr_envelope or the header's layout
+ * that makes an older header mean something else, and regenerate the models.
+ */
+#define HYLO_MODEL_FORMAT_VERSION 1
+
 #ifdef __cplusplus
 extern "C" {
 #endif
