@@ -141,3 +141,8 @@ uninstall:
 	@for d in $(INSTALL_OWN_DIRS); do \
 		if [ -d "$(DESTDIR)$$d" ]; then rmdir "$(DESTDIR)$$d" 2>/dev/null || \
 			echo "uninstall: $(DESTDIR)$$d is not empty: kept"; fi; done
+
+# Test: install into a stage, build out-of-tree consumers with pkg-config and
+# CMake against it, uninstall (tests/install/test_install.sh; needs cmake).
+tests/install/test_install.sh: $(INSTALL_BUILT) $(NATIVE_DIGEST)
+TESTS += tests/install/test_install.sh
