@@ -317,8 +317,9 @@ std::string svr_header_text(const SvrExport &m)
 	out += "\t.speed_min_mps = " + format_double(m.speed_min_mps) + ",\n";
 	out += "\t.speed_max_mps = " + format_double(m.speed_max_mps) + ",\n";
 	out += "\t.provenance = " + c_string(prov) + ",\n";
-	if (m.envelope)
-		out += "\t.envelope = &" + id + "_envelope,\n";
+	// Every field is written, so that C++ (-Wextra: missing initializers)
+	// includes the header as cleanly as C.
+	out += "\t.envelope = " + (m.envelope ? "&" + id + "_envelope" : std::string("NULL")) + ",\n";
 	out += "};\n\n";
 	if (m.feasibility) {
 		const ClassifierExport &f = *m.feasibility;
@@ -344,7 +345,10 @@ std::string svr_header_text(const SvrExport &m)
 		out += "\t.feature_offset = " + fid + "_feature_offset,\n";
 		out += "\t.feature_scale = " + fid + "_feature_scale,\n";
 		out += "\t.label_offset = 0,\n\t.label_scale = 1,\n\t.label_log = 0,\n";
+		out += "\t.cost_floor_per_m = 0,\n\t.cost_floor_j = 0,\n\t.max_distance_m = 0,\n";
+		out += "\t.speed_min_mps = 0,\n\t.speed_max_mps = 0,\n";
 		out += "\t.provenance = " + c_string(prov) + ",\n";
+		out += "\t.envelope = NULL,\n";
 		out += "};\n\n";
 	}
 	out += "#endif\n";
