@@ -30,13 +30,13 @@ DEP_FLAGS := -MMD -MP
 SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 # Third-party flags from pkg-config where Debian ships a working .pc file,
-# else Debian 12's own (deps.md). $(call pkg,NAME,--cflags|--libs,FALLBACK)
+# else Debian 12's own. $(call pkg,NAME,--cflags|--libs,FALLBACK)
 pkg = $(shell $(PKG_CONFIG) --exists $(1) 2>/dev/null && $(PKG_CONFIG) $(2) $(1) 2>/dev/null || echo '$(3)')
 # Third-party headers are included as system headers (-I becomes -isystem)
 # so that -Wextra stays about our code.
 isystem = $(patsubst -I%,-isystem %,$(filter-out -I/usr/include,$(1)))
 
-# Ipopt needs -DHAVE_CSTDDEF (deps.md; ipopt.pc has it).
+# Ipopt's headers need -DHAVE_CSTDDEF (ipopt.pc has it).
 IPOPT_CFLAGS := $(call isystem,$(call pkg,ipopt,--cflags,-I/usr/include/coin -DHAVE_CSTDDEF))
 # Labels must not depend on the CPU (trainer/numerics.hpp): every program
 # that links Ipopt loads Debian's reference BLAS and LAPACK (libblas3,
@@ -52,14 +52,14 @@ YAML_LIBS := $(call pkg,yaml-cpp,--libs,-lyaml-cpp)
 CMOCKA_CFLAGS := $(call isystem,$(call pkg,cmocka,--cflags,))
 CMOCKA_LIBS := $(call pkg,cmocka,--libs,-lcmocka)
 # lcm.pc requires glib-2.0's .pc (libglib2.0-dev), which LCM itself does not
-# need: without it, plain -llcm (deps.md).
+# need: without it, plain -llcm.
 LCM_CFLAGS := $(call isystem,$(call pkg,lcm,--cflags,))
 LCM_LIBS := $(call pkg,lcm,--libs,-llcm)
 PNG_CFLAGS := $(call isystem,$(call pkg,libpng,--cflags,))
 PNG_LIBS := $(call pkg,libpng,--libs,-lpng)
 FREETYPE_CFLAGS := $(call isystem,$(call pkg,freetype2,--cflags,-I/usr/include/freetype2))
 FREETYPE_LIBS := $(call pkg,freetype2,--libs,-lfreetype)
-# Link -lOSMesa and never -lGL (deps.md: with -lGL every call is a no-op).
+# Link -lOSMesa and never -lGL (with -lGL every GL call is a no-op).
 OSMESA_CFLAGS := $(call isystem,$(call pkg,osmesa,--cflags,))
 OSMESA_LIBS := $(call pkg,osmesa,--libs,-lOSMesa)
 # No .pc files in Debian 12: SUNDIALS 6.4 and libsvm 3.24.
