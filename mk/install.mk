@@ -99,7 +99,7 @@ cmake_rel = $(shell realpath -m --relative-to='$(CMAKEDIR)' '$(1)')
 POINTER_BYTES = $(or $(shell printf '__SIZEOF_POINTER__\n' | $(CC) -E -P -x c - 2>/dev/null | tr -d ' '),8)
 INSTALL_SED = sed -e 's|@PREFIX@|$(PREFIX)|g' -e 's|@PC_LIBDIR@|$(call pc_path,$(LIBDIR))|g' \
 	-e 's|@PC_INCLUDEDIR@|$(call pc_path,$(INCLUDEDIR))|g' -e 's|@PC_DATADIR@|$(call pc_path,$(DATADIR))|g' \
-	-e 's|@DEFS@|$(addprefix $(space),$(HYLO_BUILD_DEFS))|g' \
+	-e 's|@DEFS@|$(if $(HYLO_BUILD_DEFS),$(space)$(HYLO_BUILD_DEFS))|g' \
 	-e 's|@CMAKE_REL_LIBDIR@|$(call cmake_rel,$(LIBDIR))|g' \
 	-e 's|@CMAKE_REL_INCLUDEDIR@|$(call cmake_rel,$(INCLUDEDIR))|g' \
 	-e 's|@CMAKE_REL_DATADIR@|$(call cmake_rel,$(DATADIR))|g' \

@@ -11,7 +11,8 @@
 # installed tools run and the installed trainer finds its installed robot
 # files; a second install without DESTDIR into other folders (LIBDIR
 # lib/<multiarch>) works from there. Uninstall removes exactly what install
-# put. Prints TAP.
+# put. A -DHYLO_... capacity of the build reaches hylo.pc and hylo::onboard.
+# Prints TAP.
 set -u
 cd "$(dirname "$0")/../.."
 . tests/tap.sh
@@ -178,4 +179,12 @@ if make --no-print-directory uninstall PREFIX="$O" LIBDIR="$O/lib/$arch" > "$T/u
    [ -z "$(find "$O" \( -type f -o -type l \))" ]; then
   tap_ok "make uninstall with the same folders leaves no file behind"; else
   tap_not_ok "make uninstall with the same folders leaves no file behind" "$(find "$O" -type f | head -5)"; fi
+# Capacities the library is built with reach the consumers' compilations.
+if make --no-print-directory install-gen BUILD="$T/gen" CPPFLAGS='-DHYLO_MAX_NODES=20000 -Wdate-time' \
+     > "$T/gen.log" 2>&1 &&
+   grep -q '^Cflags: -I${includedir} -DHYLO_MAX_NODES=20000$' "$T/gen/install/hylo.pc" &&
+   grep -q 'INTERFACE_COMPILE_DEFINITIONS "HYLO_MAX_NODES=20000"' "$T/gen/install/hyloConfig.cmake"; then
+  tap_ok "a -DHYLO_... of the build's CPPFLAGS goes into hylo.pc's Cflags and hylo::onboard's definitions"; else
+  tap_not_ok "a -DHYLO_... of the build's CPPFLAGS goes into hylo.pc's Cflags and hylo::onboard's definitions" \
+    "$(grep Cflags "$T/gen/install/hylo.pc" 2>/dev/null)" "$(tail -3 "$T/gen.log")"; fi
 tap_finish
