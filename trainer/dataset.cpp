@@ -16,9 +16,7 @@
 #include <unistd.h>
 #include <fcntl.h>
 
-extern "C" {
 #include "hylo/features.h"
-}
 #include "trainer/numerics.hpp"
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"

@@ -89,17 +89,21 @@ std::string robot_file(const std::string &name)
 	std::string here = "trainer/params/" + name + ".yaml";
 	if (access(here.c_str(), F_OK) == 0)
 		return here;
-	// Run from elsewhere: the files beside the binary's checkout (build/bin/trainer).
+	// Run from elsewhere: the files beside the binary's checkout
+	// (CHECKOUT/build/bin/trainer), or those of an install
+	// (PREFIX/bin/hylo-trainer, PREFIX/share/hylo/params: make install).
 	char exe[4096];
 	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
 	if (n > 0) {
 		exe[n] = '\0';
-		std::string root = exe;
-		for (int up = 0; up < 3 && root.find('/') != std::string::npos; up++)
-			root = root.substr(0, root.rfind('/'));
-		std::string there = root + "/trainer/params/" + name + ".yaml";
-		if (access(there.c_str(), F_OK) == 0)
-			return there;
+		std::string up[3] = {exe, "", ""};   // the binary's folder, its parent, theirs
+		up[0] = up[0].substr(0, up[0].rfind('/'));
+		up[1] = up[0].substr(0, up[0].rfind('/'));
+		up[2] = up[1].substr(0, up[1].rfind('/'));
+		for (const std::string &there : {up[2] + "/trainer/params/" + name + ".yaml",
+						 up[1] + "/share/hylo/params/" + name + ".yaml"})
+			if (access(there.c_str(), F_OK) == 0)
+				return there;
 	}
 	return here;
 }

@@ -5,12 +5,14 @@
 
 #include <string>
 
+#include "hylo/version.h"
 #include "trainer/dataset.hpp"
 #include "trainer/params.hpp"
 
 namespace hylo::trainer {
 
-constexpr const char *kHyloVersion = "0.1.0";
+// hylo/version.h: --version and every exported model's provenance.
+constexpr const char *kHyloVersion = HYLO_VERSION;
 
 struct PipelineOptions {
 	GenOptions gen;

@@ -12,6 +12,10 @@
 #include "hylo_map_t.h"
 #include "hylo_plan_t.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /**
  * Checks an encoded goal_t (buf, len bytes) before decoding: fingerprint,
  * non-negative array counts and max_expansions, exact length. HYLO_OK, or
@@ -49,5 +53,9 @@ int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome);
  */
 void hylo_msg_plan(const hylo_plan *plan, int64_t utime, hylo_plan_msg_buf *buf,
                    hylo_plan_t *msg);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -31,6 +31,10 @@
 #include "hylo_msg.h"
 #include "hylo_node_status_t.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define HYLO_NODE_CHANNEL_LEN 128
 
 /* Requesters that can have a goal waiting; a goal from one more is answered
@@ -142,5 +146,9 @@ uint32_t hylo_node_queue_depth(hylo_node *node);
 
 /** Goals admitted, answered so far (under the lock). */
 void hylo_node_counts(hylo_node *node, uint64_t *received, uint64_t *answered);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -19,13 +19,11 @@
 
 #include <lcm/lcm.h>
 
-extern "C" {
 #include "hylo_goal_t.h"
 #include "hylo_map_t.h"
 #include "hylo_plan_t.h"
 #include "node/node.h"
 #include "node/registry.h"
-}
 #include "tools/scene/scene.hpp"
 
 namespace {

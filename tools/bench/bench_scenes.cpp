@@ -25,10 +25,8 @@
 
 #include <time.h>
 
-extern "C" {
 #include "hylo/planner.h"
 #include "node/registry.h"
-}
 #include "tools/scene/scene.hpp"
 
 namespace {

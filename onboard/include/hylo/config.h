@@ -58,7 +58,7 @@
 #define HYLO_MAX_DEFERRED 65536
 #endif
 
-/* The edge-cost cache (hylo/edgecache.h): successor groups (a node and one
+/* The edge-cost cache (hylo/internal/edgecache.h): successor groups (a node and one
  * neighbouring position) of one roadmap, and costs kept. A roadmap with more
  * groups is planned without the cache. */
 #ifndef HYLO_MAX_GROUPS

@@ -21,14 +21,20 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "hylo/config.h"
-#include "hylo/edgecache.h"
 #include "hylo/map.h"
-#include "hylo/roadmap.h"
 #include "hylo/robot.h"
-#include "hylo/search.h"
 #include "hylo/status.h"
 #include "hylo/svr.h"
 #include "hylo/types.h"
+/* The workspace's layout only: struct hylo_planner embeds these modules'
+ * types. Not part of the API (hylo/internal/, docs/install.md). */
+#include "hylo/internal/edgecache.h"
+#include "hylo/internal/roadmap.h"
+#include "hylo/internal/search.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 typedef enum {
 	HYLO_ASTAR = 0,      /* values as goal_t.ALGORITHM_* */
@@ -236,5 +242,9 @@ hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint3
  * references and tests. No allocation.
  */
 hylo_status hylo_planner_successors(hylo_planner *pl, uint32_t tail, uint32_t *heads, uint32_t *n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
