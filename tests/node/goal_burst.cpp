@@ -23,12 +23,10 @@
 
 #include <lcm/lcm.h>
 
-extern "C" {
 #include "hylo_goal_t.h"
 #include "hylo_map_t.h"
 #include "hylo_node_status_t.h"
 #include "hylo_plan_t.h"
-}
 #include "tools/scene/scene.hpp"
 
 namespace {
