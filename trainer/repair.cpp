@@ -9,6 +9,7 @@
 #include <fcntl.h>
 #include <sstream>
 #include <stdexcept>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
@@ -37,6 +38,16 @@ constexpr double kLowered = 0.005;
 // starts that reach the same optimum agree to about 1e-8 (Ipopt's tol), and
 // such a tie would only churn the row's bytes.
 constexpr double kMinImprovement = 1e-6;
+
+// CPU seconds of the waited-for worker processes so far.
+double children_cpu_s()
+{
+	struct rusage ru;
+	if (getrusage(RUSAGE_CHILDREN, &ru) != 0)
+		return 0;
+	return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+	       1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
 
 // Whether b (converged) is a better label than a.
 bool better(const Solution &b, const Solution &a)
@@ -377,7 +388,10 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		write_meta(work_meta_path, work_meta);
 	}
 
+	double cpu0 = children_cpu_s();
 	sum.solved_again = extend_sidecar(robot, opt, n);
+	sum.solve_cpu_s = children_cpu_s() - cpu0;
+	cpu0 = children_cpu_s();
 	std::vector<Stored> sol = read_sidecar(opt, n);
 	std::vector<std::vector<uint64_t>> near = nearest(coords, sol, opt.neighbours);
 	// Each row's incumbent: the cheaper converged of the stored label and the
@@ -447,6 +461,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
 	}
 	close(fd);
+	sum.warm_cpu_s = children_cpu_s() - cpu0;
 
 	// Done: the repaired rows, then the input's past n, replace the dataset.
 	std::vector<std::string> repaired = lines_of(read_file(work));

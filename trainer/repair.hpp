@@ -56,6 +56,8 @@ struct RepairSummary {
 	uint64_t newly_converged = 0;  // rows without a label before that have one now
 	double median_drop = 0, max_drop = 0;   // relative drops of the lowered rows
 	bool already = false;          // the dataset's meta records this repair already: nothing done
+	double solve_cpu_s = 0;        // CPU time of this run's sidecar solves (its worker processes)
+	double warm_cpu_s = 0;         // and of its warm-started solves
 	double seconds = 0;
 	std::string path;
 };
