@@ -23,8 +23,8 @@ namespace hylo::trainer {
 // of the best refined one. On 40 Ambot ground pairs: 40% less solve time
 // than refining every start, costs up by 0.65% at most, less than the
 // committed rows and today's full solver differ (README, Trainer). Ground
-// and marine pairs also get the backing-up and goal-facing guesses
-// (solve_bvp_strategies).
+// and marine pairs also get the strategy guesses (solve_bvp_strategies:
+// backing up, facing the goal, and issue #35's three).
 inline SolveOptions training_solve_options()
 {
 	SolveOptions o;

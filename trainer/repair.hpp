@@ -4,8 +4,9 @@
 // motion" warm start of learned trajectory optimization: a neighbour's path,
 // moved to run between this row's states, transplanted_guess), and its label
 // becomes the cheapest accepted solution of the stored one, the current
-// solver's and those warm starts'. A label is only ever lowered (or a row
-// that did not converge gets one); the rows are otherwise the input's bytes.
+// solver's and those warm starts'. A label is only ever lowered, and only by
+// more than 1e-6 relative (less is a tie, Ipopt's tolerance), or a row that
+// did not converge gets one; the rows are otherwise the input's bytes.
 //
 // The datasets store no trajectories, so the neighbours' solutions come from
 // a sidecar, <out>/<mode>.solutions.csv: every row solved again by the
