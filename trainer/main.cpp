@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -57,6 +58,10 @@ void usage(FILE *f)
 		"                    and fit use its first N (default: 11520; flight 17016; di 2000)\n"
 		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
 		"                    (default: 4)\n"
+		"  --refine-within F ground, marine: refine only the starts whose coarse cost is\n"
+		"                    within F of the best refined one; inf: refine every start\n"
+		"                    (better optima, 1.4-2x the time; docs/decisions.md) (recorded\n"
+		"                    in a dataset's .meta; default: 0.05)\n"
 		"  --jobs J          worker processes (gen), threads (fit, export) (default:\n"
 		"                    number of cores)\n"
 		"  --seed S          seed of the sample stream (default: 1)\n"
@@ -243,6 +248,13 @@ int run(int argc, char **argv)
 			po.gen.seed = static_cast<uint64_t>(integer(0));
 		} else if (a == "--out") {
 			po.gen.out_dir = val();
+		} else if (a == "--refine-within") {
+			std::string v = val();
+			char *e = nullptr;
+			double x = v == "inf" ? std::numeric_limits<double>::infinity() : std::strtod(v.c_str(), &e);
+			if (v != "inf" && (v.empty() || *e || !(x >= 0) || !std::isfinite(x)))
+				throw Usage("--refine-within needs a fraction >= 0 or inf, not '" + v + "'");
+			po.gen.solve.refine_within = x;
 		} else if (a == "--neighbours") {
 			po.neighbours = static_cast<int>(integer(1));
 		} else if (a == "--relabel") {

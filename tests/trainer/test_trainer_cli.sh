@@ -177,6 +177,12 @@ else tap_not_ok "--stage repair --neighbours 2: repairs the first N rows, says h
   "exit $rc" "$(cat "$T/rep.out")"; fi
 expect_fail "repair of more rows than the dataset has: clear error (exit 2)" 2 "fewer than the 20 asked for" \
   "$TR" --mode di_neg --robot di --stage repair --samples 20 --seed 3 --out "$T/rep" --quiet
+expect_fail "--refine-within x: clear error (exit 2)" 2 "fraction >= 0 or inf" \
+  "$TR" --mode di_neg --robot di --refine-within x --solve -0.5,0 -0.3,0
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 2 --seed 3 --refine-within inf --out "$T/rwinf" > /dev/null
+if grep -q "^refine_within: inf$" "$T/rwinf/di_neg.csv.meta" && grep -A3 -- "--refine-within F" "$T/help" | grep -q "default: 0.05"; then
+  tap_ok "--refine-within inf is recorded in the .meta; --help gives its default"
+else tap_not_ok "--refine-within inf is recorded in the .meta; --help gives its default" "$(grep refine "$T/rwinf/di_neg.csv.meta")"; fi
 
 # --mode switch: the robot's switches (models.md section 6).
 if "$TR" --mode switch --robot ambot --json > "$T/sw.json" &&
