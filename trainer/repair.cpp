@@ -75,10 +75,8 @@ std::vector<std::string> lines_of(const std::string &text)
 
 // A row's result columns (csv_columns' cost_j ... replay_cost_j) as a
 // Solution: what csv_row prints of it.
-Solution result_of(const std::string &mode, const std::vector<std::string> &f, size_t first,
-		   const std::string &where)
+Solution result_of(const std::vector<std::string> &f, size_t first, const std::string &where)
 {
-	(void)mode;
 	Solution s;
 	try {
 		s.cost = std::stod(f.at(first));
@@ -147,7 +145,7 @@ Stored parse_sidecar_line(const std::string &mode, const std::string &line, uint
 	if (f.size() != 9 + nx * static_cast<size_t>(points) || f[0] != std::to_string(i))
 		throw std::runtime_error(where + ": not the sidecar row of sample " + std::to_string(i));
 	Stored st;
-	st.s = result_of(mode, f, 1, where);
+	st.s = result_of(f, 1, where);
 	if (st.s.converged)
 		for (int p = 0; p < points; p++) {
 			std::vector<double> x(nx);
@@ -354,7 +352,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			throw std::invalid_argument(where + ": not sample " + std::to_string(i) + " of this stream");
 		coords[i].assign(a, a + d);
 		coords[i].insert(coords[i].end(), b, b + d);
-		stored[i] = result_of(mode, f, ic, where);
+		stored[i] = result_of(f, ic, where);
 	}
 	std::string input_rows;
 	for (uint64_t i = 0; i <= n; i++)
