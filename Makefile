@@ -5,6 +5,9 @@
 #   make bench      run the benchmarks, write build/bench/results.json
 #   make casestudies  the paper's case studies into docs/results.{md,json}
 #   make deps       install missing Debian packages only
+#   make install    install the library, headers, models, messages, tools and
+#                   trainer (PREFIX=/usr/local, DESTDIR=; docs/install.md)
+#   make uninstall  remove what make install put
 #   make clean      remove build/
 # Every output goes under build/. Pieces are described in mk/*.mk.
 
@@ -26,12 +29,13 @@ include mk/export.mk
 include mk/fuzz.mk
 include mk/cross.mk
 include mk/casestudies.mk
+include mk/install.mk
 include mk/docs.mk
 
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
-.PHONY: all test demo bench deps venv venv-bench venv-report casestudies model-pictures check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps models update-goldens pictures
+.PHONY: all test install uninstall demo bench deps venv venv-bench venv-report casestudies model-pictures check-deps clean fuzz fuzz-deps fuzz-corpus cross-test cross-deps models update-goldens pictures
 
 all: check-deps $(ALL_TARGETS)
 

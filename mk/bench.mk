@@ -8,7 +8,7 @@ SYNTH_HEADER := $(BUILD)/gen/bench/synthetic_ground.h
 
 $(SYNTH_GEN): tools/bench/make_synthetic_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(EIGEN_CFLAGS) -I. $(ONBOARD_INC) tools/bench/make_synthetic_model.cpp trainer/svr_export.cpp $(ONBOARD_LIB) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) $(EIGEN_CFLAGS) -I. $(ONBOARD_INC) tools/bench/make_synthetic_model.cpp trainer/svr_export.cpp $(ONBOARD_LIB) -lm -o $@
 
 $(SYNTH_HEADER): $(SYNTH_GEN)
 	@mkdir -p $(@D)
@@ -20,7 +20,7 @@ BENCH_SVR := $(BUILD)/bench/bin/bench_svr
 
 $(BENCH_SVR): tools/bench/bench_svr.c $(ONBOARD_LIB) $(SYNTH_HEADER) $(BUILD)/obj/node/registry_models.o
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) -D_POSIX_C_SOURCE=199309L $(ONBOARD_INC) -I$(BUILD)/gen $< \
+	$(CC) $(C99_FLAGS) $(LDFLAGS) -D_POSIX_C_SOURCE=199309L $(ONBOARD_INC) -I$(BUILD)/gen $< \
 		$(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_SVR)

@@ -5,7 +5,7 @@ BENCH_PLAN := $(BUILD)/bench/bin/bench_plan
 
 $(BENCH_PLAN): tools/bench/bench_plan.cpp $(ONBOARD_LIB) $(BUILD)/gen/bench/synthetic_ground.h
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -Wno-deprecated-declarations $(ONBOARD_INC) -I$(BUILD)/gen $< $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -Wno-deprecated-declarations $(ONBOARD_INC) -I$(BUILD)/gen $< $(ONBOARD_LIB) $(SVM_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_PLAN)
 
@@ -16,6 +16,6 @@ BENCH_SCENES := $(BUILD)/bench/bin/bench_scenes
 $(BENCH_SCENES): tools/bench/bench_scenes.cpp $(BUILD)/obj/tools/scene/scene.o \
 		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_SCENES)

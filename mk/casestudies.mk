@@ -14,7 +14,7 @@ $(CHASM_OBJ): tools/casestudies/chasm.cpp
 $(HYLO_CASESTUDIES): tools/casestudies/casestudies.cpp $(CHASM_OBJ) $(BUILD)/obj/tools/scene/scene.o \
 		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(TRAINER_CFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
 
 ALL_TARGETS += $(HYLO_CASESTUDIES)
 
@@ -22,7 +22,7 @@ ALL_TARGETS += $(HYLO_CASESTUDIES)
 CHASM_TEST := $(BUILD)/test/casestudies/test_chasm
 $(CHASM_TEST): tests/casestudies/test_chasm.cpp $(CHASM_OBJ) $(BUILD)/obj/tools/scene/scene.o $(TRAINER_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(TRAINER_CFLAGS) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -o $@
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -o $@
 ALL_TARGETS += $(CHASM_TEST)
 TESTS += $(CHASM_TEST)
 

@@ -10,7 +10,7 @@ EXPORT_TEST_SAN := $(BUILD)/san/test/export/test_export
 
 $(EXPORT_GEN): tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp trainer/envelope.cpp trainer/envelope.hpp $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) $(EIGEN_CFLAGS) tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/envelope.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) $(EIGEN_CFLAGS) tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/envelope.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -lm -o $@
 
 $(EXPORT_HEADER): $(EXPORT_GEN)
 	@mkdir -p $(@D)
@@ -18,11 +18,11 @@ $(EXPORT_HEADER): $(EXPORT_GEN)
 
 $(EXPORT_TEST): tests/export/test_export.c $(EXPORT_HEADER) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) $(ONBOARD_INC) -I$(EXPORT_DIR) -DREFERENCE_TXT='"$(EXPORT_DIR)/reference.txt"' $< $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
+	$(CC) $(C99_FLAGS) $(LDFLAGS) $(ONBOARD_INC) -I$(EXPORT_DIR) -DREFERENCE_TXT='"$(EXPORT_DIR)/reference.txt"' $< $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
 
 $(EXPORT_TEST_SAN): tests/export/test_export.c $(EXPORT_HEADER) $(ONBOARD_LIB_SAN)
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(ONBOARD_INC) -I$(EXPORT_DIR) -DREFERENCE_TXT='"$(EXPORT_DIR)/reference.txt"' $< $(ONBOARD_LIB_SAN) $(CMOCKA_LIBS) -lm -o $@
+	$(CC) $(C99_FLAGS) $(LDFLAGS) $(SAN_FLAGS) $(ONBOARD_INC) -I$(EXPORT_DIR) -DREFERENCE_TXT='"$(EXPORT_DIR)/reference.txt"' $< $(ONBOARD_LIB_SAN) $(CMOCKA_LIBS) -lm -o $@
 
 ALL_TARGETS += $(EXPORT_TEST) $(EXPORT_TEST_SAN)
 TESTS += $(EXPORT_TEST) tests/export/test_export_bytes.sh tests/export/test_models.sh
@@ -33,7 +33,7 @@ TESTS_SAN += $(EXPORT_TEST_SAN)
 FIT_TEST := $(BUILD)/test/export/test_fit
 $(FIT_TEST): tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_fit.hpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_export.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_export.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -o $@
 ALL_TARGETS += $(FIT_TEST)
 TESTS += $(FIT_TEST)
 
@@ -42,7 +42,7 @@ TESTS += $(FIT_TEST)
 HEADER_PARSE_TEST := $(BUILD)/test/export/test_header_parse
 $(HEADER_PARSE_TEST): tests/export/test_header_parse.cpp trainer/svr_export.cpp trainer/svr_export.hpp $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. $(ONBOARD_INC) tests/export/test_header_parse.cpp trainer/svr_export.cpp $(ONBOARD_LIB) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) tests/export/test_header_parse.cpp trainer/svr_export.cpp $(ONBOARD_LIB) -lm -o $@
 ALL_TARGETS += $(HEADER_PARSE_TEST)
 TESTS += $(HEADER_PARSE_TEST)
 
@@ -51,6 +51,6 @@ TESTS += $(HEADER_PARSE_TEST)
 ENVELOPE_MODELS_TEST := $(BUILD)/test/export/test_envelope_models
 $(ENVELOPE_MODELS_TEST): tests/export/test_envelope_models.c $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) $(ONBOARD_INC) $< $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
+	$(CC) $(C99_FLAGS) $(LDFLAGS) $(ONBOARD_INC) $< $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
 ALL_TARGETS += $(ENVELOPE_MODELS_TEST)
 TESTS += $(ENVELOPE_MODELS_TEST)

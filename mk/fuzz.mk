@@ -4,6 +4,8 @@
 # repository); `make test` replays the corpus under ASan+UBSan (gcc, no
 # clang needed). `make fuzz-corpus` regenerates the seeds.
 FUZZ_SECONDS ?= 60
+# libFuzzer needs clang.
+FUZZ_CC ?= clang
 FUZZ_SRCS := tests/fuzz/fuzz_plan.c $(ONBOARD_SRCS) onboard/msg/convert.c onboard/msg/wire.c \
 	$(MSG_NOPUBSUB_SRCS)
 FUZZ_INC := $(ONBOARD_INC) -Ionboard/msg -I$(LCM_GEN_DIR)/c-nopubsub -Itests
@@ -14,12 +16,12 @@ FUZZ_CORPUS := $(sort $(wildcard tests/fuzz/corpus/*))
 # Generated lcm-gen code is exempt from the nonnull check (see mk/msgs.mk).
 $(FUZZ_REPLAY): $(FUZZ_SRCS) $(LCM_STAMP) tests/onboard/testutil_planner.h
 	@mkdir -p $(@D)
-	$(CC) -std=c99 -O1 -g -DFUZZ_REPLAY $(SAN_FLAGS) -fno-sanitize=nonnull-attribute $(FUZZ_INC) \
-		$(filter %.c,$^) -lm -o $@
+	$(CC) -std=c99 -ffp-contract=off $(CPPFLAGS) $(CFLAGS) $(LDFLAGS) -O1 -g -DFUZZ_REPLAY $(SAN_FLAGS) \
+		-fno-sanitize=nonnull-attribute $(FUZZ_INC) $(filter %.c,$^) -lm -o $@
 
 $(FUZZ_BIN): $(FUZZ_SRCS) $(LCM_STAMP) tests/onboard/testutil_planner.h
 	@mkdir -p $(@D)
-	clang -std=c99 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize=nonnull-attribute \
+	$(FUZZ_CC) -std=c99 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize=nonnull-attribute \
 		$(FUZZ_INC) $(filter %.c,$^) -lm -o $@
 
 tests/fuzz/test_corpus.sh: $(FUZZ_REPLAY)
@@ -38,7 +40,7 @@ fuzz: deps $(FUZZ_BIN)
 FUZZ_CORPUS_GEN := $(BUILD)/fuzz/make_corpus
 $(FUZZ_CORPUS_GEN): tests/fuzz/make_corpus.c $(MSG_NOPUBSUB_SRCS) $(ONBOARD_LIB) $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CC) -std=c99 -O1 -g $(FUZZ_INC) tests/fuzz/make_corpus.c $(MSG_NOPUBSUB_SRCS) $(ONBOARD_LIB) -lm -o $@
+	$(CC) -std=c99 -ffp-contract=off $(CPPFLAGS) $(CFLAGS) $(LDFLAGS) -O1 -g $(FUZZ_INC) tests/fuzz/make_corpus.c $(MSG_NOPUBSUB_SRCS) $(ONBOARD_LIB) -lm -o $@
 
 fuzz-corpus: $(FUZZ_CORPUS_GEN)
 	@mkdir -p tests/fuzz/corpus

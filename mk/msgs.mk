@@ -3,7 +3,7 @@
 #   c/           C with publish/subscribe (links liblcm; for the LCM node)
 #   c-nopubsub/  C encode/decode only (no liblcm; for the core's tests)
 #   cpp/ python/
-LCM_GEN := /usr/bin/lcm-gen
+LCM_GEN ?= /usr/bin/lcm-gen
 MSG_FILES := $(wildcard msgs/*.lcm)
 MSG_NAMES := $(basename $(notdir $(MSG_FILES)))
 LCM_GEN_DIR := $(BUILD)/gen/lcm
@@ -11,7 +11,8 @@ LCM_STAMP := $(LCM_GEN_DIR)/.stamp
 MSG_C_SRCS := $(MSG_NAMES:%=$(LCM_GEN_DIR)/c/hylo_%.c)
 MSG_NOPUBSUB_SRCS := $(MSG_NAMES:%=$(LCM_GEN_DIR)/c-nopubsub/hylo_%.c)
 # lcm-gen's C does not pass -pedantic -Wextra (docs/deps.md).
-LCM_GEN_CFLAGS := -std=c99 -O2 -g -Wall -Werror -Wno-pedantic -Wno-format -Wno-unused-parameter
+LCM_GEN_REQUIRED := -std=c99 -ffp-contract=off -Wall -Werror -Wno-pedantic -Wno-format -Wno-unused-parameter
+LCM_GEN_CFLAGS := $(LCM_GEN_REQUIRED) $(LCM_CFLAGS) $(CPPFLAGS) $(CFLAGS)
 
 $(LCM_STAMP): $(MSG_FILES)
 	@rm -rf $(LCM_GEN_DIR) && mkdir -p $(LCM_GEN_DIR)/c $(LCM_GEN_DIR)/c-nopubsub $(LCM_GEN_DIR)/cpp $(LCM_GEN_DIR)/python

@@ -4,7 +4,7 @@
 
 NODE_SRCS := onboard/node/node.c
 NODE_INC := $(ONBOARD_INC) -Ionboard/msg -I$(LCM_GEN_DIR)/c -Ionboard/models
-NODE_CFLAGS := $(C99_FLAGS) -D_POSIX_C_SOURCE=200809L
+NODE_CFLAGS := $(C99_FLAGS) -D_POSIX_C_SOURCE=200809L $(LCM_CFLAGS)
 MODEL_HEADERS := $(sort $(wildcard onboard/models/*.h))
 REGISTRY_C := $(BUILD)/gen/models/registry.c
 
@@ -32,7 +32,7 @@ HYLO_PLANNER := $(BUILD)/bin/hylo-planner
 
 $(HYLO_PLANNER): $(BUILD)/obj/node/main.o $(BUILD)/obj/node/registry.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry_models.o $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ $(LCM_LIBS) -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LCM_LIBS) -lm -o $@
 
 ALL_TARGETS += $(HYLO_PLANNER)
 
@@ -56,19 +56,19 @@ $(BUILD)/san/obj/node/msg_%.o: onboard/msg/%.c $(LCM_STAMP)
 
 $(BUILD)/obj/node-tests/%.o: tests/node/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -Itests -c $< -o $@
+	$(CC) $(NODE_CFLAGS) $(CMOCKA_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -Itests -c $< -o $@
 
 $(BUILD)/san/obj/node-tests/%.o: tests/node/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(NODE_CFLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(NODE_INC) -Itests -c $< -o $@
+	$(CC) $(NODE_CFLAGS) $(CMOCKA_CFLAGS) $(SAN_FLAGS) $(DEP_FLAGS) $(NODE_INC) -Itests -c $< -o $@
 
 $(BUILD)/test/node/%: $(BUILD)/obj/node-tests/%.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
 
 $(BUILD)/san/test/node/%: $(BUILD)/san/obj/node-tests/%.o $(NODE_OBJS_SAN) $(NODE_MSG_OBJS_SAN) $(MSG_OBJS_SAN) $(ONBOARD_LIB_SAN)
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $(SAN_FLAGS) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
 
 ALL_TARGETS += $(NODE_TESTS) $(NODE_TESTS_SAN)
 TESTS += $(NODE_TESTS)
@@ -83,7 +83,7 @@ $(BUILD)/obj/tools/listen/%.o: tools/listen/%.c $(LCM_STAMP)
 
 $(HYLO_LISTEN): $(BUILD)/obj/tools/listen/hylo_listen.o $(MSG_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $^ $(LCM_LIBS) -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LCM_LIBS) -lm -o $@
 
 ALL_TARGETS += $(HYLO_LISTEN)
 
@@ -94,11 +94,11 @@ SCENE_OBJS := $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/tools/scene/hylo_sce
 
 $(BUILD)/obj/tools/scene/%.o: tools/scene/%.cpp $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(DEP_FLAGS) -I. -I$(LCM_GEN_DIR)/cpp -c $< -o $@
+	$(CXX) $(CXX17_FLAGS) $(YAML_CFLAGS) $(LCM_CFLAGS) $(DEP_FLAGS) -I. -I$(LCM_GEN_DIR)/cpp -c $< -o $@
 
 $(HYLO_SCENE): $(SCENE_OBJS)
 	@mkdir -p $(@D)
-	$(CXX) $^ $(YAML_LIBS) $(LCM_LIBS) -o $@
+	$(CXX) $(CXXFLAGS) $(LDFLAGS) $^ $(YAML_LIBS) $(LCM_LIBS) -o $@
 
 ALL_TARGETS += $(HYLO_SCENE)
 
@@ -120,7 +120,7 @@ $(BUILD)/obj/node/registry_synth.o: $(REGISTRY_SYNTH_C) $(SYNTH_HEADER)
 
 $(HYLO_PLANNER_SYNTH): $(BUILD)/obj/node/main.o $(BUILD)/obj/node/registry.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ $(LCM_LIBS) -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LCM_LIBS) -lm -o $@
 
 $(BUILD)/obj/node-tests/plan_check.o: tests/node/plan_check.c $(LCM_STAMP)
 	@mkdir -p $(@D)
@@ -128,12 +128,12 @@ $(BUILD)/obj/node-tests/plan_check.o: tests/node/plan_check.c $(LCM_STAMP)
 
 $(PLAN_CHECK): $(BUILD)/obj/node-tests/plan_check.o $(BUILD)/obj/node/registry.o $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ $(LCM_LIBS) -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LCM_LIBS) -lm -o $@
 
 ALL_TARGETS += $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK)
 
 # Process-level tests (shell, TAP): file:// logs, signals, usage.
-NODE_SCRIPT_TESTS := tests/node/test_logs.sh tests/node/test_udp.sh
+NODE_SCRIPT_TESTS := tests/node/test_logs.sh tests/node/test_udp.sh tests/node/test_load.sh
 $(NODE_SCRIPT_TESTS): $(HYLO_PLANNER_SYNTH) $(PLAN_CHECK) $(HYLO_SCENE) $(HYLO_LISTEN)
 TESTS += $(NODE_SCRIPT_TESTS)
 
@@ -142,7 +142,7 @@ BENCH_NODE := $(BUILD)/bench/bin/bench_node
 
 $(BENCH_NODE): tools/bench/bench_node.cpp $(BUILD)/obj/tools/scene/scene.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB) | $(HYLO_PLANNER_SYNTH)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. $(NODE_INC) $< $(filter-out $<,$^) $(YAML_LIBS) $(LCM_LIBS) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter-out $<,$^) $(YAML_LIBS) $(LCM_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_NODE)
 
@@ -155,7 +155,7 @@ $(BUILD)/obj/tools/cost/%.o: tools/cost/%.c
 
 $(HYLO_COST): $(BUILD)/obj/tools/cost/hylo_cost.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ -lm -o $@
 
 ALL_TARGETS += $(HYLO_COST)
 
@@ -164,11 +164,19 @@ ALL_TARGETS += $(HYLO_COST)
 HYLO_ENVELOPE_TIGHTNESS := $(BUILD)/bin/hylo-envelope-tightness
 $(HYLO_ENVELOPE_TIGHTNESS): $(BUILD)/obj/tools/cost/envelope_tightness.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ -lm -o $@
 ALL_TARGETS += $(HYLO_ENVELOPE_TIGHTNESS)
 HYLO_COST_SYNTH := $(BUILD)/test/node/hylo-cost-synthetic
 $(HYLO_COST_SYNTH): $(BUILD)/obj/tools/cost/hylo_cost.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ -lm -o $@
 ALL_TARGETS += $(HYLO_COST_SYNTH)
 tests/node/test_logs.sh: $(HYLO_COST_SYNTH)
+tests/node/test_load.sh: $(GOAL_BURST)
+
+# goal_burst: the load client of tests/node/test_load.sh (and make bench).
+GOAL_BURST := $(BUILD)/test/node/goal_burst
+$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(MSG_OBJS) $(LCM_STAMP)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) -I. -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(MSG_OBJS) $(YAML_LIBS) $(LCM_LIBS) -o $@
+ALL_TARGETS += $(GOAL_BURST)

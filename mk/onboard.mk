@@ -6,6 +6,12 @@
 #   build/san/test/onboard/test_*  the same binaries under ASan+UBSan
 
 ONBOARD_INC := -Ionboard/include -Ionboard
+# The API (hylo/*.h) and the workspace's layout (hylo/internal/*.h: struct
+# hylo_planner embeds their types; not API). Both are installed; the core's
+# own private header, onboard/src/planner_internal.h, is not.
+ONBOARD_PUBLIC_HEADERS := $(sort $(wildcard onboard/include/hylo/*.h))
+ONBOARD_INTERNAL_HEADERS := $(sort $(wildcard onboard/include/hylo/internal/*.h))
+ONBOARD_HEADERS := $(ONBOARD_PUBLIC_HEADERS) $(ONBOARD_INTERNAL_HEADERS)
 ONBOARD_SRCS := \
 	onboard/src/status.c \
 	onboard/src/types.c \
@@ -61,7 +67,7 @@ ONBOARD_TEST_SRCS := $(sort $(wildcard tests/onboard/test_*.c))
 ONBOARD_TEST_NAMES := $(basename $(notdir $(ONBOARD_TEST_SRCS)))
 ONBOARD_TESTS := $(ONBOARD_TEST_NAMES:%=$(BUILD)/test/onboard/%)
 ONBOARD_TESTS_SAN := $(ONBOARD_TEST_NAMES:%=$(BUILD)/san/test/onboard/%)
-TEST_INC := $(ONBOARD_INC) $(MSG_ADAPT_INC) -Itests -Ionboard/models
+TEST_INC := $(ONBOARD_INC) $(MSG_ADAPT_INC) -Itests -Ionboard/models $(CMOCKA_CFLAGS)
 TEST_LIBS := $(SVM_LIBS) $(CMOCKA_LIBS) -lm
 # The allocation test wraps the allocator at link time (tests/onboard/test_nomalloc.c).
 WRAP_ALLOC := -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc,--wrap=free
@@ -77,11 +83,11 @@ $(BUILD)/san/obj/tests/%.o: tests/%.c $(LCM_STAMP)
 
 $(BUILD)/test/onboard/%: $(BUILD)/obj/tests/onboard/%.o $(MSG_ADAPT_LIB) $(ONBOARD_LIB) $(MSG_NOPUBSUB_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $< $(MSG_NOPUBSUB_OBJS) $(MSG_ADAPT_LIB) $(ONBOARD_LIB) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $< $(MSG_NOPUBSUB_OBJS) $(MSG_ADAPT_LIB) $(ONBOARD_LIB) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
 
 $(BUILD)/san/test/onboard/%: $(BUILD)/san/obj/tests/onboard/%.o $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) $(MSG_NOPUBSUB_OBJS_SAN)
 	@mkdir -p $(@D)
-	$(CC) $(SAN_FLAGS) $< $(MSG_NOPUBSUB_OBJS_SAN) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $(SAN_FLAGS) $< $(MSG_NOPUBSUB_OBJS_SAN) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) $(TEST_LDFLAGS_$*) $(TEST_LIBS) -o $@
 
 # Capacity test: the core compiled for small capacities that ordinary test
 # scenes exceed (tests/capacity/).
@@ -90,13 +96,13 @@ CAPACITY_FLAGS := -DHYLO_MAX_POSITIONS=400 -DHYLO_MAX_NODES=2000 -DHYLO_MAX_ADJA
 CAPACITY_TEST := $(BUILD)/test/capacity/test_capacity
 CAPACITY_TEST_SAN := $(BUILD)/san/test/capacity/test_capacity
 
-$(CAPACITY_TEST): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(wildcard onboard/include/hylo/*.h tests/onboard/*.h)
+$(CAPACITY_TEST): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(ONBOARD_HEADERS) $(wildcard tests/onboard/*.h)
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
+	$(CC) $(C99_FLAGS) $(LDFLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
 
-$(CAPACITY_TEST_SAN): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(wildcard onboard/include/hylo/*.h tests/onboard/*.h)
+$(CAPACITY_TEST_SAN): tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(ONBOARD_HEADERS) $(wildcard tests/onboard/*.h)
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) $(SAN_FLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
+	$(CC) $(C99_FLAGS) $(LDFLAGS) $(SAN_FLAGS) $(CAPACITY_FLAGS) $(ONBOARD_INC) -Itests tests/capacity/test_capacity.c $(ONBOARD_SRCS) $(TEST_LIBS) -o $@
 
 ALL_TARGETS += $(CAPACITY_TEST) $(CAPACITY_TEST_SAN)
 TESTS += $(CAPACITY_TEST)

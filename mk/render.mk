@@ -3,9 +3,9 @@
 #   build/bin/hylo-pngdiff   golden comparison with a tolerance, diff images
 # Link -lOSMesa and never -lGL (docs/deps.md: with -lGL every call is a no-op).
 
-RENDER_CFLAGS := $(NODE_CFLAGS) -isystem /usr/include/freetype2
+RENDER_CFLAGS := $(NODE_CFLAGS) $(OSMESA_CFLAGS) $(PNG_CFLAGS) $(FREETYPE_CFLAGS)
 RENDER_INC := $(NODE_INC) -Itools/render
-RENDER_LIBS := -lOSMesa -lpng -lfreetype $(LCM_LIBS) -lm
+RENDER_LIBS := $(OSMESA_LIBS) $(PNG_LIBS) $(FREETYPE_LIBS) $(LCM_LIBS) -lm
 RENDER_OBJS := $(addprefix $(BUILD)/obj/tools/render/,canvas.o input.o views.o main.o)
 
 $(BUILD)/obj/tools/render/%.o: tools/render/%.c $(LCM_STAMP)
@@ -15,12 +15,12 @@ $(BUILD)/obj/tools/render/%.o: tools/render/%.c $(LCM_STAMP)
 HYLO_RENDER := $(BUILD)/bin/hylo-render
 $(HYLO_RENDER): $(RENDER_OBJS) $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(NODE_MSG_OBJS) $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ $(RENDER_LIBS) -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(RENDER_LIBS) -o $@
 
 HYLO_PNGDIFF := $(BUILD)/bin/hylo-pngdiff
 $(HYLO_PNGDIFF): $(BUILD)/obj/tools/render/pngdiff.o
 	@mkdir -p $(@D)
-	$(CC) $^ -lpng -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(PNG_LIBS) -o $@
 
 ALL_TARGETS += $(HYLO_RENDER) $(HYLO_PNGDIFF)
 
@@ -28,7 +28,7 @@ ALL_TARGETS += $(HYLO_RENDER) $(HYLO_PNGDIFF)
 HYLO_RENDER_SYNTH := $(BUILD)/test/render/hylo-render-synthetic
 $(HYLO_RENDER_SYNTH): $(RENDER_OBJS) $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(NODE_MSG_OBJS) $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $^ $(RENDER_LIBS) -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(RENDER_LIBS) -o $@
 ALL_TARGETS += $(HYLO_RENDER_SYNTH)
 
 # Drawing inputs for the renderer tests (tests/render/fake_traj.c).
@@ -38,7 +38,7 @@ $(BUILD)/obj/render-tests/%.o: tests/render/%.c $(LCM_STAMP)
 	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) $(NODE_INC) -c $< -o $@
 $(FAKE_TRAJ): $(BUILD)/obj/render-tests/fake_traj.o $(MSG_OBJS)
 	@mkdir -p $(@D)
-	$(CC) $^ $(LCM_LIBS) -lm -o $@
+	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LCM_LIBS) -lm -o $@
 ALL_TARGETS += $(FAKE_TRAJ)
 
 # Renderer tests (tests/render/test_render.sh: goldens, determinism, bad input).

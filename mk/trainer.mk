@@ -4,9 +4,9 @@
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
 	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp \
-	trainer/numerics.cpp
+	trainer/numerics.cpp trainer/repair.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
-TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS)
+TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS) $(YAML_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread
 TRAINER_LIB := $(BUILD)/lib/libhylo_trainer.a
 TRAINER := $(BUILD)/bin/trainer
@@ -24,7 +24,7 @@ $(TRAINER_LIB): $(TRAINER_OBJS) $(TRAINER_ONBOARD_OBJS)
 
 $(TRAINER): $(BUILD)/obj/trainer/main.o $(TRAINER_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $^ $(TRAINER_LIBS) -o $@
+	$(CXX) $(CXXFLAGS) $(LDFLAGS) $^ $(TRAINER_LIBS) -o $@
 
 ALL_TARGETS += $(TRAINER)
 
@@ -32,21 +32,25 @@ ALL_TARGETS += $(TRAINER)
 TRAINER_TEST := $(BUILD)/test/trainer/test_collocation
 $(TRAINER_TEST): tests/trainer/test_collocation.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 MULTIPHASE_TEST := $(BUILD)/test/trainer/test_multiphase
 $(MULTIPHASE_TEST): tests/trainer/test_multiphase.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 RELABEL_TEST := $(BUILD)/test/trainer/test_relabel
 $(RELABEL_TEST): tests/trainer/test_relabel.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+REPAIR_TEST := $(BUILD)/test/trainer/test_repair
+$(REPAIR_TEST): tests/trainer/test_repair.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
 # Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
 # test_collocation under several OpenBLAS kernel settings and hwcaps masks.
 tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
-ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) tests/trainer/test_trainer_cli.sh \
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST)
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) tests/trainer/test_trainer_cli.sh \
 	tests/trainer/test_numerics.sh
 
 # make models: regenerates every committed model (datasets resume; see
@@ -75,7 +79,7 @@ model-pictures: venv-report $(TRAINER) $(BUILD)/bin/hylo-cost
 BENCH_TRAINER := $(BUILD)/bench/bin/bench_trainer
 $(BENCH_TRAINER): tools/bench/bench_trainer.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(TRAINER_CFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 BENCH_TARGETS += $(BENCH_TRAINER)
 
 # hylo-smooth: the final path smoothing node (trainer/smooth_main.cpp).
@@ -85,7 +89,7 @@ $(BUILD)/obj/trainer/smooth_main.o: trainer/smooth_main.cpp $(LCM_STAMP)
 	$(CXX) $(TRAINER_CFLAGS) -isystem $(LCM_GEN_DIR)/cpp -c $< -o $@
 $(HYLO_SMOOTH): $(BUILD)/obj/trainer/smooth_main.o $(TRAINER_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $^ $(TRAINER_LIBS) $(LCM_LIBS) -o $@
+	$(CXX) $(CXXFLAGS) $(LDFLAGS) $^ $(TRAINER_LIBS) $(LCM_LIBS) -o $@
 ALL_TARGETS += $(HYLO_SMOOTH)
 tests/trainer/test_smooth.sh: $(HYLO_SMOOTH) $(TRAINER)
 TESTS += tests/trainer/test_smooth.sh

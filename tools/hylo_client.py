@@ -31,7 +31,8 @@ MODES = {"ground": 1, "marine": 2, "flight": 3, "di_neg": 4, "di_pos": 5}
 MODE_NAMES = {v: k for k, v in MODES.items()}
 TERRAIN = {"obstacle": 0, "ground": 1, "water": 2}
 STATUS = ["ok", "no map", "no path", "bad request", "over capacity",
-          "budget exhausted", "map replaced", "no model", "not proven optimal"]
+          "budget exhausted", "map replaced", "no model", "not proven optimal",
+          "superseded", "unknown map", "queue full"]
 
 
 def scene_messages(path, request_id):
@@ -72,6 +73,7 @@ def scene_messages(path, request_id):
     q = goal_t()
     q.utime = m.utime
     q.request_id = request_id
+    q.requester_id = os.getpid()  # the node keeps only a requester's newest waiting goal
     q.map_id = m.map_id
     q.algorithm = {"astar": 0, "dijkstra": 1}[gs.get("algorithm", "astar")]
     q.start_mode = MODES[gs["start"]["mode"]]

@@ -322,19 +322,32 @@ struct ModeInfo {
 						       const std::vector<double> &b, double T)> path_guess;
 	// Set: the initial guesses of a BVP a -> b besides the straight line
 	// (solve_bvp_strategies).
-	std::function<std::vector<std::vector<std::vector<double>>>(const std::vector<double> &a,
-								    const std::vector<double> &b)> strategy_paths;
+	std::function<std::vector<Guess>(const std::vector<double> &a, const std::vector<double> &b)> strategy_guesses;
 };
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Planar modes, x = (px, py, vx, vy, theta, omega, ...): two paths through
-// the midpoint, one backing up with the start's heading, one driving forward
-// facing the goal: from straight lines alone, goals behind the robot often
-// ended in a worse local optimum (docs/decisions.md, "Training labels").
-std::vector<std::vector<std::vector<double>>> planar_strategy_paths(const std::vector<double> &a,
-								    const std::vector<double> &b,
-								    const Bounds &bd, double speed)
+// Planar modes, x = (px, py, vx, vy, theta, omega, ...). Paths that differ in
+// strategy, not only in duration; from each start Ipopt stays in the basin
+// it starts in, so a basin no start leads into is never found:
+// - backing up with the start's heading, through the midpoint, and driving
+//   forward facing the goal (from the straight line alone, goals behind the
+//   robot often ended in a worse local optimum; docs/decisions.md, "Training
+//   labels"); durations from the path length;
+// - (issue #35) backing up with the start's heading at twice that duration;
+//   reversing towards the goal, the rear facing it, through the midpoint;
+//   and turning on the spot to that heading, reversing, turning on the spot
+//   to the goal's heading. Their headings are wound to the nearest the mean
+//   of the start's and the goal's (theta is not wrapped: the goal's is
+//   reached as given). Durations add the turns at 2 rad/s (through the
+//   midpoint) or 1 rad/s (on the spot). On the first 12 Ambot ground
+//   samples these three found basins 25% (sample 0, 131 -> 98 J) and 23%
+//   (sample 10, 144 -> 111 J) below every other start's (docs/decisions.md).
+// point(px, py, v, theta) is the mode's full state there (vy = omega = 0;
+// marine's paddle speeds at their steady value for v).
+std::vector<Guess> planar_strategy_guesses(
+	const std::vector<double> &a, const std::vector<double> &b, const Bounds &bd, double speed,
+	const std::function<std::vector<double>(double, double, double, double)> &point)
 {
 	std::vector<double> mid = a;
 	mid[0] = 0.5 * (a[0] + b[0]);
@@ -345,7 +358,21 @@ std::vector<std::vector<std::vector<double>>> planar_strategy_paths(const std::v
 	face[2] = std::min(speed, bd.x_hi[2]);
 	double bearing = std::atan2(b[1] - a[1], b[0] - a[0]);
 	face[4] = a[4] + std::remainder(bearing - a[4], 2 * kPi);
-	return {{a, back, b}, {a, face, b}};
+	const double d = std::hypot(b[0] - a[0], b[1] - a[1]);
+	// duration_guess of a path through the midpoint (its length is d).
+	const double T = std::max(bd.T_min * 2, d / speed);
+	std::vector<Guess> out = {{T, {a, back, b}}, {T, {a, face, b}}};
+	out.push_back({2 * T, {a, back, b}});
+	const double mean = 0.5 * (a[4] + b[4]);
+	const double h = mean + std::remainder(bearing + kPi - mean, 2 * kPi);
+	const double turn = std::fabs(h - a[4]) + std::fabs(b[4] - h);
+	const double rev = std::max(-speed, bd.x_lo[2]);
+	out.push_back({T + 0.5 * turn, {a, point(mid[0], mid[1], rev, h), b}});
+	out.push_back({T + turn,
+		       {a, point(a[0], a[1], 0, h), point(mid[0], mid[1], rev, h), point(b[0], b[1], 0, h), b}});
+	for (Guess &g : out)
+		g.T = std::min(g.T, bd.T_max);
+	return out;
 }
 
 template <class M>
@@ -399,8 +426,13 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 	if (mode == "ground" || mode == "marine") {
 		Bounds bd = i.bounds;
 		double speed = i.typical_speed;
-		i.strategy_paths = [bd, speed](const std::vector<double> &a, const std::vector<double> &b) {
-			return planar_strategy_paths(a, b, bd, speed);
+		auto full = i.full_state;
+		i.strategy_guesses = [bd, speed, full](const std::vector<double> &a, const std::vector<double> &b) {
+			auto point = [&full](double px, double py, double v, double th) {
+				const double xs[4] = {px, py, v, th};
+				return full(xs);
+			};
+			return planar_strategy_guesses(a, b, bd, speed, point);
 		};
 	}
 	return i;
@@ -793,18 +825,15 @@ Solution phase_solution(const MultiPhaseSolution &m)
 	return out;
 }
 
-// solve_bvp_strategies on a built problem.
-Solution add_strategies(const RobotParams &robot, const Bvp &v, const SolveOptions &opt, const Solution &line)
+// The guesses' best, if cheaper than line (see solve_bvp_guesses).
+Solution solve_from_guesses(const RobotParams &robot, const Bvp &v, const SolveOptions &opt,
+			    const std::vector<Guess> &guesses, const Solution &line)
 {
-	if (!v.info.strategy_paths)
+	if (guesses.empty())
 		return line;
 	std::vector<Start> starts;
-	for (auto &path : v.info.strategy_paths(v.a, v.b)) {
-		double length = 0;
-		for (size_t k = 1; k < path.size(); k++)
-			length += v.info.distance(path[k - 1].data(), path[k].data());
-		starts.push_back({{std::min(duration_guess(v.info, length), v.info.bounds.T_max)}, std::move(path)});
-	}
+	for (const Guess &g : guesses)
+		starts.push_back({{std::min(std::max(g.T, v.info.bounds.T_min), v.info.bounds.T_max)}, g.path});
 	double incumbent = line.converged ? line.cost : std::numeric_limits<double>::infinity();
 	Solution s = phase_solution(solve_stacked(robot, v.p, starts, 0, opt, incumbent));
 	Solution out = s.converged && (!line.converged || s.cost < line.cost) ? s : line;
@@ -813,6 +842,14 @@ Solution add_strategies(const RobotParams &robot, const Bvp &v, const SolveOptio
 	out.refined_starts = line.refined_starts + s.refined_starts;
 	out.solve_seconds = line.solve_seconds + s.solve_seconds;
 	return out;
+}
+
+// solve_bvp_strategies on a built problem.
+Solution add_strategies(const RobotParams &robot, const Bvp &v, const SolveOptions &opt, const Solution &line)
+{
+	if (!v.info.strategy_guesses)
+		return line;
+	return solve_from_guesses(robot, v, opt, v.info.strategy_guesses(v.a, v.b), line);
 }
 
 }  // namespace
@@ -838,6 +875,67 @@ Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot,
 			      const double *x2s, const SolveOptions &opt, const Solution &line)
 {
 	return add_strategies(robot, bvp(mode, robot, x1s, x2s, opt), opt, line);
+}
+
+Solution solve_bvp_guesses(const std::string &mode, const RobotParams &robot, const double *x1s,
+			   const double *x2s, const SolveOptions &opt, const std::vector<Guess> &guesses,
+			   const Solution &incumbent)
+{
+	Bvp v = bvp(mode, robot, x1s, x2s, opt);
+	const size_t nx = static_cast<size_t>(v.info.nx);
+	auto same = [](const std::vector<double> &x, const std::vector<double> &y) {
+		for (size_t k = 0; k < x.size(); k++)
+			if (std::fabs(x[k] - y[k]) > 1e-9 * std::max(1.0, std::fabs(y[k])))
+				return false;
+		return true;
+	};
+	for (size_t g = 0; g < guesses.size(); g++) {
+		const auto &path = guesses[g].path;
+		std::string where = "guess " + std::to_string(g) + " of a " + mode + " BVP: ";
+		if (path.size() < 2)
+			throw std::invalid_argument(where + "its path needs at least two states");
+		for (const auto &x : path)
+			if (x.size() != nx)
+				throw std::invalid_argument(where + "a state has " + std::to_string(x.size()) +
+							    " components, the mode has " + std::to_string(nx));
+		if (!same(path.front(), v.a) || !same(path.back(), v.b))
+			throw std::invalid_argument(where + "its path does not run from the BVP's start to its goal");
+		if (!(guesses[g].T > 0) || !std::isfinite(guesses[g].T))
+			throw std::invalid_argument(where + "its duration is not positive");
+	}
+	return solve_from_guesses(robot, v, opt, guesses, incumbent);
+}
+
+Guess transplanted_guess(const Trajectory &traj, double T, const std::vector<double> &a,
+			 const std::vector<double> &b, int points)
+{
+	const size_t nx = static_cast<size_t>(traj.nx), n = traj.t.size();
+	if (points < 2 || n < 2 || a.size() != nx || b.size() != nx || traj.x.size() != n * nx)
+		throw std::invalid_argument("transplanted_guess: a trajectory of " + std::to_string(n) +
+					    " times and states of " + std::to_string(traj.nx) + " for boundary states of " +
+					    std::to_string(a.size()) + " and " + std::to_string(b.size()) + ", " +
+					    std::to_string(points) + " points");
+	const double t0 = traj.t.front(), t1 = traj.t.back();
+	auto state_at = [&](double t, size_t k) {
+		size_t i = static_cast<size_t>(std::upper_bound(traj.t.begin(), traj.t.end(), t) - traj.t.begin());
+		i = std::min(std::max<size_t>(i, 1), n - 1);
+		double ta = traj.t[i - 1], tb = traj.t[i], w = tb > ta ? (t - ta) / (tb - ta) : 0;
+		w = std::min(std::max(w, 0.0), 1.0);
+		return traj.x[(i - 1) * nx + k] + w * (traj.x[i * nx + k] - traj.x[(i - 1) * nx + k]);
+	};
+	Guess g;
+	g.T = T;
+	for (int p = 0; p < points; p++) {
+		double s = static_cast<double>(p) / (points - 1);
+		std::vector<double> x(nx);
+		for (size_t k = 0; k < nx; k++)
+			x[k] = state_at(t0 + s * (t1 - t0), k) + (1 - s) * (a[k] - traj.x[k]) +
+			       s * (b[k] - traj.x[(n - 1) * nx + k]);
+		g.path.push_back(std::move(x));
+	}
+	g.path.front() = a;   // exactly, not to rounding
+	g.path.back() = b;
+	return g;
 }
 
 IpoptOption parse_ipopt_option(const std::string &text)

@@ -65,7 +65,7 @@ IpoptOption parse_ipopt_option(const std::string &text);
 // each (newline-terminated): what a dataset's .meta records of the solver.
 // Not debug, nor the derivative checker's (a checker run labels nothing),
 // nor strategy_starts: only ground and marine have strategies, and their
-// datasets' meta says so itself ("starts: 2").
+// datasets' meta says so itself ("starts: 3").
 std::string solve_options_text(const SolveOptions &opt);
 
 struct Trajectory {
@@ -111,14 +111,40 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 		   const double *x2s, const SolveOptions &opt);
 
 // The BVP's other initial guesses, where its mode has them (ground and
-// marine: through the midpoint backing up, and facing the goal; one duration
-// guess each): returns their best if it is cheaper than line, the
+// marine: through the midpoint backing up, and facing the goal; backing up
+// at twice the duration; reversing towards the goal through the midpoint,
+// and turning on the spot, reversing, turning on the spot; one duration
+// guess each, planar_strategy_guesses in collocation.cpp): returns their best if it is cheaper than line, the
 // straight-line starts' result (solve_bvp without strategy_starts, or a
 // dataset row made by it), else line. Starts, refined starts and seconds
 // add up. With opt.refine_within finite, line's cost prunes their
 // refinement too.
 Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
 			      const double *x2s, const SolveOptions &opt, const Solution &line);
+
+// An initial guess of a BVP: the full states it runs through, uniformly in
+// time (the first the start, the last the goal), and its duration [s].
+struct Guess {
+	double T = 0;
+	std::vector<std::vector<double>> path;
+};
+
+// Solves the BVP from each guess (as solve_bvp_strategies does its own) and
+// returns their best if it is cheaper than incumbent, else incumbent; starts,
+// refined starts and seconds add up. A guess whose path does not run from
+// the BVP's start to its goal (to 1e-9) or whose states are not state_dim
+// long throws std::invalid_argument.
+Solution solve_bvp_guesses(const std::string &mode, const RobotParams &robot, const double *x1s,
+			   const double *x2s, const SolveOptions &opt, const std::vector<Guess> &guesses,
+			   const Solution &incumbent);
+
+// A solution's path as a guess for another BVP a -> b of its mode (full
+// states): its states at `points` (>= 2) uniformly spaced times, each moved
+// by (1 - s) (a - x(0)) + s (b - x(T)) at time fraction s, so that the path
+// runs from a to b; the solution's duration. The memory-of-motion warm start
+// of the repair stage (dataset.hpp, repair).
+Guess transplanted_guess(const Trajectory &traj, double T, const std::vector<double> &a,
+			 const std::vector<double> &b, int points);
 
 // State and input sizes of a mode, and the full state its sampled
 // coordinates stand for (the virtual constraints of docs/models.md section 7).

@@ -16,9 +16,7 @@
 #include <unistd.h>
 #include <fcntl.h>
 
-extern "C" {
 #include "hylo/features.h"
-}
 #include "trainer/numerics.hpp"
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
@@ -47,6 +45,10 @@ struct Stream {
 
 std::string num(double v) { return format_double(v); }
 
+}  // namespace
+
+namespace internal {
+
 void write_all(int fd, const std::string &s, const std::string &what)
 {
 	size_t off = 0;
@@ -68,38 +70,6 @@ std::string read_file(const std::string &path)
 	return ss.str();
 }
 
-// Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
-// time; returns rows in index order. A sample with a straight-line result in
-// line (--relabel) gets only the other starts.
-std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
-				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
-				     uint64_t &converged)
-{
-	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
-		uint64_t i = lo + k;
-		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
-		Solution s;
-		try {
-			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
-					    : solve_bvp(opt.mode, robot, a, b, opt.solve);
-		} catch (const std::exception &e) {
-			s.status_text = std::string("error: ") + e.what();
-		}
-		return csv_row(opt.mode, i, a, b, s);
-	});
-	for (size_t k = 0; k < rows.size(); k++)
-		if (rows[k].empty())
-			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
-	// Count converged rows from their "converged" column.
-	size_t col = csv_column(opt.mode, "converged");
-	for (const auto &r : rows) {
-		std::vector<std::string> f = csv_fields(r);
-		converged += col < f.size() && f[col] == "1";
-	}
-	return rows;
-}
-
 std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 {
 	std::ostringstream m;
@@ -113,9 +83,10 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	if (opt.mode == "flight")
 		m << "draws: 2\n";
 	// Ground and marine labels have come from straight-line starts alone (no
-	// line) and with the backing-up and goal-facing ones (starts: 2).
+	// line), with the backing-up and goal-facing ones (starts: 2) and with
+	// issue #35's three more (starts: 3; planar_strategy_guesses).
 	if ((opt.mode == "ground" || opt.mode == "marine") && opt.solve.strategy_starts)
-		m << "starts: 2\n";
+		m << "starts: 3\n";
 	m << "params_sha256: " << sha256_file(robot.path) << "\n";
 	// What else a label depends on: the solver's settings and the numerics.
 	m << solve_options_text(opt.solve) << numerics_description();
@@ -172,13 +143,6 @@ bool same_stream(const std::string &a, const std::string &b)
 	return stream(a) == stream(b);
 }
 
-// Where a dataset file resumes: the bytes to keep (the header and complete
-// rows; a torn last row dropped) and how many rows they hold.
-struct ResumePoint {
-	size_t keep = 0;
-	uint64_t rows = 0;
-};
-
 ResumePoint resume_point(const std::string &existing, const std::string &header)
 {
 	ResumePoint r;
@@ -200,10 +164,58 @@ void write_meta(const std::string &path, const std::string &meta)
 	if (fd < 0)
 		throw std::runtime_error("cannot write " + tmp + ": " + std::strerror(errno));
 	write_all(fd, meta, tmp);
-	fsync(fd);
+	if (fsync(fd) != 0) {
+		close(fd);
+		throw std::runtime_error("cannot sync " + tmp);
+	}
 	close(fd);
 	if (rename(tmp.c_str(), path.c_str()) != 0)
-		throw std::runtime_error("cannot rename " + tmp);
+		throw std::runtime_error("cannot rename " + tmp + " to " + path);
+}
+
+}  // namespace internal
+
+namespace {
+
+using internal::meta_differences;
+using internal::meta_text;
+using internal::read_file;
+using internal::resume_point;
+using internal::ResumePoint;
+using internal::same_stream;
+using internal::write_all;
+using internal::write_meta;
+
+// Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
+// time; returns rows in index order. A sample with a straight-line result in
+// line (--relabel) gets only the other starts.
+std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
+				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
+				     uint64_t &converged)
+{
+	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
+		uint64_t i = lo + k;
+		double a[6] = {0}, b[6] = {0};
+		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+		Solution s;
+		try {
+			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
+					    : solve_bvp(opt.mode, robot, a, b, opt.solve);
+		} catch (const std::exception &e) {
+			s.status_text = std::string("error: ") + e.what();
+		}
+		return csv_row(opt.mode, i, a, b, s);
+	});
+	for (size_t k = 0; k < rows.size(); k++)
+		if (rows[k].empty())
+			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
+	// Count converged rows from their "converged" column.
+	size_t col = csv_column(opt.mode, "converged");
+	for (const auto &r : rows) {
+		std::vector<std::string> f = csv_fields(r);
+		converged += col < f.size() && f[col] == "1";
+	}
+	return rows;
 }
 
 // The straight-line results of --relabel's dataset, by index: its file must

@@ -21,8 +21,8 @@ namespace hylo::trainer {
 // The solver's options for training pairs (and `trainer --solve`, so that it
 // reproduces a row): a start is refined only if its coarse cost is within 5%
 // of the best refined one (40% less solve time, docs/decisions.md, "Training
-// labels"). Ground and marine pairs also get the backing-up and goal-facing
-// guesses (solve_bvp_strategies).
+// labels"). Ground and marine pairs also get the strategy guesses
+// (solve_bvp_strategies: backing up, facing the goal, and issue #35's three).
 inline SolveOptions training_solve_options()
 {
 	SolveOptions o;
@@ -93,6 +93,32 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt);
 
 // The dataset file a run with these options writes.
 std::string dataset_path(const GenOptions &opt);
+
+// File handling shared by generation and the repair stage (repair.hpp).
+namespace internal {
+
+// The file's bytes ("" if it cannot be read).
+std::string read_file(const std::string &path);
+// Writes all of s to fd; throws std::runtime_error naming what.
+void write_all(int fd, const std::string &s, const std::string &what);
+// The .meta of a dataset generated with opt: the stream (robot, mode, seed,
+// robot file, draws, shard) and what its labels depend on.
+std::string meta_text(const RobotParams &robot, const GenOptions &opt);
+// The lines in which two metas differ, "old vs new; ...".
+std::string meta_differences(const std::string &old_meta, const std::string &new_meta);
+// Whether two metas describe the same stream of pairs, whatever labelled them.
+bool same_stream(const std::string &a, const std::string &b);
+// Where a file of rows after header resumes: the bytes to keep (the header
+// and complete rows; a torn last row dropped) and how many rows they hold.
+struct ResumePoint {
+	size_t keep = 0;
+	uint64_t rows = 0;
+};
+ResumePoint resume_point(const std::string &existing, const std::string &header);
+// Writes path atomically: a temporary file, fsync'd, renamed over it.
+void write_meta(const std::string &path, const std::string &text);
+
+}  // namespace internal
 
 }  // namespace hylo::trainer
 

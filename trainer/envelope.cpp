@@ -17,11 +17,9 @@
 
 #include <Eigen/Dense>
 
-extern "C" {
 #include "hylo/envelope.h"
 #include "hylo/features.h"
 #include "hylo/svr.h"
-}
 
 // How the table is computed (onboard/models/README.md, "Envelope"):
 //

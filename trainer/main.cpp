@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -70,11 +71,24 @@ void usage(FILE *f)
 		"  --mode M          di_neg, di_pos, ground, marine or flight (required); switch:\n"
 		"                    print the robot's mode switches and their costs (docs/models.md\n"
 		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
-		"  --robot R         robot parameter file trainer/params/R.yaml (required)\n"
-		"  --stage S         gen, fit, export or all (default: all); export reads the\n"
-		"                    header fit wrote into --out and adds the envelope (minutes)\n"
-		"  --samples N       training pairs: gen extends the dataset to N rows, fit uses\n"
-		"                    its first N (default: 11520; flight 17016; di 2000)\n"
+		"  --robot R         robot parameter file trainer/params/R.yaml (required; installed:\n"
+		"                    PREFIX/share/hylo/params/R.yaml; $HYLO_PARAMS_DIR/R.yaml first)\n"
+		"  --stage S         gen, repair, fit, export or all (gen, fit, export; default:\n"
+		"                    all); export reads the header fit wrote into --out and adds\n"
+		"                    the envelope (minutes). repair: each of the dataset's first\n"
+		"                    N rows is solved again and from the solutions of its\n"
+		"                    --neighbours nearest rows (kept in <out>/<mode>.solutions.csv,\n"
+		"                    resumable); a label is only ever lowered; the dataset is\n"
+		"                    replaced atomically when every row is done (resumable, its\n"
+		"                    .meta records the repair; docs/decisions.md)\n"
+		"  --samples N       training pairs: gen extends the dataset to N rows, repair\n"
+		"                    and fit use its first N (default: 11520; flight 17016; di 2000)\n"
+		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
+		"                    (default: 4)\n"
+		"  --refine-within F ground, marine: refine only the starts whose coarse cost is\n"
+		"                    within F of the best refined one; inf: refine every start\n"
+		"                    (better optima, 1.4-2x the time; docs/decisions.md) (recorded\n"
+		"                    in a dataset's .meta; default: 0.05)\n"
 		"  --jobs J          worker processes (gen), threads (fit, export) (default:\n"
 		"                    number of cores)\n"
 		"  --seed S          seed of the sample stream (default: 1)\n"
@@ -86,7 +100,7 @@ void usage(FILE *f)
 		"                    (repeatable; recorded in a dataset's .meta; default: none)\n"
 		"  --relabel FILE    gen, ground and marine: FILE is this stream's dataset as\n"
 		"                    labelled before the backing-up and goal-facing starts\n"
-		"                    (its .meta has no 'starts: 2'); its results are reused\n"
+		"                    (its .meta has no 'starts:' line); its results are reused\n"
 		"                    and only those starts solved. A run over such a dataset\n"
 		"                    in --out relabels it in place (kept as <file>.straight)\n"
 		"  --models-dir DIR  where export writes headers (default: onboard/models)\n"
@@ -284,6 +298,15 @@ int run(int argc, char **argv)
 			po.gen.seed = static_cast<uint64_t>(integer(0));
 		} else if (a == "--out") {
 			po.gen.out_dir = val();
+		} else if (a == "--refine-within") {
+			std::string v = val();
+			char *e = nullptr;
+			double x = v == "inf" ? std::numeric_limits<double>::infinity() : std::strtod(v.c_str(), &e);
+			if (v != "inf" && (v.empty() || *e || !(x >= 0) || !std::isfinite(x)))
+				throw Usage("--refine-within needs a fraction >= 0 or inf, not '" + v + "'");
+			po.gen.solve.refine_within = x;
+		} else if (a == "--neighbours") {
+			po.neighbours = static_cast<int>(integer(1));
 		} else if (a == "--relabel") {
 			po.gen.relabel = val();
 		} else if (a == "--models-dir") {
@@ -342,8 +365,8 @@ int run(int argc, char **argv)
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;
 	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(mode);
-	if (stage != "gen" && stage != "fit" && stage != "export" && stage != "all")
-		throw Usage("unknown stage '" + stage + "' (gen, fit, export, all)");
+	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all")
+		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, all)");
 	return run_pipeline(robot, po, stage);
 }
 

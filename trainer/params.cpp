@@ -85,18 +85,21 @@ const ModeParams &RobotParams::mode(const std::string &name) const
 
 namespace {
 
-// The checkout the binary was built in (build/bin/trainer -> its root), or "".
-std::string checkout_root()
+// Where robot files are looked for when the working directory has none: the
+// checkout the binary was built in (CHECKOUT/build/bin/trainer), or an
+// install (PREFIX/bin/hylo-trainer, PREFIX/share/hylo/params: make install).
+std::vector<std::string> other_params_dirs()
 {
 	char exe[4096];
 	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
 	if (n <= 0)
-		return "";
+		return {};
 	exe[n] = '\0';
-	std::string root = exe;
-	for (int up = 0; up < 3 && root.find('/') != std::string::npos; up++)
-		root = root.substr(0, root.rfind('/'));
-	return root;
+	std::string up[3] = {exe, "", ""};   // the binary's folder, its parent, theirs
+	up[0] = up[0].substr(0, up[0].rfind('/'));
+	up[1] = up[0].substr(0, up[0].rfind('/'));
+	up[2] = up[1].substr(0, up[1].rfind('/'));
+	return {up[2] + "/trainer/params", up[1] + "/share/hylo/params"};
 }
 
 }  // namespace
@@ -109,10 +112,8 @@ std::string robot_file(const std::string &name)
 	std::string here = "trainer/params/" + name + ".yaml";
 	if (access(here.c_str(), F_OK) == 0)
 		return here;
-	// Run from elsewhere: the files beside the binary's checkout (build/bin/trainer).
-	std::string root = checkout_root();
-	if (!root.empty()) {
-		std::string there = root + "/trainer/params/" + name + ".yaml";
+	for (const std::string &d : other_params_dirs()) {
+		std::string there = d + "/" + name + ".yaml";
 		if (access(there.c_str(), F_OK) == 0)
 			return there;
 	}
@@ -126,9 +127,9 @@ std::string robot_dir()
 		return dir;
 	if (access("trainer/params", F_OK) == 0)
 		return "trainer/params";
-	std::string root = checkout_root();
-	if (!root.empty() && access((root + "/trainer/params").c_str(), F_OK) == 0)
-		return root + "/trainer/params";
+	for (const std::string &d : other_params_dirs())
+		if (access(d.c_str(), F_OK) == 0)
+			return d;
 	return "trainer/params";
 }
 

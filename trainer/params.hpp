@@ -45,7 +45,8 @@ struct RobotParams {
 RobotParams load_robot(const std::string &path);
 
 // The parameter file of robot name: in $HYLO_PARAMS_DIR, else trainer/params/
-// of the working directory, else of the checkout the binary was built in.
+// of the working directory, else of the checkout the binary was built in,
+// else share/hylo/params/ of the prefix it was installed into (make install).
 std::string robot_file(const std::string &name);
 
 // The folder robot_file() looks in (without a name to find).

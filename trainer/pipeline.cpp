@@ -10,6 +10,7 @@
 
 #include "trainer/collocation.hpp"
 #include "trainer/envelope.hpp"
+#include "trainer/repair.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
 #include "trainer/switching.hpp"
@@ -261,6 +262,30 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 			    static_cast<unsigned long long>(s.resumed_from),
 			    static_cast<unsigned long long>(s.converged),
 			    static_cast<unsigned long long>(s.rejected), s.seconds);
+	}
+	if (stage == "repair") {
+		RepairOptions ro;
+		ro.gen = opt.gen;
+		ro.neighbours = opt.neighbours;
+		RepairSummary s = repair(robot, ro);
+		if (s.already) {
+			std::printf("repair %s %s: %s records this repair of its first %llu rows already; nothing to do\n",
+				    robot.robot.c_str(), opt.gen.mode.c_str(), s.path.c_str(),
+				    static_cast<unsigned long long>(s.rows));
+		} else {
+			std::printf("repair %s %s: %llu rows of %s (%llu solved again, %llu repaired now), %llu labels "
+				    "lowered by more than 0.5%% (%llu by the solver alone, %llu by a neighbour's "
+				    "warm start; median %.2f%%, largest %.2f%%), %llu newly converged; CPU %.1f s solving again, "
+				    "%.1f s warm-started; %.1f s\n",
+				    robot.robot.c_str(), opt.gen.mode.c_str(), static_cast<unsigned long long>(s.rows),
+				    s.path.c_str(), static_cast<unsigned long long>(s.solved_again),
+				    static_cast<unsigned long long>(s.repaired_now),
+				    static_cast<unsigned long long>(s.lowered),
+				    static_cast<unsigned long long>(s.lowered_by_solver),
+				    static_cast<unsigned long long>(s.lowered_by_neighbours), 100 * s.median_drop,
+				    100 * s.max_drop, static_cast<unsigned long long>(s.newly_converged), s.solve_cpu_s,
+				    s.warm_cpu_s, s.seconds);
+		}
 	}
 	if (stage == "fit" || stage == "all")
 		fit_stage(robot, opt);

@@ -5,22 +5,27 @@
 
 #include <string>
 
+#include "hylo/version.h"
 #include "trainer/dataset.hpp"
 #include "trainer/params.hpp"
 
 namespace hylo::trainer {
 
-constexpr const char *kHyloVersion = "0.1.0";
+// hylo/version.h: --version and every exported model's provenance.
+constexpr const char *kHyloVersion = HYLO_VERSION;
 
 struct PipelineOptions {
 	GenOptions gen;
 	std::string models_dir = "onboard/models";
+	int neighbours = 4;   // --stage repair: warm starts per row (RepairOptions)
 };
 
 // The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000 (di).
 uint64_t default_samples(const std::string &mode);
 
-// Runs stage "gen", "fit", "export" or "all"; returns the exit code.
+// Runs stage "gen", "repair", "fit", "export" or "all" (gen, fit, export);
+// returns the exit code. "repair" repairs the dataset's first samples rows
+// (trainer/repair.hpp).
 // "fit" writes <out>/<robot>_<mode>.h (the fitted model) and
 // <out>/<mode>.fit.json; "export" reads that header, adds the envelope
 // (ground, marine, flight; trainer/envelope.hpp) and writes the result into

@@ -8,9 +8,8 @@
 #include <stdexcept>
 #include <system_error>
 
-extern "C" {
 #include "hylo/features.h"
-}
+#include "hylo/svr.h"
 
 namespace hylo::trainer {
 namespace {
@@ -274,6 +273,15 @@ std::string svr_header_text(const SvrExport &m)
 	out += " */\n";
 	out += "#ifndef " + mac + "_H\n#define " + mac + "_H\n\n";
 	out += "#include \"hylo/svr.h\"\n\n";
+	// The format this header is written in; a library that reads another
+	// refuses it at compile time (hylo/svr.h, HYLO_MODEL_FORMAT_VERSION).
+	const std::string format = std::to_string(HYLO_MODEL_FORMAT_VERSION);
+	out += "#define " + mac + "_FORMAT_VERSION " + format + "\n";
+	out += "#if HYLO_MODEL_FORMAT_VERSION != " + mac + "_FORMAT_VERSION\n";
+	out += "#error \"" + name + ".h is model format " + format +
+	       "; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or "
+	       "regenerate the model\"\n";
+	out += "#endif\n";
 	out += "#define " + mac + "_MODE " + mode_enum(m.mode).c_name + "\n";
 	out += "#define " + mac + "_N_SV " + std::to_string(m.coef.size()) + "\n";
 	out += "#define " + mac + "_N_FEATURES " + std::to_string(m.n_features) + "\n";
@@ -309,8 +317,9 @@ std::string svr_header_text(const SvrExport &m)
 	out += "\t.speed_min_mps = " + format_double(m.speed_min_mps) + ",\n";
 	out += "\t.speed_max_mps = " + format_double(m.speed_max_mps) + ",\n";
 	out += "\t.provenance = " + c_string(prov) + ",\n";
-	if (m.envelope)
-		out += "\t.envelope = &" + id + "_envelope,\n";
+	// Every field is written, so that C++ (-Wextra: missing initializers)
+	// includes the header as cleanly as C.
+	out += "\t.envelope = " + (m.envelope ? "&" + id + "_envelope" : std::string("NULL")) + ",\n";
 	out += "};\n\n";
 	if (m.feasibility) {
 		const ClassifierExport &f = *m.feasibility;
@@ -336,7 +345,10 @@ std::string svr_header_text(const SvrExport &m)
 		out += "\t.feature_offset = " + fid + "_feature_offset,\n";
 		out += "\t.feature_scale = " + fid + "_feature_scale,\n";
 		out += "\t.label_offset = 0,\n\t.label_scale = 1,\n\t.label_log = 0,\n";
+		out += "\t.cost_floor_per_m = 0,\n\t.cost_floor_j = 0,\n\t.max_distance_m = 0,\n";
+		out += "\t.speed_min_mps = 0,\n\t.speed_max_mps = 0,\n";
 		out += "\t.provenance = " + c_string(prov) + ",\n";
+		out += "\t.envelope = NULL,\n";
 		out += "};\n\n";
 	}
 	out += "#endif\n";
@@ -473,6 +485,17 @@ SvrExport parse_svr_header(const std::string &text)
 		throw std::invalid_argument("svr header: no HYLO_MODEL_<NAME>_MODE");
 	if (h.models.empty())
 		throw std::invalid_argument("svr header: no hylo_svr_model");
+	std::string format;
+	for (const auto &d : h.defines)
+		if (d.first.size() > 15 && d.first.compare(d.first.size() - 15, 15, "_FORMAT_VERSION") == 0)
+			format = d.second;
+	if (format.empty())
+		throw std::invalid_argument("svr header: no HYLO_MODEL_<NAME>_FORMAT_VERSION (written before model "
+					    "format versions): fit it again");
+	if (format != std::to_string(HYLO_MODEL_FORMAT_VERSION))
+		throw std::invalid_argument("svr header: model format " + format + ", but this trainer reads and "
+					    "writes format " + std::to_string(HYLO_MODEL_FORMAT_VERSION) +
+					    ": fit it again");
 	const std::string id = h.models[0];   // the cost model; the classifier follows it
 	const auto &f = fields(h, id);
 	const std::string &qname = field(f, "name");

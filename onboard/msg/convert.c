@@ -47,7 +47,8 @@ void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 	g->headings = msg->headings_rad;
 	g->air_speeds = msg->air_speeds_mps;
 	g->time_budget_ms = msg->time_budget_ms;
-	g->max_expansions = msg->max_expansions < 0 ? UINT64_MAX : (uint64_t)msg->max_expansions;
+	/* Negative: refused by hylo_msg_check_goal; 0 (no limit) if it gets here. */
+	g->max_expansions = msg->max_expansions < 0 ? 0 : (uint64_t)msg->max_expansions;
 	g->suboptimality = msg->suboptimality;
 }
 

@@ -12,11 +12,16 @@
 #include "hylo_map_t.h"
 #include "hylo_plan_t.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /**
  * Checks an encoded goal_t (buf, len bytes) before decoding: fingerprint,
- * non-negative array counts, exact length. HYLO_OK, or HYLO_E_BAD_VALUE with
- * a reason naming the field. *request_id gets the goal's request id when the
- * buffer reaches it, else -1, so that even a corrupt goal can be answered.
+ * non-negative array counts and max_expansions, exact length. HYLO_OK, or
+ * HYLO_E_BAD_VALUE with a reason naming the field. *request_id gets the
+ * goal's request id when the buffer reaches it, else
+ * HYLO_GOAL_T_REQUEST_ID_UNREADABLE, so that even a corrupt goal can be answered.
  * No allocation.
  */
 hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
@@ -48,5 +53,9 @@ int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome);
  */
 void hylo_msg_plan(const hylo_plan *plan, int64_t utime, hylo_plan_msg_buf *buf,
                    hylo_plan_t *msg);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

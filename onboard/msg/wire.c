@@ -5,8 +5,8 @@
  * corrupt message could ask for gigabytes or yield negative sizes. These
  * walkers follow the wire layout of the msgs/ types (big-endian scalars; a string
  * is an int32 length that counts its NUL, then the bytes) and accept only
- * messages whose fingerprint matches, whose counts are non-negative and whose
- * length is exact. They allocate nothing. Keep in step with msgs/.
+ * messages whose fingerprint matches, whose counts (and max_expansions) are
+ * non-negative and whose length is exact. They allocate nothing. Keep in step with msgs/.
  */
 #include <stdint.h>
 #include <string.h>
@@ -129,12 +129,12 @@ hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
 	int32_t n;
 
 	if (request_id)
-		*request_id = -1;
+		*request_id = HYLO_GOAL_T_REQUEST_ID_UNREADABLE;
 	start(&w, buf, len, "goal_t", __hylo_goal_t_get_hash(), r);
 	skip(&w, 8, "utime");
 	if (w.st == HYLO_OK && w.len - w.pos >= 8 && request_id)
 		*request_id = be64(w.p + w.pos);
-	skip(&w, 8 + 8 + 1 + 1 + 6 * 8 + 1 + 6 * 8 + 8, "request_id .. seed");
+	skip(&w, 8 + 8 + 8 + 1 + 1 + 6 * 8 + 1 + 6 * 8 + 8, "request_id .. seed");
 	skip(&w, 5 * 8, "spacing_m .. air_connect_radius_m");
 	n = get_count(&w, "n_speeds");
 	skip(&w, 8L * n, "speeds_mps");
@@ -142,7 +142,9 @@ hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
 	skip(&w, 8L * n, "headings_rad");
 	n = get_count(&w, "n_air_speeds");
 	skip(&w, 8L * n, "air_speeds_mps");
-	skip(&w, 8 + 4 + 8, "time_budget_ms, max_expansions, suboptimality");
+	skip(&w, 8, "time_budget_ms");
+	get_count(&w, "max_expansions");
+	skip(&w, 8, "suboptimality");
 	return finish(&w);
 }
 

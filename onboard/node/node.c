@@ -1,8 +1,23 @@
+#include <errno.h>
 #include <inttypes.h>
+#include <stdarg.h>
 #include <string.h>
 #include <sys/time.h>
+#include <time.h>
 
 #include "node/node.h"
+
+static const char *const status_names[] = {
+	"ok", "no map", "no path", "bad request", "over capacity", "budget exhausted",
+	"map replaced", "no model", "not proven optimal", "superseded", "unknown map",
+	"queue full"
+};
+
+static const char *status_name(int8_t st)
+{
+	return st >= 0 && st < (int)(sizeof status_names / sizeof *status_names) ? status_names[st]
+										 : "?";
+}
 
 static int64_t utime_now(void)
 {
@@ -12,12 +27,16 @@ static int64_t utime_now(void)
 	return (int64_t)tv.tv_sec * 1000000 + tv.tv_usec;
 }
 
-static void publish_plan(hylo_node *node, const hylo_plan *plan)
+/* Publishing is serialized: udpm:// locks its socket, but an --out-url log
+ * (file://) would be written from both threads. pub_lock nests inside lock. */
+static void publish(hylo_node *node, const hylo_plan_t *msg)
 {
-	hylo_plan_t msg;
+	int r;
 
-	hylo_msg_plan(plan, utime_now(), node->msg_buf, &msg);
-	if (hylo_plan_t_publish(node->out, node->ch_plan, &msg) != 0) {
+	pthread_mutex_lock(&node->pub_lock);
+	r = hylo_plan_t_publish(node->out, node->ch_plan, msg);
+	pthread_mutex_unlock(&node->pub_lock);
+	if (r != 0) {
 		node->n_publish_errors++;
 		if (node->log)
 			fprintf(node->log, "hylo-planner: could not publish on %s\n", node->ch_plan);
@@ -26,9 +45,6 @@ static void publish_plan(hylo_node *node, const hylo_plan *plan)
 
 static void log_request(hylo_node *node, const hylo_plan *plan)
 {
-	static const char *const names[] = { "ok", "no map", "no path", "bad request",
-					     "over capacity", "budget exhausted", "map replaced",
-					     "no model" };
 	int8_t st = hylo_msg_plan_status(plan->status, plan->outcome);
 
 	if (!node->log)
@@ -36,89 +52,420 @@ static void log_request(hylo_node *node, const hylo_plan *plan)
 	fprintf(node->log,
 		"request %" PRId64 ": %s, cost %.6g J, %u nodes, %" PRIu64 " edges evaluated, "
 		"%.2f ms",
-		plan->request_id, st >= 0 && st < 8 ? names[st] : "?", plan->total_cost,
-		(unsigned)plan->n_nodes, plan->n_edges_evaluated, plan->plan_ms);
+		plan->request_id, status_name(st), plan->total_cost, (unsigned)plan->n_nodes,
+		plan->n_edges_evaluated, plan->plan_ms);
 	if (st != HYLO_PLAN_T_STATUS_OK)
 		fprintf(node->log, " (%s)", plan->reason.text);
 	fputc('\n', node->log);
 	fflush(node->log);
 }
 
-/* A plan that answers a request the planner never saw (undecodable goal). */
-static void refuse(hylo_node *node, int64_t request_id, hylo_status st, const char *why)
+/*
+ * Answers a goal at once, without planning (refused, superseded): an empty
+ * plan. Admission side, under the lock; touches neither node->plan nor
+ * node->msg_buf, which belong to the work side.
+ */
+#if defined(__GNUC__)
+__attribute__((format(printf, 6, 7)))
+#endif
+static void answer_now(hylo_node *node, int64_t request_id, int8_t status, int64_t superseded_by,
+		       int64_t map_id, const char *fmt, ...)
 {
-	hylo_plan *plan = node->plan;
+	char reason[HYLO_REASON_LEN];
+	hylo_plan_t msg;
+	va_list ap;
 
-	plan->status = st;
-	plan->outcome = HYLO_NO_PATH;
-	plan->request_id = request_id;
-	plan->map_id = node->map_id;
-	plan->robot[0] = '\0';
-	plan->total_cost = 0;
-	plan->n_waypoints = 0;
-	plan->n_modes = 0;
-	plan->n_nodes = 0;
-	plan->n_edges = plan->n_edges_evaluated = plan->n_expansions = 0;
-	plan->n_clamped = plan->n_negative = 0;
-	plan->plan_ms = 0;
-	hylo_fail(&plan->reason, st, "%s", why);
+	va_start(ap, fmt);
+	vsnprintf(reason, sizeof reason, fmt, ap);
+	va_end(ap);
+	memset(&msg, 0, sizeof msg);
+	msg.utime = utime_now();
+	msg.request_id = request_id;
+	msg.map_id = map_id;
+	msg.status = status;
+	msg.reason = reason;
+	msg.superseded_by = superseded_by;
+	msg.robot = "";
+	publish(node, &msg);
+	node->n_answered++;
+	if (status == HYLO_PLAN_T_STATUS_SUPERSEDED)
+		node->n_superseded++;
+	else
+		node->n_refused++;
+	if (node->log) {
+		fprintf(node->log, "request %" PRId64 ": %s (%s)\n", request_id, status_name(status),
+			reason);
+		fflush(node->log);
+	}
 }
 
-void hylo_node_goal(hylo_node *node, const void *data, int len)
+/* ---- status ------------------------------------------------------------- */
+
+static void fill_status(hylo_node *node, hylo_node_status_t *s, int8_t event)
+{
+	memset(s, 0, sizeof *s);
+	s->utime = utime_now();
+	s->event = event;
+	s->map_id = node->map_id;
+	s->map_status = node->map_status;
+	s->reason = "";
+	s->current_map_id = node->map_id;
+	s->goals_received = (int64_t)node->n_goals;
+	s->goals_answered = (int64_t)node->n_answered;
+	s->goals_planned = (int64_t)node->n_planned;
+	s->goals_superseded = (int64_t)node->n_superseded;
+	s->goals_refused = (int64_t)node->n_refused;
+	s->queue_depth = (int32_t)node->q_len;
+	s->queue_capacity = HYLO_NODE_QUEUE_LEN;
+	s->maps_received = (int64_t)node->n_maps;
+	s->maps_taken = (int64_t)node->n_maps_taken;
+	s->maps_refused = (int64_t)node->n_maps_refused;
+	s->recv_buf_bytes = node->recv_buf_bytes;
+}
+
+static void publish_status_msg(hylo_node *node, const hylo_node_status_t *s)
+{
+	int r;
+
+	pthread_mutex_lock(&node->pub_lock);
+	r = hylo_node_status_t_publish(node->out, node->ch_status, s);
+	pthread_mutex_unlock(&node->pub_lock);
+	if (r != 0)
+		node->n_publish_errors++;
+}
+
+/* A map message was taken or refused: EVENT_MAP. Under the lock. */
+static void map_event(hylo_node *node, int64_t map_id, int8_t status, const char *reason)
+{
+	hylo_node_status_t s;
+
+	fill_status(node, &s, HYLO_NODE_STATUS_T_EVENT_MAP);
+	s.map_id = map_id;
+	s.map_status = status;
+	s.reason = (char *)reason;
+	publish_status_msg(node, &s);
+	if (node->log && (status != HYLO_PLAN_T_STATUS_OK || node->verbose)) {
+		fprintf(node->log, "map %" PRId64 ": %s%s%s\n", map_id, status_name(status),
+			*reason ? ", " : "", reason);
+		fflush(node->log);
+	}
+}
+
+void hylo_node_publish_status(hylo_node *node, int8_t event)
+{
+	hylo_node_status_t s;
+
+	pthread_mutex_lock(&node->lock);
+	fill_status(node, &s, event);
+	publish_status_msg(node, &s);
+	pthread_mutex_unlock(&node->lock);
+}
+
+uint32_t hylo_node_queue_depth(hylo_node *node)
+{
+	uint32_t n;
+
+	pthread_mutex_lock(&node->lock);
+	n = node->q_len;
+	pthread_mutex_unlock(&node->lock);
+	return n;
+}
+
+void hylo_node_counts(hylo_node *node, uint64_t *received, uint64_t *answered)
+{
+	pthread_mutex_lock(&node->lock);
+	if (received)
+		*received = node->n_goals;
+	if (answered)
+		*answered = node->n_answered;
+	pthread_mutex_unlock(&node->lock);
+}
+
+/* ---- admission ---------------------------------------------------------- */
+
+static int map_known(const hylo_node *node, int64_t map_id)
+{
+	uint32_t k, n = node->n_map_ids < HYLO_NODE_MAP_HISTORY ? node->n_map_ids
+								 : HYLO_NODE_MAP_HISTORY;
+
+	for (k = 0; k < n; k++)
+		if (node->map_ids[k] == map_id)
+			return 1;
+	return 0;
+}
+
+static void slot_fill(hylo_node_slot *s, const hylo_goal *g, int64_t requester_id)
+{
+	s->goal = *g;
+	s->requester_id = requester_id;
+	/* Counts are at most HYLO_MAX_GRID (hylo_goal_check); an empty grid may be NULL. */
+	if (g->n_speeds)
+		memcpy(s->speeds, g->speeds, g->n_speeds * sizeof *s->speeds);
+	if (g->n_headings)
+		memcpy(s->headings, g->headings, g->n_headings * sizeof *s->headings);
+	if (g->n_air_speeds)
+		memcpy(s->air_speeds, g->air_speeds, g->n_air_speeds * sizeof *s->air_speeds);
+	s->goal.speeds = s->goal.headings = s->goal.air_speeds = NULL;
+}
+
+/* The queue policy: one slot per requester, the newest goal wins and keeps
+ * the replaced goal's place in the line. */
+static void admit(hylo_node *node, const hylo_goal *g, int64_t requester_id)
+{
+	uint32_t k;
+
+	for (k = 0; k < node->q_len; k++) {
+		hylo_node_slot *s = &node->queue[(node->q_head + k) % HYLO_NODE_QUEUE_LEN];
+
+		if (s->requester_id == requester_id) {
+			int64_t old = s->goal.request_id;
+
+			slot_fill(s, g, requester_id);
+			answer_now(node, old, HYLO_PLAN_T_STATUS_SUPERSEDED, g->request_id,
+				   node->map_id, "superseded by request %" PRId64
+				   " of requester %" PRId64 " before it was planned",
+				   g->request_id, requester_id);
+			return;
+		}
+	}
+	if (node->q_len == HYLO_NODE_QUEUE_LEN) {
+		answer_now(node, g->request_id, HYLO_PLAN_T_STATUS_QUEUE_FULL, 0, node->map_id,
+			   "goal queue full: %d other requesters have a goal waiting "
+			   "(HYLO_NODE_QUEUE_LEN); send again later", HYLO_NODE_QUEUE_LEN);
+		return;
+	}
+	slot_fill(&node->queue[(node->q_head + node->q_len) % HYLO_NODE_QUEUE_LEN], g,
+		  requester_id);
+	node->q_len++;
+}
+
+/* Under the lock. */
+static void goal_locked(hylo_node *node, const void *data, int len)
 {
 	hylo_goal_t msg;
 	hylo_goal goal;
 	hylo_reason r;
+	hylo_status st;
 	int64_t request_id;
+	const hylo_node_map_slot *pending = node->map_pending;
 
-	/* --once: a provider may deliver several messages in one handle call. */
-	if (node->goal_limit && node->n_goals >= node->goal_limit)
-		return;
 	node->n_goals++;
-	if (hylo_msg_check_goal(data, len, &request_id, &r) != HYLO_OK ||
-	    hylo_goal_t_decode(data, 0, len, &msg) < 0) {
-		refuse(node, request_id, HYLO_E_BAD_VALUE, r.text);
-	} else {
-		hylo_msg_goal_view(&msg, &goal);
-		hylo_planner_plan(node->planner, &goal, node->plan);
-		hylo_goal_t_decode_cleanup(&msg);
+	if (hylo_msg_check_goal(data, len, &request_id, &r) != HYLO_OK) {
+		answer_now(node, request_id, HYLO_PLAN_T_STATUS_BAD_REQUEST, 0, node->map_id, "%s",
+			   r.text);
+		return;
 	}
-	publish_plan(node, node->plan);
-	log_request(node, node->plan);
+	if (hylo_goal_t_decode(data, 0, len, &msg) < 0) {
+		answer_now(node, request_id, HYLO_PLAN_T_STATUS_BAD_REQUEST, 0, node->map_id,
+			   "goal_t message could not be decoded");
+		return;
+	}
+	hylo_msg_goal_view(&msg, &goal);
+	st = hylo_goal_check(&goal, &r);
+	if (msg.request_id == HYLO_GOAL_T_REQUEST_ID_UNREADABLE)
+		answer_now(node, msg.request_id, HYLO_PLAN_T_STATUS_BAD_REQUEST, 0, node->map_id,
+			   "request_id %" PRId64 " is reserved (goal_t.REQUEST_ID_UNREADABLE)",
+			   msg.request_id);
+	else if (st != HYLO_OK)
+		answer_now(node, msg.request_id, hylo_msg_plan_status(st, HYLO_NO_PATH), 0,
+			   node->map_id, "%s", r.text);
+	else if (goal.map_id != 0 && goal.map_id != node->map_id &&
+		 !(pending && goal.map_id == pending->view.map_id)) {
+		if (map_known(node, goal.map_id))
+			answer_now(node, msg.request_id, HYLO_PLAN_T_STATUS_MAP_REPLACED, 0,
+				   node->map_id, "goal is for map %" PRId64 ", which has been "
+				   "replaced; the current map is %" PRId64, goal.map_id,
+				   node->map_id);
+		else
+			answer_now(node, msg.request_id, HYLO_PLAN_T_STATUS_UNKNOWN_MAP, 0,
+				   node->map_id, "goal is for map %" PRId64 ", which this node "
+				   "has not received or not taken (see HYLO_STATUS); the current "
+				   "map is %" PRId64, goal.map_id, node->map_id);
+	} else {
+		admit(node, &goal, msg.requester_id);
+	}
+	hylo_goal_t_decode_cleanup(&msg);
+}
+
+void hylo_node_goal(hylo_node *node, const void *data, int len)
+{
+	pthread_mutex_lock(&node->lock);
+	/* --once: a provider may deliver several messages in one handle call. */
+	if (!(node->goal_limit && node->n_goals >= node->goal_limit)) {
+		goal_locked(node, data, len);
+		pthread_cond_signal(&node->wake);
+	}
+	pthread_mutex_unlock(&node->lock);
+}
+
+/* A decoded map the node can store: 0, or -1 with a status event. */
+static int map_fits(hylo_node *node, const hylo_map_t *msg)
+{
+	char why[HYLO_REASON_LEN];
+
+	if (msg->n_cells > HYLO_MAX_CELLS) {
+		snprintf(why, sizeof why, "map: %ld cells, more than HYLO_MAX_CELLS = %ld",
+			 (long)msg->n_cells, (long)HYLO_MAX_CELLS);
+		map_event(node, msg->map_id, HYLO_PLAN_T_STATUS_OVER_CAPACITY, why);
+		return -1;
+	}
+	if (strlen(msg->robot) >= HYLO_NAME_LEN) {
+		snprintf(why, sizeof why, "map: robot name longer than %d characters",
+			 HYLO_NAME_LEN - 1);
+		map_event(node, msg->map_id, HYLO_PLAN_T_STATUS_BAD_REQUEST, why);
+		return -1;
+	}
+	return 0;
+}
+
+static void map_copy(const hylo_map_t *msg, hylo_node_map_slot *slot)
+{
+	size_t n = (size_t)msg->n_cells;
+
+	hylo_msg_map_view(msg, &slot->view);
+	strcpy(slot->robot, msg->robot);
+	memcpy(slot->terrain, msg->terrain, n);
+	memcpy(slot->height, msg->height_m, n * sizeof *slot->height);
+	slot->view.robot = slot->robot;
+	slot->view.terrain = slot->terrain;
+	slot->view.height = slot->height;
 }
 
 void hylo_node_map(hylo_node *node, const void *data, int len)
 {
 	hylo_map_t msg;
-	hylo_map_view view;
+	hylo_node_map_slot *slot;
 	hylo_reason r;
-	hylo_status st;
 	int64_t map_id;
 
+	pthread_mutex_lock(&node->lock);
 	node->n_maps++;
 	/* An undecodable message is not a map: the current one stays. */
 	if (hylo_msg_check_map(data, len, &map_id, &r) != HYLO_OK ||
 	    hylo_map_t_decode(data, 0, len, &msg) < 0) {
-		if (node->log)
-			fprintf(node->log, "map message ignored (map %" PRId64 " stays): %s\n",
-				node->map_id, r.text);
+		node->n_maps_refused++;
+		map_event(node, map_id, HYLO_PLAN_T_STATUS_BAD_REQUEST, r.text);
+		pthread_mutex_unlock(&node->lock);
 		return;
 	}
-	hylo_msg_map_view(&msg, &view);
-	st = hylo_planner_set_map(node->planner, &view);
-	node->map_id = msg.map_id;
-	if (st != HYLO_OK) {
-		if (node->log)
-			fprintf(node->log, "map %" PRId64 " refused: %s\n", msg.map_id,
-				hylo_planner_reason(node->planner));
-	} else if (node->log && node->verbose) {
-		fprintf(node->log, "map %" PRId64 ": robot %s, %d x %d cells of %g m\n",
-			msg.map_id, msg.robot, msg.nx, msg.ny, msg.resolution_m);
+	if (map_fits(node, &msg) != 0) {
+		node->n_maps_refused++;
+	} else {
+		/* A map still waiting is replaced; else the slot the work side is not in. */
+		slot = node->map_pending;
+		if (slot) {
+			node->n_maps_refused++;
+			map_event(node, slot->view.map_id, HYLO_PLAN_T_STATUS_SUPERSEDED,
+				  "a newer map arrived before this one was taken");
+		} else {
+			slot = node->map_busy == &node->maps[0] ? &node->maps[1] : &node->maps[0];
+		}
+		map_copy(&msg, slot);
+		node->map_ids[node->n_map_ids++ % HYLO_NODE_MAP_HISTORY] = msg.map_id;
+		node->map_pending = slot;
+		pthread_cond_signal(&node->wake);
 	}
-	if (node->log)
-		fflush(node->log);
+	pthread_mutex_unlock(&node->lock);
 	hylo_map_t_decode_cleanup(&msg);
 }
+
+/* ---- work --------------------------------------------------------------- */
+
+/* Takes the pending map, if any: 1 when one was taken or refused. */
+static int take_map(hylo_node *node)
+{
+	hylo_node_map_slot *slot;
+	hylo_status st;
+	int8_t status;
+
+	pthread_mutex_lock(&node->lock);
+	slot = node->map_pending;
+	node->map_pending = NULL;
+	node->map_busy = slot;
+	pthread_mutex_unlock(&node->lock);
+	if (!slot)
+		return 0;
+	st = hylo_planner_set_map(node->planner, &slot->view);
+	status = st == HYLO_OK ? HYLO_PLAN_T_STATUS_OK : hylo_msg_plan_status(st, HYLO_NO_PATH);
+	pthread_mutex_lock(&node->lock);
+	node->map_busy = NULL;
+	node->map_id = slot->view.map_id;
+	node->map_status = status;
+	if (st == HYLO_OK)
+		node->n_maps_taken++;
+	else
+		node->n_maps_refused++;
+	map_event(node, slot->view.map_id, status,
+		  st == HYLO_OK ? "" : hylo_planner_reason(node->planner));
+	if (st == HYLO_OK && node->log && node->verbose)
+		fprintf(node->log, "map %" PRId64 ": robot %s, %d x %d cells of %g m\n",
+			slot->view.map_id, slot->view.robot, (int)slot->view.nx,
+			(int)slot->view.ny, slot->view.resolution);
+	pthread_mutex_unlock(&node->lock);
+	return 1;
+}
+
+int hylo_node_step(hylo_node *node)
+{
+	hylo_node_slot *cur = &node->current;
+	hylo_plan_t msg;
+	int took_map = take_map(node);
+
+	pthread_mutex_lock(&node->lock);
+	if (node->q_len == 0) {
+		pthread_mutex_unlock(&node->lock);
+		return took_map ? 0 : -1;
+	}
+	*cur = node->queue[node->q_head];
+	node->q_head = (node->q_head + 1) % HYLO_NODE_QUEUE_LEN;
+	node->q_len--;
+	pthread_mutex_unlock(&node->lock);
+
+	cur->goal.speeds = cur->speeds;
+	cur->goal.headings = cur->headings;
+	cur->goal.air_speeds = cur->air_speeds;
+	hylo_planner_plan(node->planner, &cur->goal, node->plan);
+	hylo_msg_plan(node->plan, utime_now(), node->msg_buf, &msg);
+	publish(node, &msg);
+	log_request(node, node->plan);
+
+	pthread_mutex_lock(&node->lock);
+	node->n_planned++;
+	node->n_answered++;
+	pthread_mutex_unlock(&node->lock);
+	return 1;
+}
+
+int hylo_node_wait(hylo_node *node, int timeout_ms)
+{
+	struct timespec until;
+	int work;
+
+	clock_gettime(CLOCK_REALTIME, &until);
+	until.tv_sec += timeout_ms / 1000;
+	until.tv_nsec += (long)(timeout_ms % 1000) * 1000000L;
+	if (until.tv_nsec >= 1000000000L) {
+		until.tv_sec++;
+		until.tv_nsec -= 1000000000L;
+	}
+	pthread_mutex_lock(&node->lock);
+	while (!node->stop && !node->map_pending && node->q_len == 0)
+		if (pthread_cond_timedwait(&node->wake, &node->lock, &until) == ETIMEDOUT)
+			break;
+	work = node->stop ? -1 : node->map_pending || node->q_len > 0;
+	pthread_mutex_unlock(&node->lock);
+	return work;
+}
+
+void hylo_node_stop(hylo_node *node)
+{
+	pthread_mutex_lock(&node->lock);
+	node->stop = 1;
+	pthread_cond_broadcast(&node->wake);
+	pthread_mutex_unlock(&node->lock);
+}
+
+/* ---- set-up ------------------------------------------------------------- */
 
 static void on_goal(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
 {
@@ -149,6 +496,8 @@ int hylo_node_init(hylo_node *node, lcm_t *in, lcm_t *out, const char *prefix,
 		   hylo_planner *planner, hylo_plan *plan, hylo_plan_msg_buf *buf,
 		   FILE *log, int verbose)
 {
+	lcm_subscription_t *s_map, *s_goal;
+
 	memset(node, 0, sizeof *node);
 	node->in = in;
 	node->out = out;
@@ -157,16 +506,44 @@ int hylo_node_init(hylo_node *node, lcm_t *in, lcm_t *out, const char *prefix,
 	node->msg_buf = buf;
 	node->log = log;
 	node->verbose = verbose;
-	if (channel(node->ch_map, prefix, "HYLO_MAP", log) ||
-	    channel(node->ch_goal, prefix, "HYLO_GOAL", log) ||
-	    channel(node->ch_plan, prefix, "HYLO_PLAN", log))
+	node->map_status = HYLO_PLAN_T_STATUS_NO_MAP;
+	if (pthread_mutex_init(&node->lock, NULL) != 0)
 		return -1;
-	/* Raw subscriptions: a goal that does not decode still gets an answer. */
-	if (!lcm_subscribe(in, node->ch_map, on_map, node) ||
-	    !lcm_subscribe(in, node->ch_goal, on_goal, node)) {
-		if (log)
-			fprintf(log, "hylo-planner: cannot subscribe\n");
+	if (pthread_mutex_init(&node->pub_lock, NULL) != 0) {
+		pthread_mutex_destroy(&node->lock);
 		return -1;
 	}
+	if (pthread_cond_init(&node->wake, NULL) != 0) {
+		pthread_mutex_destroy(&node->pub_lock);
+		pthread_mutex_destroy(&node->lock);
+		return -1;
+	}
+	if (channel(node->ch_map, prefix, "HYLO_MAP", log) ||
+	    channel(node->ch_goal, prefix, "HYLO_GOAL", log) ||
+	    channel(node->ch_plan, prefix, "HYLO_PLAN", log) ||
+	    channel(node->ch_status, prefix, "HYLO_STATUS", log))
+		goto fail;
+	/* Raw subscriptions: a goal that does not decode still gets an answer. */
+	s_map = lcm_subscribe(in, node->ch_map, on_map, node);
+	s_goal = lcm_subscribe(in, node->ch_goal, on_goal, node);
+	if (!s_map || !s_goal) {
+		if (log)
+			fprintf(log, "hylo-planner: cannot subscribe\n");
+		goto fail;
+	}
+	lcm_subscription_set_queue_capacity(s_map, HYLO_NODE_LCM_QUEUE);
+	lcm_subscription_set_queue_capacity(s_goal, HYLO_NODE_LCM_QUEUE);
 	return 0;
+fail:
+	pthread_cond_destroy(&node->wake);
+	pthread_mutex_destroy(&node->pub_lock);
+	pthread_mutex_destroy(&node->lock);
+	return -1;
+}
+
+void hylo_node_destroy(hylo_node *node)
+{
+	pthread_cond_destroy(&node->wake);
+	pthread_mutex_destroy(&node->pub_lock);
+	pthread_mutex_destroy(&node->lock);
 }

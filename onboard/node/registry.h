@@ -12,6 +12,10 @@
 #include "hylo/robot.h"
 #include "hylo/svr.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct {
 	const hylo_svr_model *model;
 	const hylo_svr_model *feasibility;   /* NULL: none */
@@ -28,5 +32,9 @@ extern const uint32_t hylo_registry_n_models;
  * with *reason set when cap is too small. No allocation.
  */
 uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -1,4 +1,4 @@
-#include "hylo/edgecache.h"
+#include "hylo/internal/edgecache.h"
 
 #include <math.h>
 

@@ -304,7 +304,6 @@ static const char *domain_of(const hylo_planner *pl, hylo_point p)
 static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 			       const hylo_real *xs, hylo_point *p)
 {
-	unsigned k, dim;
 	const char *other;
 	const hylo_svr_model *model;
 	hylo_real speed;
@@ -314,11 +313,7 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 		return hylo_fail(&pl->reason, HYLO_E_WRONG_MODE,
 				 "%s mode %d (%s) is not a mode of robot %s", what, mode,
 				 hylo_mode_str((hylo_mode)mode), pl->robot->name);
-	dim = hylo_mode_dim((hylo_mode)mode);
-	for (k = 0; k < dim; k++)
-		if (!isfinite(xs[k]))
-			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
-					 "%s coordinate %u is %g", what, k, xs[k]);
+	/* Every coordinate is finite (hylo_goal_check). */
 	/* The model's costs from a speed it never saw are extrapolations. */
 	model = pl->robot->modes[idx].model;
 	speed = hylo_state_speed((hylo_mode)mode, xs);
@@ -340,12 +335,97 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 			 what, p->x, p->y, p->z, hylo_mode_str((hylo_mode)mode));
 }
 
+/* A finite number (and >= 0 when non_negative), or a reason naming the field. */
+static hylo_status check_real(hylo_real v, const char *field, int index, int non_negative,
+			      hylo_reason *r)
+{
+	if (isfinite(v) && !(non_negative && v < 0))
+		return HYLO_OK;
+	if (index >= 0)
+		return hylo_fail(r, HYLO_E_BAD_VALUE, "%s[%d] = %g must be finite%s", field, index,
+				 v, non_negative ? " and >= 0" : "");
+	return hylo_fail(r, HYLO_E_BAD_VALUE, "%s = %g must be finite%s", field, v,
+			 non_negative ? " and >= 0" : "");
+}
+
+static hylo_status check_reals(const hylo_real *v, uint32_t n, const char *field,
+			       int non_negative, hylo_reason *r)
+{
+	uint32_t k;
+	hylo_status st = HYLO_OK;
+
+	for (k = 0; k < n && st == HYLO_OK; k++)
+		st = check_real(v[k], field, (int)k, non_negative, r);
+	return st;
+}
+
+hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r)
+{
+	static const char *const grid_names[3] = { "speeds_mps", "headings_rad", "air_speeds_mps" };
+	const hylo_real *grids[3];
+	uint32_t counts[3], k;
+	hylo_status st;
+
+	if (!g)
+		return hylo_fail(r, HYLO_E_NULL, "goal is NULL");
+	if (g->algorithm != HYLO_ASTAR && g->algorithm != HYLO_DIJKSTRA)
+		return hylo_fail(r, HYLO_E_BAD_VALUE, "unknown algorithm %d", g->algorithm);
+	if (!hylo_mode_valid(g->start_mode))
+		return hylo_fail(r, HYLO_E_WRONG_MODE, "start_mode %d is not a mode", g->start_mode);
+	if (!hylo_mode_valid(g->goal_mode))
+		return hylo_fail(r, HYLO_E_WRONG_MODE, "goal_mode %d is not a mode", g->goal_mode);
+	/* Every entry, also those the mode does not use: they are echoed. */
+	st = check_reals(g->start, HYLO_XS_DIM, "start", 0, r);
+	if (st == HYLO_OK)
+		st = check_reals(g->goal, HYLO_XS_DIM, "goal", 0, r);
+	if (st == HYLO_OK)
+		st = check_real(g->spacing, "spacing_m", -1, 1, r);
+	if (st == HYLO_OK)
+		st = check_real(g->air_spacing, "air_spacing_m", -1, 1, r);
+	if (st == HYLO_OK)
+		st = check_real(g->guard_spacing, "guard_spacing_m", -1, 1, r);
+	if (st == HYLO_OK)
+		st = check_real(g->connect_radius, "connect_radius_m", -1, 1, r);
+	if (st == HYLO_OK)
+		st = check_real(g->air_connect_radius, "air_connect_radius_m", -1, 1, r);
+	if (st == HYLO_OK)
+		st = check_real(g->time_budget_ms, "time_budget_ms", -1, 1, r);
+	if (st != HYLO_OK)
+		return st;
+	if (!isfinite(g->suboptimality) || (g->suboptimality != 0 && g->suboptimality < 1))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "suboptimality %g must be 0 (the optimum) or a finite number >= 1",
+				 g->suboptimality);
+	grids[0] = g->speeds;
+	grids[1] = g->headings;
+	grids[2] = g->air_speeds;
+	counts[0] = g->n_speeds;
+	counts[1] = g->n_headings;
+	counts[2] = g->n_air_speeds;
+	for (k = 0; k < 3; k++) {
+		if (counts[k] > HYLO_MAX_GRID)
+			return hylo_fail(r, HYLO_E_CAP_GRID,
+					 "%s has %u entries, more than HYLO_MAX_GRID = %d",
+					 grid_names[k], (unsigned)counts[k], HYLO_MAX_GRID);
+		if (counts[k] > 0 && !grids[k])
+			return hylo_fail(r, HYLO_E_NULL, "%s is NULL", grid_names[k]);
+		st = check_reals(grids[k], counts[k], grid_names[k], 0, r);
+		if (st != HYLO_OK)
+			return st;
+	}
+	hylo_reason_clear(r);
+	return HYLO_OK;
+}
+
 static hylo_status check_goal(hylo_planner *pl, const hylo_goal *g, hylo_point *ps,
 			      hylo_point *pg)
 {
 	hylo_status st;
 	uint32_t k;
 
+	st = hylo_goal_check(g, &pl->reason);
+	if (st != HYLO_OK)
+		return st;
 	if (!pl->has_map)
 		return pl->map_status == HYLO_E_NO_MAP
 			       ? hylo_fail(&pl->reason, HYLO_E_NO_MAP, "no map has been set yet")
@@ -359,14 +439,6 @@ static hylo_status check_goal(hylo_planner *pl, const hylo_goal *g, hylo_point *
 		return hylo_fail(&pl->reason, HYLO_E_MAP_MISMATCH,
 				 "goal is for map %lld, the current map is %lld",
 				 (long long)g->map_id, (long long)pl->map.map_id);
-	if (g->algorithm != HYLO_ASTAR && g->algorithm != HYLO_DIJKSTRA)
-		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "unknown algorithm %d", g->algorithm);
-	if (!isfinite(g->suboptimality) || (g->suboptimality != 0 && g->suboptimality < 1))
-		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
-				 "suboptimality %g must be 0 (the optimum) or a finite number >= 1",
-				 g->suboptimality);
-	if (!isfinite(g->time_budget_ms) || g->time_budget_ms < 0)
-		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "time_budget_ms = %g", g->time_budget_ms);
 	if (g->time_budget_ms > 0 && !pl->cfg.clock)
 		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
 				 "a time budget needs a clock, and this planner has none");

@@ -19,6 +19,10 @@
  * slack of it. */
 #define BOUND_SLACK 1e-9
 
+/* pair_turn entries: not computed yet; no turn cell (the bound is the floor). */
+#define TURN_UNKNOWN 0xFE
+#define TURN_NONE 0xFF
+
 double hylo_planner_now(const hylo_planner *pl)
 {
 	return pl->cfg.clock ? pl->cfg.clock(pl->cfg.clock_ctx) : 0.0;
@@ -101,9 +105,17 @@ void hylo_planner_bound_tables(hylo_planner *pl)
 	for (h1 = 0; h1 < s->n_headings; h1++)
 		for (h2 = 0; h2 < s->n_headings; h2++)
 			pl->heading_change[h1][h2] = hylo_wrap_angle(s->headings[h2] - s->headings[h1]);
+	pl->pair_turn_stride = s->n_headings * s->n_headings;
+	if ((uint64_t)rm->n_adjacency * pl->pair_turn_stride > HYLO_MAX_PAIR_TURNS)
+		pl->pair_turn_stride = 0;
+	else
+		memset(pl->pair_turn, TURN_UNKNOWN, (size_t)rm->n_adjacency * pl->pair_turn_stride);
 }
 
-void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb)
+/* The pair's bound parameters; the bearing and its wrap per heading only
+ * with_bearings (the turn cells come from the cache otherwise). */
+static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_bearings,
+		       hylo_pair_bound *pb)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	const hylo_point a = rm->pos[i].p, b = rm->pos[j].p;
@@ -124,18 +136,74 @@ void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hyl
 	pb->dy = dy;
 	pb->d = sqrt(dx * dx + dy * dy);
 	pb->dz = b.z - a.z;
-	pb->phi = atan2(dy, dx);
+	pb->phi = with_bearings ? atan2(dy, dx) : 0;
 	pb->roadmap_ends = i < rm->n_positions && j < rm->n_positions;
 	pb->by_turn = pb->model && pb->mode != HYLO_MODE_FLIGHT && pb->model->envelope->n_z > 1 &&
 		      !(dx == 0 && dy == 0);
+	pb->turn_cells = NULL;
+	/* The first turn cell of the distance (turn cells start at 0). */
+	pb->turn_base_ok = pb->by_turn && hylo_svr_envelope_cell(pb->model, pb->d, 0, &pb->turn_base);
 	/* A cell for the whole pair (flight: the climb; planar without turns:
 	 * distance only, or in place: turn 0), else per heading pair. */
 	pb->cell_ok = pb->model && !pb->by_turn &&
 		      hylo_svr_envelope_cell(pb->model, pb->d, pb->mode == HYLO_MODE_FLIGHT ? pb->dz : 0,
 					     &pb->cell);
-	if (pb->by_turn && pb->roadmap_ends)
+	if (with_bearings && pb->by_turn && pb->roadmap_ends)
 		for (h = 0; h < rm->sampling.n_headings; h++)
 			pb->bearing[h] = hylo_wrap_angle(pb->phi - rm->sampling.headings[h]);
+}
+
+void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb)
+{
+	pair_setup(pl, i, j, 1, pb);
+}
+
+/* The turn cell of the edge from heading h1 to h2 (TURN_NONE: no cell). */
+static uint8_t turn_cell(const hylo_pair_bound *pb, uint32_t h1, uint32_t h2)
+{
+	const hylo_svr_envelope *e = pb->model->envelope;
+	size_t cell;
+
+	if (!pb->turn_base_ok ||
+	    !hylo_svr_envelope_cell(pb->model, pb->d,
+				    hylo_envelope_turn_of(pb->bearing[h1], pb->pl->heading_change[h1][h2]),
+				    &cell))
+		return TURN_NONE;
+	return (uint8_t)((cell - pb->turn_base) / ((size_t)e->n_v * e->n_v));
+}
+
+void hylo_planner_pair_bound_into(hylo_planner *pl, uint32_t i, uint32_t j, uint32_t a,
+				  hylo_pair_bound *pb)
+{
+	uint32_t nh = pl->roadmap.sampling.n_headings, h1, h2;
+	uint8_t *cells;
+
+	if (!pl->pair_turn_stride || i >= pl->roadmap.n_positions || j >= pl->roadmap.n_positions) {
+		pair_setup(pl, i, j, 1, pb);
+		return;
+	}
+	cells = &pl->pair_turn[(size_t)a * pl->pair_turn_stride];
+	if (cells[0] != TURN_UNKNOWN) {
+		pair_setup(pl, i, j, 0, pb);
+		pb->turn_cells = cells;
+		return;
+	}
+	pair_setup(pl, i, j, 1, pb);
+	cells[0] = TURN_NONE;   /* known: not by turn, or no cell */
+	if (pb->by_turn && pb->turn_base_ok && pb->model->envelope->n_z < TURN_NONE)
+		for (h1 = 0; h1 < nh; h1++)
+			for (h2 = 0; h2 < nh; h2++)
+				cells[h1 * nh + h2] = turn_cell(pb, h1, h2);
+	pb->turn_cells = cells;
+}
+
+/* hylo_svr_envelope_value, one lookup when both speeds are on nodes. */
+static double envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
+			     const uint32_t head[2])
+{
+	if (tail[0] == tail[1] && head[0] == head[1])
+		return m->envelope->value[cell + (size_t)tail[0] * m->envelope->n_v + head[0]];
+	return hylo_svr_envelope_value(m, cell, tail, head);
 }
 
 /* The envelope from the states: hylo_envelope_of_edge's arithmetic, for
@@ -200,6 +268,7 @@ static void bounds_batch(const hylo_pair_bound *pb, int at, uint32_t fixed, cons
 	const hylo_position *q = &rm->pos[other];
 	uint32_t nh = rm->sampling.n_headings, h, sp, c;
 	hylo_real xs[HYLO_XS_DIM];
+	size_t n_vv;
 
 	if (!pb->model || !pb->roadmap_ends || !pb->by_turn) {
 		for (c = 0; c < q->n_combos; c++) {
@@ -209,11 +278,12 @@ static void bounds_batch(const hylo_pair_bound *pb, int at, uint32_t fixed, cons
 		}
 		return;
 	}
+	n_vv = (size_t)pb->model->envelope->n_v * pb->model->envelope->n_v;
 	for (h = 0; h < nh; h++) {
 		uint32_t h1 = at == 0 ? fixed % nh : h, h2 = at == 0 ? h : fixed % nh;
-		hylo_real turn = hylo_envelope_turn_of(pb->bearing[h1], pl->heading_change[h1][h2]);
-		size_t cell;
-		int ok = hylo_svr_envelope_cell(pb->model, pb->d, turn, &cell);
+		uint8_t tc = pb->turn_cells ? pb->turn_cells[h1 * nh + h2] : turn_cell(pb, h1, h2);
+		int ok = pb->turn_base_ok && tc != TURN_NONE;
+		size_t cell = pb->turn_base + (size_t)tc * n_vv;
 
 		for (sp = 0; sp * nh + h < q->n_combos; sp++) {
 			uint32_t ci, cj;
@@ -223,8 +293,8 @@ static void bounds_batch(const hylo_pair_bound *pb, int at, uint32_t fixed, cons
 			ci = at == 0 ? fixed : c;
 			cj = at == 0 ? c : fixed;
 			if (ok && pl->combo_speed_ok[pb->slot][ci] && pl->combo_speed_ok[pb->slot][cj])
-				e = hylo_svr_envelope_value(pb->model, cell, pl->combo_speed[pb->slot][ci],
-							    pl->combo_speed[pb->slot][cj]);
+				e = envelope_value(pb->model, cell, pl->combo_speed[pb->slot][ci],
+						   pl->combo_speed[pb->slot][cj]);
 			out[c] = e > pb->floor ? e : pb->floor;
 		}
 	}

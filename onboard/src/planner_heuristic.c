@@ -63,10 +63,11 @@ static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, u
 	return st;
 }
 
-/* The edges from the nodes of position i into node v (position j, state head). */
+/* The edges from the nodes of position i into node v (position j, state
+ * head); a: the pair's entry in j's adjacency list, or UINT32_MAX. */
 static hylo_status position_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t i,
-					 uint32_t j, uint32_t cj, const hylo_real *head, uint32_t *heads,
-					 hylo_real *costs, uint32_t cap, uint32_t *n)
+					 uint32_t j, uint32_t a, uint32_t cj, const hylo_real *head,
+					 uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
 	const hylo_position *p = &pl->roadmap.pos[i];
 	hylo_real lb[HYLO_MAX_COMBOS];
@@ -74,7 +75,10 @@ static hylo_status position_predecessors(hylo_planner *pl, const hylo_search *s,
 	uint32_t c;
 	hylo_status st = HYLO_OK;
 
-	hylo_planner_pair_bound(pl, i, j, &pb);
+	if (a == UINT32_MAX)
+		hylo_planner_pair_bound(pl, i, j, &pb);
+	else
+		hylo_planner_pair_bound_into(pl, i, j, a, &pb);
 	hylo_planner_bounds_into(&pb, i, cj, head, lb);
 	for (c = 0; c < p->n_combos && st == HYLO_OK; c++)
 		st = push(pl, s, p->node_base + c, lb[c], heads, costs, cap, n);
@@ -86,7 +90,7 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 {
 	hylo_planner *pl = ctx;
 	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t j, k, n_pred;
+	uint32_t j, k, n_pred, a0 = UINT32_MAX;
 	const uint32_t *pred;
 	hylo_real head[HYLO_XS_DIM];
 	hylo_status st = HYLO_OK;
@@ -108,12 +112,15 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 		n_pred = pl->n_goal_adj;
 	} else {
 		pred = hylo_planner_neighbours(pl, j, &n_pred);
+		a0 = rm->pos[j].adj_begin;
 	}
 	for (k = 0; k < n_pred && st == HYLO_OK; k++)
-		st = position_predecessors(pl, s, pred[k], j, cj, head, heads, costs, cap, n);
+		st = position_predecessors(pl, s, pred[k], j, a0 == UINT32_MAX ? a0 : a0 + k, cj, head,
+					   heads, costs, cap, n);
 	if (st == HYLO_OK && ((j == pl->goal_pos && pl->start_goal_linked) ||
 			      (j < rm->n_positions && pl->links_start[j])))
-		st = position_predecessors(pl, s, pl->start_pos, j, cj, head, heads, costs, cap, n);
+		st = position_predecessors(pl, s, pl->start_pos, j, UINT32_MAX, cj, head, heads, costs,
+					   cap, n);
 	if (st == HYLO_OK)
 		st = switch_predecessors(pl, s, v, heads, costs, cap, n);
 	return st;

@@ -50,9 +50,18 @@ typedef struct {
 	int cell_ok;                    /* else: the pair's one cell */
 	size_t cell;
 	hylo_real bearing[HYLO_MAX_GRID];   /* wrap(phi - heading) per grid heading */
+	size_t turn_base;               /* by turn: the distance's first turn cell */
+	int turn_base_ok;
+	const uint8_t *turn_cells;      /* cached turn cell per heading pair, or NULL */
 } hylo_pair_bound;
 
 void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb);
+
+/* The same for the edges from neighbour i into roadmap position j, the
+ * pair at adjacency entry a of j's list, with their turn cells from
+ * pl->pair_turn (computed there the first time): the same bounds. */
+void hylo_planner_pair_bound_into(hylo_planner *pl, uint32_t i, uint32_t j, uint32_t a,
+				  hylo_pair_bound *pb);
 
 /* The bound of the edge from combination ci (state tail) of the pair's
  * first position to combination cj (state head) of its second. */

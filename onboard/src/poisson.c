@@ -1,4 +1,4 @@
-#include "hylo/poisson.h"
+#include "hylo/internal/poisson.h"
 
 #include <math.h>
 

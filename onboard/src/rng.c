@@ -1,4 +1,4 @@
-#include "hylo/rng.h"
+#include "hylo/internal/rng.h"
 
 /* xoshiro256** by Blackman and Vigna, seeded by splitmix64: integer-only, so
  * the sequence is the same on every platform. */

@@ -1,9 +1,9 @@
-#include "hylo/roadmap.h"
+#include "hylo/internal/roadmap.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "hylo/spatial.h"
+#include "hylo/internal/spatial.h"
 
 /* Two positions are reserved after the sampled ones: start and goal. */
 #define TERMINAL_POSITIONS 2

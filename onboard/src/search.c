@@ -1,4 +1,4 @@
-#include "hylo/search.h"
+#include "hylo/internal/search.h"
 
 #include <math.h>
 

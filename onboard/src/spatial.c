@@ -1,4 +1,4 @@
-#include "hylo/spatial.h"
+#include "hylo/internal/spatial.h"
 
 #include <math.h>
 

@@ -13,12 +13,15 @@
  * aarch64. The batch path spends most of its time in the kernel's
  * exponentials and the running products. Same bits on every target and
  * path: every lane does the same operations in the same order, no fused
- * multiply-add (-std=c99 keeps contraction off), one rounding per op.
+ * multiply-add (-ffp-contract=off, mk/config.mk), one rounding per op.
  */
 typedef double hylo_v4 __attribute__((vector_size(32)));
-#if defined(__GNUC__) && !defined(__clang__)
 /* The helpers below pass 32-byte vectors by value; they are static and
- * inlined, so the AVX calling convention GCC warns about never applies. */
+ * inlined, so the AVX calling convention GCC and Clang warn about never
+ * applies. */
+#if defined(__clang__)
+#pragma clang diagnostic ignored "-Wpsabi"
+#elif defined(__GNUC__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 typedef uint64_t hylo_v4u __attribute__((vector_size(32)));

@@ -17,9 +17,7 @@
 
 #include <libsvm/svm.h>
 
-extern "C" {
 #include "hylo/features.h"
-}
 #include "trainer/envelope.hpp"
 #include "trainer/svr_export.hpp"
 

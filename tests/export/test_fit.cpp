@@ -10,10 +10,8 @@
 #include <string>
 #include <vector>
 
-extern "C" {
 #include "tests/tap.hpp"
 #include "hylo/svr.h"
-}
 #include "trainer/svr_export.hpp"
 #include "trainer/svr_fit.hpp"
 

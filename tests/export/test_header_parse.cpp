@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hylo/svr.h"
 #include "tests/tap.hpp"
 #include "trainer/svr_export.hpp"
 
@@ -169,6 +170,20 @@ int main()
 	check_throws([&] { parse_svr_header(edited); }, "svr header", "the model's struct missing: refused");
 	check_throws([&] { parse_svr_header(text.substr(0, text.size() - 1)); }, "newline",
 		     "a truncated header: refused");
+	const std::string format_line = "#define HYLO_MODEL_TESTBOT_FLIGHT_FORMAT_VERSION " +
+					std::to_string(HYLO_MODEL_FORMAT_VERSION) + "\n";
+	check(text.find(format_line) != std::string::npos,
+	      "the header states its format, HYLO_MODEL_FORMAT_VERSION of hylo/svr.h");
+	edited = text;
+	edited.replace(edited.find(format_line), format_line.size(), "");
+	check_throws([&] { parse_svr_header(edited); }, "before model format versions",
+		     "a header without a format version: refused");
+	edited = text;
+	edited.replace(edited.find(format_line), format_line.size(),
+		       "#define HYLO_MODEL_TESTBOT_FLIGHT_FORMAT_VERSION " +
+			       std::to_string(HYLO_MODEL_FORMAT_VERSION + 1) + "\n");
+	check_throws([&] { parse_svr_header(edited); }, "model format " + std::to_string(HYLO_MODEL_FORMAT_VERSION + 1),
+		     "a header of another format: refused, naming both");
 	SvrExport bad = flight;
 	bad.envelope->value.pop_back();
 	check_throws([&] { svr_header_text(bad); }, "envelope has", "an envelope of the wrong size: refused");

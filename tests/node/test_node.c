@@ -31,6 +31,10 @@ static hylo_robot robots[TU_N_ROBOTS];
 static tu_cost costs;
 static tu_map river;
 static hylo_plan_t_subscription_t *plan_sub;
+static hylo_node_status_t_subscription_t *status_sub;
+static hylo_node_status_t last_status;
+static char last_status_reason[512];
+static int n_status_map;
 
 /* Plans received on HYLO_PLAN since the last reset. */
 static hylo_plan_t *received[MAX_PLANS];
@@ -48,6 +52,20 @@ static void on_plan(const lcm_recv_buf_t *rbuf, const char *channel, const hylo_
 		received[n_received++] = hylo_plan_t_copy(msg);
 }
 
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel,
+		      const hylo_node_status_t *msg, void *user)
+{
+	(void)rbuf;
+	(void)channel;
+	(void)user;
+	if (msg->event != HYLO_NODE_STATUS_T_EVENT_MAP)
+		return;
+	n_status_map++;
+	last_status = *msg;
+	snprintf(last_status_reason, sizeof last_status_reason, "%s", msg->reason);
+	last_status.reason = last_status_reason;
+}
+
 static void clear_received(void)
 {
 	int k;
@@ -57,7 +75,23 @@ static void clear_received(void)
 	n_received = 0;
 }
 
+/* Delivers what was published (admission), then lets the node work until
+ * nothing waits, as hylo-planner --sync does. */
 static void pump(void)
+{
+	int more;
+
+	do {
+		while (lcm_handle_timeout(lcm, 0) > 0)
+			;
+		more = 0;
+		while (hylo_node_step(&node) >= 0)
+			more = 1;
+	} while (more);
+}
+
+/* Delivers what was published without planning: admission only. */
+static void deliver(void)
 {
 	while (lcm_handle_timeout(lcm, 0) > 0)
 		;
@@ -86,6 +120,7 @@ static void goal_msg(const hylo_goal *g, hylo_goal_t *msg)
 	memset(msg, 0, sizeof *msg);
 	msg->utime = 2;
 	msg->request_id = g->request_id;
+	msg->requester_id = 0;
 	msg->map_id = g->map_id;
 	msg->algorithm = (int8_t)g->algorithm;
 	msg->start_mode = (int8_t)g->start_mode;
@@ -241,7 +276,7 @@ static void test_bad_messages(void **state)
 	for (cut = 0; cut < len; cut += 37) {
 		p = ask_raw(bytes, cut);
 		expect(p, HYLO_PLAN_T_STATUS_BAD_REQUEST, "goal_t");
-		assert_true(p->request_id == (cut >= 24 ? 41 : -1));
+		assert_true(p->request_id == (cut >= 24 ? 41 : HYLO_GOAL_T_REQUEST_ID_UNREADABLE));
 	}
 	still_serving();
 	/* Trailing garbage. */
@@ -266,7 +301,7 @@ static void test_bad_messages(void **state)
 	}
 	/* A negative array size: n_speeds (after the fixed part) set to -1. */
 	{
-		int at = 8 + 8 + 8 + 8 + 1 + 1 + 48 + 1 + 48 + 8 + 40;
+		int at = 8 + 8 + 8 + 8 + 8 + 1 + 1 + 48 + 1 + 48 + 8 + 40;
 
 		bytes[at] = bytes[at + 1] = bytes[at + 2] = bytes[at + 3] = 0xff;
 		p = ask_raw(bytes, len);
@@ -334,6 +369,7 @@ static void test_bad_requests(void **state)
 	still_serving();
 
 	/* Unknown robot: the map is refused and goals say why. */
+	g.map_id = 0;
 	m.robot = "submarine";
 	m.map_id = 6;
 	send_map(&m);
@@ -351,6 +387,221 @@ static void test_bad_requests(void **state)
 	memset(m.terrain, HYLO_TERRAIN_GROUND, (size_t)m.nx * m.ny);
 	send_map(&m);
 	expect(ask(&g), HYLO_PLAN_T_STATUS_NO_MODEL, "");
+	tu_map_free(&m);
+	still_serving();
+}
+
+
+/* Publishes goal g from requester without planning; returns nothing. */
+static void publish_goal(const hylo_goal *g, int64_t requester)
+{
+	hylo_goal_t msg;
+
+	goal_msg(g, &msg);
+	msg.requester_id = requester;
+	assert_int_equal(hylo_goal_t_publish(lcm, "HYLO_GOAL", &msg), 0);
+}
+
+static const hylo_plan_t *answer_for(int64_t request_id)
+{
+	int k, found = -1;
+
+	for (k = 0; k < n_received; k++)
+		if (received[k]->request_id == request_id) {
+			assert_int_equal(found, -1);    /* exactly one answer */
+			found = k;
+		}
+	if (found < 0)
+		fail_msg("no answer for request %" PRId64, request_id);
+	return received[found];
+}
+
+/*
+ * The queue policy while a plan is in progress (goals arrive and are
+ * admitted, nothing is planned): a requester's newer goal supersedes its
+ * waiting one at once, naming the newer request; one slot per requester;
+ * a requester past HYLO_NODE_QUEUE_LEN gets QUEUE_FULL at once; then the
+ * waiting goals are planned oldest first. Every goal gets exactly one answer.
+ */
+static void test_queue_policy(void **state)
+{
+	hylo_goal g = tu_goal_river();
+	int k, n_sent = 0, n_super = 0, n_full = 0, n_ok = 0;
+	uint64_t before = n_total;
+
+	(void)state;
+	send_map(&river);
+	clear_received();
+	/* Requester 7: 5 goals in a row; only the newest waits. */
+	for (k = 0; k < 5; k++) {
+		g.request_id = 500 + k;
+		publish_goal(&g, 7);
+		n_sent++;
+	}
+	deliver();
+	assert_int_equal(n_received, 4);
+	for (k = 0; k < 4; k++) {
+		const hylo_plan_t *p = answer_for(500 + k);
+
+		assert_int_equal(p->status, HYLO_PLAN_T_STATUS_SUPERSEDED);
+		assert_true(p->superseded_by == 500 + k + 1);
+		assert_non_null(strstr(p->reason, "superseded by request"));
+	}
+	assert_int_equal(hylo_node_queue_depth(&node), 1);
+	/* Other requesters fill the queue; one more is refused at once. */
+	for (k = 1; k < HYLO_NODE_QUEUE_LEN + 1; k++) {
+		g.request_id = 600 + k;
+		publish_goal(&g, 1000 + k);
+		n_sent++;
+	}
+	deliver();
+	assert_int_equal(hylo_node_queue_depth(&node), HYLO_NODE_QUEUE_LEN);
+	assert_int_equal(answer_for(600 + HYLO_NODE_QUEUE_LEN)->status,
+			 HYLO_PLAN_T_STATUS_QUEUE_FULL);
+	/* A bad goal never replaces a waiting one. */
+	g.request_id = 700;
+	g.start[0] = NAN;
+	publish_goal(&g, 7);
+	n_sent++;
+	deliver();
+	assert_int_equal(answer_for(700)->status, HYLO_PLAN_T_STATUS_BAD_REQUEST);
+	g.start[0] = tu_goal_river().start[0];
+	/* Work: every waiting goal is planned, requester 7's newest first. */
+	pump();
+	assert_int_equal(hylo_node_queue_depth(&node), 0);
+	assert_int_equal(received[n_received - HYLO_NODE_QUEUE_LEN]->request_id, 504);
+	for (k = 0; k < n_received; k++) {
+		if (received[k]->status == HYLO_PLAN_T_STATUS_SUPERSEDED)
+			n_super++;
+		else if (received[k]->status == HYLO_PLAN_T_STATUS_QUEUE_FULL)
+			n_full++;
+		else if (received[k]->status == HYLO_PLAN_T_STATUS_OK)
+			n_ok++;
+	}
+	assert_int_equal(n_super, 4);
+	assert_int_equal(n_full, 1);
+	assert_int_equal(n_ok, HYLO_NODE_QUEUE_LEN);
+	assert_int_equal((int)(n_total - before), n_sent);
+	assert_int_equal(n_received, n_sent);
+	clear_received();
+}
+
+static void expect_field(hylo_goal *g, const char *field)
+{
+	expect(ask(g), HYLO_PLAN_T_STATUS_BAD_REQUEST, field);
+	*g = tu_goal_river();
+}
+
+/* Each validation gap of issue #39 is refused, naming the field. */
+static void test_validation(void **state)
+{
+	hylo_goal g = tu_goal_river();
+	uint8_t *bytes;
+	int len, at;
+	const hylo_plan_t *p;
+
+	(void)state;
+	send_map(&river);
+	g.start[4] = NAN;               /* an entry a ground start does not use */
+	expect_field(&g, "start[4]");
+	g.start[5] = INFINITY;
+	expect_field(&g, "start[5]");
+	g.goal[5] = -INFINITY;
+	expect_field(&g, "goal[5]");
+	g.air_spacing = NAN;            /* ambot does not fly */
+	expect_field(&g, "air_spacing_m");
+	g.air_spacing = -INFINITY;
+	expect_field(&g, "air_spacing_m");
+	g.air_connect_radius = NAN;
+	expect_field(&g, "air_connect_radius_m");
+	g.air_connect_radius = -INFINITY;
+	expect_field(&g, "air_connect_radius_m");
+	g.guard_spacing = -1;
+	expect_field(&g, "guard_spacing_m");
+	g.time_budget_ms = -1;
+	expect_field(&g, "time_budget_ms");
+	/* max_expansions = -1 and -2^31 on the wire. */
+	at = 8 + 8 + 8 + 8 + 8 + 1 + 1 + 48 + 1 + 48 + 8 + 40;
+	len = encode_goal(&g, &bytes);
+	at += 4 + 8 * (int)g.n_speeds + 4 + 8 * (int)g.n_headings + 4 + 8 * (int)g.n_air_speeds + 8;
+	bytes[at] = bytes[at + 1] = bytes[at + 2] = bytes[at + 3] = 0xff;
+	p = ask_raw(bytes, len);
+	expect(p, HYLO_PLAN_T_STATUS_BAD_REQUEST, "max_expansions is -1");
+	bytes[at] = 0x80;
+	bytes[at + 1] = bytes[at + 2] = bytes[at + 3] = 0;
+	p = ask_raw(bytes, len);
+	expect(p, HYLO_PLAN_T_STATUS_BAD_REQUEST, "max_expansions is -2147483648");
+	assert_true(p->request_id == g.request_id);
+	free(bytes);
+	/* Unknown map, replaced map. */
+	g.map_id = 987654;
+	p = ask(&g);
+	expect(p, HYLO_PLAN_T_STATUS_UNKNOWN_MAP, "987654");
+	g = tu_goal_river();
+	/* The reserved request id. */
+	g.request_id = HYLO_GOAL_T_REQUEST_ID_UNREADABLE;
+	expect_field(&g, "reserved");
+	/* An undecodable goal: too short to hold a request id. */
+	{
+		uint8_t junk[10] = { 1, 2, 3 };
+
+		p = ask_raw(junk, sizeof junk);
+		expect(p, HYLO_PLAN_T_STATUS_BAD_REQUEST, "goal_t");
+		assert_true(p->request_id == HYLO_GOAL_T_REQUEST_ID_UNREADABLE);
+	}
+	still_serving();
+}
+
+/* Every map message is reported on HYLO_STATUS: taken, or why not. */
+static void test_map_status(void **state)
+{
+	tu_map m;
+	uint8_t junk[40] = { 0 };
+	hylo_goal g;
+
+	(void)state;
+	n_status_map = 0;
+	send_map(&river);
+	assert_int_equal(n_status_map, 1);
+	assert_true(last_status.map_id == river.map_id);
+	assert_int_equal(last_status.map_status, HYLO_PLAN_T_STATUS_OK);
+	assert_true(last_status.current_map_id == river.map_id);
+	/* Undecodable: refused, the current map stays. */
+	assert_int_equal(lcm_publish(lcm, "HYLO_MAP", junk, sizeof junk), 0);
+	pump();
+	assert_int_equal(n_status_map, 2);
+	assert_int_equal(last_status.map_status, HYLO_PLAN_T_STATUS_BAD_REQUEST);
+	assert_non_null(strstr(last_status.reason, "map_t"));
+	assert_true(last_status.current_map_id == river.map_id);
+	/* Refused by the planner (NaN height). */
+	tu_river(&m);
+	m.map_id = 77;
+	m.height[3] = NAN;
+	send_map(&m);
+	assert_int_equal(last_status.map_status, HYLO_PLAN_T_STATUS_BAD_REQUEST);
+	assert_true(last_status.map_id == 77);
+	assert_non_null(strstr(last_status.reason, "height"));
+	/* Two maps before the work side runs: the first is superseded. */
+	m.height[3] = 0;
+	m.map_id = 78;
+	{
+		hylo_map_t msg;
+
+		map_msg(&m, &msg);
+		assert_int_equal(hylo_map_t_publish(lcm, "HYLO_MAP", &msg), 0);
+		map_msg(&river, &msg);
+		assert_int_equal(hylo_map_t_publish(lcm, "HYLO_MAP", &msg), 0);
+	}
+	deliver();
+	assert_true(last_status.map_id == 78);
+	assert_int_equal(last_status.map_status, HYLO_PLAN_T_STATUS_SUPERSEDED);
+	pump();
+	assert_true(last_status.map_id == river.map_id);
+	assert_int_equal(last_status.map_status, HYLO_PLAN_T_STATUS_OK);
+	/* A goal for the superseded map: it was received, then replaced. */
+	g = tu_goal_river();
+	g.map_id = 78;
+	expect(ask(&g), HYLO_PLAN_T_STATUS_MAP_REPLACED, "78");
 	tu_map_free(&m);
 	still_serving();
 }
@@ -440,8 +691,10 @@ static int setup(void **state)
 	if (hylo_node_init(&node, lcm, lcm, "", planner, plan, buf, NULL, 0) != 0)
 		return -1;
 	plan_sub = hylo_plan_t_subscribe(lcm, "HYLO_PLAN", on_plan, NULL);
-	if (!plan_sub)
+	status_sub = hylo_node_status_t_subscribe(lcm, "HYLO_STATUS", on_status, NULL);
+	if (!plan_sub || !status_sub)
 		return -1;
+	hylo_plan_t_subscription_set_queue_capacity(plan_sub, 0);
 	tu_river(&river);
 	return 0;
 }
@@ -452,6 +705,8 @@ static int teardown(void **state)
 	clear_received();
 	tu_map_free(&river);
 	hylo_plan_t_unsubscribe(lcm, plan_sub);
+	hylo_node_status_t_unsubscribe(lcm, status_sub);
+	hylo_node_destroy(&node);
 	lcm_destroy(lcm);
 	free(planner);
 	free(reference);
@@ -467,6 +722,9 @@ int main(void)
 		cmocka_unit_test(test_bad_requests),   /* first: it starts without a map */
 		cmocka_unit_test(test_end_to_end),
 		cmocka_unit_test(test_bad_messages),
+		cmocka_unit_test(test_queue_policy),
+		cmocka_unit_test(test_validation),
+		cmocka_unit_test(test_map_status),
 		cmocka_unit_test(test_soak),
 	};
 

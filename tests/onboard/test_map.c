@@ -16,7 +16,7 @@
 #include <string.h>
 
 #include "hylo/map.h"
-#include "hylo/rng.h"
+#include "hylo/internal/rng.h"
 
 static hylo_map *map;
 static int8_t terrain[HYLO_MAX_CELLS];

@@ -231,11 +231,12 @@ static void test_optimal_every_robot(void **state)
 
 /* The planner's per-pair bounds equal the floor raised to
  * hylo_envelope_of_edge, bit for bit, on every edge of the graphs: the
- * heuristic, the lazy keys and the costs' clamp all use the same numbers. */
+ * heuristic (also from its cache of turn cells), the lazy keys and the
+ * costs' clamp all use the same numbers. */
 static void check_bounds(const tu_map *m, hylo_goal g)
 {
 	const hylo_roadmap *rm;
-	uint32_t *heads = malloc(HYLO_MAX_SUCCESSORS * sizeof *heads), u, n, k, checked = 0;
+	uint32_t *heads = malloc(HYLO_MAX_SUCCESSORS * sizeof *heads), u, n, k, checked = 0, cached = 0;
 
 	assert_non_null(heads);
 	set_map(m);
@@ -266,9 +267,27 @@ static void check_bounds(const tu_map *m, hylo_goal g)
 				want = e;
 			assert_memory_equal(&got, &want, sizeof got);
 			checked++;
+			if (i < rm->n_positions && j < rm->n_positions) {
+				/* The heuristic's path: the pair's turn cells cached
+				 * (filled by the first call, read by the second). */
+				hylo_real lb[HYLO_MAX_COMBOS];
+				uint32_t a = rm->pos[j].adj_begin, pass;
+
+				while (rm->adjacency[a] != i)
+					a++;
+				assert_true(a < rm->pos[j].adj_end);
+				for (pass = 0; pass < 2; pass++) {
+					hylo_planner_pair_bound_into(planner, i, j, a, &pb);
+					hylo_planner_bounds_into(&pb, i, heads[k] - rm->pos[j].node_base, head, lb);
+					assert_memory_equal(&lb[u - rm->pos[i].node_base], &want, sizeof want);
+				}
+				assert_true(pb.turn_cells != NULL || !pb.by_turn);
+				cached += pb.turn_cells != NULL;
+			}
 		}
 	}
 	assert_true(checked > 1000);
+	assert_true(cached > 1000);
 	free(heads);
 }
 

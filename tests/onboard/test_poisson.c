@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hylo/poisson.h"
+#include "hylo/internal/poisson.h"
 
 #define CAP 4096
 

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hylo/search.h"
+#include "hylo/internal/search.h"
 
 /* Several MB each: allocated once, dirtied before every test. */
 static hylo_search *ws;

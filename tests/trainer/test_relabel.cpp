@@ -94,9 +94,9 @@ int main(int argc, char **argv)
 		      slurp(full.out_dir + "/ground.csv.meta") == slurp(re.out_dir + "/ground.csv.meta"),
 	      "relabelled straight-line dataset == a fresh dataset with every start, byte for byte",
 	      std::to_string(a.size()) + " vs " + std::to_string(b.size()) + " bytes");
-	check(slurp(re.out_dir + "/ground.csv.meta").find("starts: 2\n") != std::string::npos &&
+	check(slurp(re.out_dir + "/ground.csv.meta").find("starts: 3\n") != std::string::npos &&
 		      slurp(line.out_dir + "/ground.csv.meta").find("starts:") == std::string::npos,
-	      "the meta tells the two labelers apart (starts: 2)");
+	      "the meta tells the two labelers apart (starts: 3)");
 
 	std::vector<std::string> names = csv_columns("ground");
 	size_t cost = static_cast<size_t>(std::find(names.begin(), names.end(), "cost_j") - names.begin());
@@ -139,7 +139,7 @@ int main(int argc, char **argv)
 		      !fs::exists(dir / "inplace" / "ground.csv.straight.meta"),
 	      "a run over a straight-line dataset relabels it in place, the same bytes as a fresh run");
 
-	// Refusals: the relabelled dataset itself (its meta says starts: 2), a
+	// Refusals: the relabelled dataset itself (its meta says starts: 3), a
 	// row that is not this stream's sample, another seed.
 	GenOptions again = o;
 	again.out_dir = (dir / "again").string();

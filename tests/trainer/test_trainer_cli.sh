@@ -182,6 +182,26 @@ cp "$T/pipe/di_neg.csv" "$T/bad/"; sed -i 's/params_sha256: .*/params_sha256: 00
 expect_fail "a dataset from another robot file: clear error" 2 "another robot file" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
 if ls "$T/bad"/*.h > /dev/null 2>&1; then tap_not_ok "no header written from bad data"; else tap_ok "no header written from bad data"; fi
 
+# --stage repair (trainer/repair.hpp; the stage itself: test_repair).
+expect_fail "repair without a dataset: clear error (exit 2)" 2 "run --stage gen first" \
+  "$TR" --mode di_neg --robot di --stage repair --samples 4 --out "$T/norepair" --quiet
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 10 --seed 3 --jobs 2 --out "$T/rep" > /dev/null
+"$TR" --mode di_neg --robot di --stage repair --quiet --samples 8 --seed 3 --jobs 2 --neighbours 2 --out "$T/rep" > "$T/rep.out"; rc=$?
+if [ "$rc" -eq 0 ] && grep -q "^repair di di_neg: 8 rows of .*labels lowered by more than 0.5%" "$T/rep.out" &&
+   grep -q "^repaired_rows: 8$" "$T/rep/di_neg.csv.meta" && grep -q "^repair_neighbours: 2$" "$T/rep/di_neg.csv.meta" &&
+   [ "$(grep -c . "$T/rep/di_neg.csv")" -eq 11 ] && grep -A1 -- "--neighbours K" "$T/help" | grep -q "default: 4"; then
+  tap_ok "--stage repair --neighbours 2: repairs the first N rows, says how many it lowered, the .meta records it"
+else tap_not_ok "--stage repair --neighbours 2: repairs the first N rows, says how many it lowered, the .meta records it" \
+  "exit $rc" "$(cat "$T/rep.out")"; fi
+expect_fail "repair of more rows than the dataset has: clear error (exit 2)" 2 "fewer than the 20 asked for" \
+  "$TR" --mode di_neg --robot di --stage repair --samples 20 --seed 3 --out "$T/rep" --quiet
+expect_fail "--refine-within x: clear error (exit 2)" 2 "fraction >= 0 or inf" \
+  "$TR" --mode di_neg --robot di --refine-within x --solve -0.5,0 -0.3,0
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 2 --seed 3 --refine-within inf --out "$T/rwinf" > /dev/null
+if grep -q "^refine_within: inf$" "$T/rwinf/di_neg.csv.meta" && grep -A3 -- "--refine-within F" "$T/help" | grep -q "default: 0.05"; then
+  tap_ok "--refine-within inf is recorded in the .meta; --help gives its default"
+else tap_not_ok "--refine-within inf is recorded in the .meta; --help gives its default" "$(grep refine "$T/rwinf/di_neg.csv.meta")"; fi
+
 # --mode switch: the robot's switches (docs/models.md section 6).
 if "$TR" --mode switch --robot ambot --json > "$T/sw.json" &&
    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); s=[(x["from"],x["to"],x["cost_j"]) for x in d["switches"]]; assert s == [("ground","marine",0),("marine","ground",0)], s' "$T/sw.json"; then

@@ -19,13 +19,11 @@
 
 #include <lcm/lcm.h>
 
-extern "C" {
 #include "hylo_goal_t.h"
 #include "hylo_map_t.h"
 #include "hylo_plan_t.h"
 #include "node/node.h"
 #include "node/registry.h"
-}
 #include "tools/scene/scene.hpp"
 
 namespace {
@@ -145,9 +143,18 @@ std::vector<double> round_trips(lcm_t *lcm, Messages &m, void (*serve)(lcm_t *))
 	return ms;
 }
 
+hylo_node g_node;   // static: its pending-map slots hold 2 x HYLO_MAX_CELLS cells
+
+// Admission, then the node's work, as hylo-planner --sync does.
 void serve_memq(lcm_t *lcm)
 {
-	while (lcm_handle_timeout(lcm, 0) > 0) {
+	bool more = true;
+	while (more) {
+		while (lcm_handle_timeout(lcm, 0) > 0) {
+		}
+		more = false;
+		while (hylo_node_step(&g_node) >= 0)
+			more = true;
 	}
 }
 
@@ -213,10 +220,10 @@ int main(int argc, char **argv)
 
 	// memq: the node in-process, on the same LCM instance as the client.
 	lcm_t *memq = lcm_create("memq://");
-	hylo_node node;
-	if (!memq || hylo_node_init(&node, memq, memq, "", pl, plan, buf, nullptr, 0) != 0)
+	if (!memq || hylo_node_init(&g_node, memq, memq, "", pl, plan, buf, nullptr, 0) != 0)
 		return 1;
 	Stats s_memq = stats(round_trips(memq, m, serve_memq));
+	hylo_node_destroy(&g_node);
 	lcm_destroy(memq);
 
 	// UDP: node and client as separate processes in a private namespace.

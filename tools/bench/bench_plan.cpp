@@ -21,10 +21,8 @@
 #include <string>
 #include <vector>
 
-extern "C" {
 #include "hylo/features.h"
 #include "hylo/planner.h"
-}
 #include "bench/synthetic_ground.h"
 
 namespace {

@@ -4,6 +4,7 @@
 // floor heuristic on positions, every successor of an expanded node
 // evaluated (no cache). Rows per scene:
 //   first goal on a new map (hylo median of 5 against the reference, 1 run),
+//   wall time and the thread's CPU time (other jobs do not inflate it),
 //   a second goal nearby (the goal moved by one sampling spacing) and the way back (start
 //   and goal swapped) on the same map, after the first (median of 5),
 //   the plans' costs (hylo's against the reference's: equal to 1e-9),
@@ -22,10 +23,10 @@
 #include <string>
 #include <vector>
 
-extern "C" {
+#include <time.h>
+
 #include "hylo/planner.h"
 #include "node/registry.h"
-}
 #include "tools/scene/scene.hpp"
 
 namespace {
@@ -36,6 +37,16 @@ using hylo::scene::Scene;
 double now_ms(void *)
 {
 	return std::chrono::duration<double, std::milli>(Clock::now().time_since_epoch()).count();
+}
+
+// CPU time of this thread [ms]: what a plan costs the core it runs on, and
+// what other jobs on a shared machine do not inflate (an idle machine's wall
+// time is the same).
+double cpu_ms()
+{
+	timespec t;
+	clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+	return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
 
 double median(std::vector<double> v)
@@ -160,11 +171,15 @@ struct Bench {
 			throw std::runtime_error(sc.path + ": " + hylo_planner_reason(pl_));
 	}
 
-	// Plans g; the wall time [ms].
+	double last_cpu_ms = 0;
+
+	// Plans g; the wall time [ms] (the thread's CPU time in last_cpu_ms).
 	double plan_goal(const hylo_goal &g, bool must_find = true)
 	{
 		auto t0 = Clock::now();
+		double c0 = cpu_ms();
 		hylo_planner_plan(pl_, &g, plan.get());
+		last_cpu_ms = cpu_ms() - c0;
 		double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 		if (must_find && (plan->status != HYLO_OK || plan->outcome != HYLO_FOUND))
 			throw std::runtime_error(std::string("no plan: ") + plan->reason.text);
@@ -178,7 +193,7 @@ struct Bench {
 // evaluated by hylo_planner_edge_costs. Run after hylo planned the same goal,
 // so the roadmap and the start and goal links are in place.
 struct Reference {
-	double cost = INFINITY, ms = 0;
+	double cost = INFINITY, ms = 0, cpu = 0;
 	uint64_t evaluated = 0, expansions = 0;
 };
 
@@ -204,6 +219,7 @@ Reference run_reference(hylo_planner *pl)
 	uint32_t np = rm->n_positions + 2, start = rm->n_nodes, goal = rm->n_nodes + 1;
 	Reference ref;
 	auto t0 = Clock::now();
+	double c0 = cpu_ms();
 
 	// Position heuristic: backward Dijkstra from the goal position.
 	std::vector<double> hp(np, INFINITY);
@@ -278,6 +294,7 @@ Reference run_reference(hylo_planner *pl)
 		}
 	}
 	ref.ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+	ref.cpu = cpu_ms() - c0;
 	ref.cost = g[goal];
 	return ref;
 }
@@ -312,7 +329,7 @@ void bench_scene(Bench &b, const std::string &path)
 	Scene sc = hylo::scene::load(path);
 	hylo_goal g = goal_of(sc);
 	const int runs = 5;
-	std::vector<double> first, near, back;
+	std::vector<double> first, near, back, first_cpu, near_cpu, back_cpu;
 	double cost = 0, near_cost = 0;
 	uint64_t evaluated = 0, near_evaluated = 0;
 
@@ -321,14 +338,17 @@ void bench_scene(Bench &b, const std::string &path)
 	for (int r = 0; r < runs; r++) {
 		b.new_map(sc);
 		first.push_back(b.plan_goal(g));
+		first_cpu.push_back(b.last_cpu_ms);
 		cost = b.plan->total_cost;
 		evaluated = b.plan->n_edges_evaluated;
 		near.push_back(b.plan_goal(g2));
+		near_cpu.push_back(b.last_cpu_ms);
 		near_cost = b.plan->total_cost;
 		near_evaluated = b.plan->n_edges_evaluated;
 		b.new_map(sc);
 		b.plan_goal(g);
 		back.push_back(b.plan_goal(g3, false));
+		back_cpu.push_back(b.last_cpu_ms);
 	}
 	// The reference on the first goal's graph, and on the nearby one's.
 	b.new_map(sc);
@@ -337,15 +357,21 @@ void bench_scene(Bench &b, const std::string &path)
 	b.plan_goal(g2);
 	Reference ref2 = run_reference(b.pl_);
 	std::string n = sc.name;
-	std::printf("%-16s %7u nodes %9llu edges | first %9.1f ms (ref %9.1f) | nearby %8.1f ms | back %8.1f ms | "
-		    "cost %.6f (ref %.6f, %.1e) | evaluated %llu (ref %llu)\n",
+	std::printf("%-16s %6u nodes %8llu edges | first %7.1f ms, cpu %7.1f (ref %8.1f, cpu %8.1f) | "
+		    "nearby %6.1f, cpu %6.1f | back %6.1f, cpu %6.1f | cost %.6f (ref %.6f, %.1e) | evaluated %llu (ref %llu)\n",
 		    n.c_str(), b.plan->n_nodes, static_cast<unsigned long long>(b.plan->n_edges), median(first),
-		    ref.ms, median(near), median(back), cost, ref.cost, std::fabs(cost - ref.cost) / ref.cost,
+		    median(first_cpu), ref.ms, ref.cpu, median(near), median(near_cpu), median(back), median(back_cpu),
+		    cost, ref.cost, std::fabs(cost - ref.cost) / ref.cost,
 		    static_cast<unsigned long long>(evaluated), static_cast<unsigned long long>(ref.evaluated));
 	std::fflush(stdout);
 	add_cmp("plan_first_goal_ms_" + n, median(first), "ms", "floor-heuristic A*, every successor evaluated", ref.ms);
 	add_cmp("plan_nearby_goal_ms_" + n, median(near), "ms", "floor-heuristic A*, every successor evaluated", ref2.ms);
 	add("plan_way_back_ms_" + n, median(back), "ms");
+	add_cmp("plan_first_goal_cpu_ms_" + n, median(first_cpu), "ms", "floor-heuristic A*, every successor evaluated",
+		ref.cpu);
+	add_cmp("plan_nearby_goal_cpu_ms_" + n, median(near_cpu), "ms", "floor-heuristic A*, every successor evaluated",
+		ref2.cpu);
+	add("plan_way_back_cpu_ms_" + n, median(back_cpu), "ms");
 	add_cmp("plan_cost_j_" + n, cost, "J", "floor-heuristic A*", ref.cost);
 	add_cmp("plan_nearby_cost_j_" + n, near_cost, "J", "floor-heuristic A*", ref2.cost);
 	add_cmp("plan_edges_evaluated_" + n, double(evaluated), "edges", "floor-heuristic A*", double(ref.evaluated));

@@ -19,9 +19,7 @@
 
 #include <Eigen/Dense>
 
-extern "C" {
 #include "hylo/features.h"
-}
 #include "trainer/svr_export.hpp"
 
 namespace {

@@ -33,11 +33,9 @@
 #include <unistd.h>
 #include <vector>
 
-extern "C" {
 #include "hylo/features.h"
 #include "hylo/planner.h"
 #include "node/registry.h"
-}
 #include "tools/casestudies/chasm.hpp"
 #include "tools/scene/scene.hpp"
 #include "trainer/collocation.hpp"

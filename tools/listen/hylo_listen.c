@@ -13,15 +13,18 @@
 
 #include <lcm/lcm.h>
 
+#include "hylo_node_status_t.h"
 #include "hylo_plan_t.h"
 #include "hylo_traj_t.h"
 
 static volatile sig_atomic_t stop_requested;
-static int json, waypoints;
+static int json, waypoints, stats;
 static long count;
 static const char *status_names[] = { "ok", "no map", "no path", "bad request", "over capacity",
 				      "budget exhausted", "map replaced", "no model",
-				       "not proven optimal" };
+				      "not proven optimal", "superseded", "unknown map",
+				      "queue full" };
+static const char *event_names[] = { "periodic", "map", "stop" };
 static const char *mode_names[] = { "none", "ground", "marine", "flight", "di_neg", "di_pos" };
 
 static void on_signal(int sig)
@@ -74,7 +77,7 @@ static void print_plan_json(const hylo_plan_t *p)
 	jstr(status_str(p->status));
 	printf(",\"reason\":");
 	jstr(p->reason);
-	printf(",\"robot\":");
+	printf(",\"superseded_by\":%lld,\"robot\":", (long long)p->superseded_by);
 	jstr(p->robot);
 	printf(",\"total_cost_j\":");
 	jnum(p->total_cost_j);
@@ -111,6 +114,8 @@ static void print_plan_text(const hylo_plan_t *p)
 
 	printf("plan %lld (map %lld, %s): %s", (long long)p->request_id, (long long)p->map_id,
 	       p->robot[0] ? p->robot : "-", status_str(p->status));
+	if (p->status == HYLO_PLAN_T_STATUS_SUPERSEDED)
+		printf(" by request %lld", (long long)p->superseded_by);
 	if (p->status == HYLO_PLAN_T_STATUS_OK || p->status == HYLO_PLAN_T_STATUS_NOT_PROVEN) {
 		printf(", %.6g J", p->total_cost_j);
 		if (p->suboptimality > 1)
@@ -216,6 +221,47 @@ static void on_traj(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_traj_
 	received++;
 }
 
+/* --stats: the node's counters and map reports (<prefix>HYLO_STATUS). */
+static void on_status(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_node_status_t *s,
+		      void *u)
+{
+	const char *ev = s->event >= 0 && s->event < 3 ? event_names[s->event] : "unknown";
+
+	(void)rbuf;
+	(void)ch;
+	(void)u;
+	if (json) {
+		printf("{\"type\":\"status\",\"event\":");
+		jstr(ev);
+		printf(",\"map_id\":%lld,\"map_status\":", (long long)s->map_id);
+		jstr(status_str(s->map_status));
+		printf(",\"reason\":");
+		jstr(s->reason);
+		printf(",\"current_map_id\":%lld,\"goals_received\":%lld,\"goals_answered\":%lld,"
+		       "\"goals_planned\":%lld,\"goals_superseded\":%lld,\"goals_refused\":%lld,"
+		       "\"queue_depth\":%d,\"queue_capacity\":%d,\"maps_received\":%lld,"
+		       "\"maps_taken\":%lld,\"maps_refused\":%lld,\"recv_buf_bytes\":%d}\n",
+		       (long long)s->current_map_id, (long long)s->goals_received,
+		       (long long)s->goals_answered, (long long)s->goals_planned,
+		       (long long)s->goals_superseded, (long long)s->goals_refused, s->queue_depth,
+		       s->queue_capacity, (long long)s->maps_received, (long long)s->maps_taken,
+		       (long long)s->maps_refused, s->recv_buf_bytes);
+	} else {
+		if (s->event == HYLO_NODE_STATUS_T_EVENT_MAP)
+			printf("map %lld: %s%s%s\n", (long long)s->map_id, status_str(s->map_status),
+			       s->reason[0] ? ", " : "", s->reason);
+		printf("status (%s): goals %lld received, %lld answered (%lld planned, %lld superseded, "
+		       "%lld refused), queue %d of %d; maps %lld received, %lld taken, %lld refused; "
+		       "current map %lld\n", ev, (long long)s->goals_received,
+		       (long long)s->goals_answered, (long long)s->goals_planned,
+		       (long long)s->goals_superseded, (long long)s->goals_refused, s->queue_depth,
+		       s->queue_capacity, (long long)s->maps_received, (long long)s->maps_taken,
+		       (long long)s->maps_refused, (long long)s->current_map_id);
+	}
+	fflush(stdout);
+	received++;
+}
+
 static void usage(FILE *f)
 {
 	fprintf(f,
@@ -226,6 +272,9 @@ static void usage(FILE *f)
 		"  --channel-prefix P   prefix of the channel names (default: none)\n"
 		"  --json               one JSON object per line instead of text\n"
 		"  --waypoints          text mode: also print every waypoint\n"
+		"  --stats              print the node's status (<prefix>HYLO_STATUS: goals\n"
+		"                       answered, superseded, refused, queue depth, maps)\n"
+		"                       instead of plans and trajectories\n"
 		"  --count N            exit after N messages (default: run until a signal)\n"
 		"  --timeout S          exit with status 1 if S seconds pass without a message\n"
 		"                       (default: wait forever)\n"
@@ -236,7 +285,7 @@ int main(int argc, char **argv)
 {
 	const char *url = NULL, *prefix = "";
 	double timeout_s = 0;
-	char ch_plan[160], ch_traj[160];
+	char ch_plan[160], ch_traj[160], ch_status[160];
 	struct sigaction sa;
 	struct timespec last, now;
 	lcm_t *lcm;
@@ -251,6 +300,8 @@ int main(int argc, char **argv)
 			return 0;
 		} else if (strcmp(a, "--json") == 0) {
 			json = 1;
+		} else if (strcmp(a, "--stats") == 0) {
+			stats = 1;
 		} else if (strcmp(a, "--waypoints") == 0) {
 			waypoints = 1;
 		} else if (strcmp(a, "--lcm-url") == 0 && i + 1 < argc) {
@@ -280,13 +331,18 @@ int main(int argc, char **argv)
 	}
 	snprintf(ch_plan, sizeof ch_plan, "%sHYLO_PLAN", prefix);
 	snprintf(ch_traj, sizeof ch_traj, "%sHYLO_TRAJ", prefix);
+	snprintf(ch_status, sizeof ch_status, "%sHYLO_STATUS", prefix);
 	lcm = lcm_create(url);
 	if (!lcm) {
 		fprintf(stderr, "hylo-listen: cannot open LCM provider '%s'\n", url ? url : "(default)");
 		return 1;
 	}
-	hylo_plan_t_subscribe(lcm, ch_plan, on_plan, NULL);
-	hylo_traj_t_subscribe(lcm, ch_traj, on_traj, NULL);
+	if (stats) {
+		hylo_node_status_t_subscribe(lcm, ch_status, on_status, NULL);
+	} else {
+		hylo_plan_t_subscribe(lcm, ch_plan, on_plan, NULL);
+		hylo_traj_t_subscribe(lcm, ch_traj, on_traj, NULL);
+	}
 	memset(&sa, 0, sizeof sa);
 	sa.sa_handler = on_signal;
 	sigemptyset(&sa.sa_mask);

@@ -12,7 +12,7 @@
 #define HYLO_RENDER_VIEWS_H
 
 #include "canvas.h"
-#include "hylo/roadmap.h"
+#include "hylo/internal/roadmap.h"
 #include "input.h"
 
 typedef enum { VIEW_TOP, VIEW_PHASE, VIEW_3D } view_kind;

@@ -26,7 +26,14 @@
 
 /* Position adjacency entries (an undirected neighbour pair counts twice). */
 #ifndef HYLO_MAX_ADJACENCY
-#define HYLO_MAX_ADJACENCY 262144
+#define HYLO_MAX_ADJACENCY 131072
+#endif
+
+/* Bytes of the edge bounds' turn-cell cache: one byte per heading pair of
+ * each adjacency entry (64 for 8 headings); a roadmap that needs more is
+ * bounded without it (the same bounds, computed each time). */
+#ifndef HYLO_MAX_PAIR_TURNS
+#define HYLO_MAX_PAIR_TURNS 524288
 #endif
 
 /* Entries of each sampling grid (speeds, headings, flight speeds). */
@@ -50,7 +57,7 @@
 #define HYLO_MAX_DEFERRED 65536
 #endif
 
-/* The edge-cost cache (hylo/edgecache.h): successor groups (a node and one
+/* The edge-cost cache (hylo/internal/edgecache.h): successor groups (a node and one
  * neighbouring position) of one roadmap, and costs kept. A roadmap with more
  * groups is planned without the cache. */
 #ifndef HYLO_MAX_GROUPS

@@ -22,6 +22,10 @@
 #include "hylo/svr.h"
 #include "hylo/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /**
  * The turn of a planar edge [rad], in [0, 2 pi]: the least total heading
  * change of a path from the tail's pose to the head's (face the goal, drive,
@@ -72,5 +76,9 @@ int hylo_envelope_args(hylo_mode mode, const hylo_real *tail_xs, const hylo_real
  */
 hylo_real hylo_envelope_of_edge(const hylo_svr_model *m, hylo_mode mode, const hylo_real *tail_xs,
                                 const hylo_real *head_xs);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -38,6 +38,10 @@
 
 #include "hylo/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define HYLO_RELATIVE_PLANAR 5
 #define HYLO_FEATURES_PLANAR 8
 #define HYLO_FEATURES_FLIGHT 9
@@ -72,5 +76,9 @@ unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 
 /** a wrapped into (-pi, pi]. */
 hylo_real hylo_wrap_angle(hylo_real a);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -23,6 +23,10 @@
 #include "hylo/status.h"
 #include "hylo/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Terrain classes; values as map_t.TERRAIN_*. */
 typedef enum {
 	HYLO_TERRAIN_OBSTACLE = 0,
@@ -88,5 +92,9 @@ int hylo_domain_contains(const hylo_map *m, hylo_mode mode, hylo_point p);
  * (exact: it walks the cells the segment passes through, no sampling), and
  * for ground the height rule holds. 0 otherwise. Bounded: O(nx + ny). */
 int hylo_domain_segment(const hylo_map *m, hylo_mode mode, hylo_point a, hylo_point b);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,14 +21,20 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "hylo/config.h"
-#include "hylo/edgecache.h"
 #include "hylo/map.h"
-#include "hylo/roadmap.h"
 #include "hylo/robot.h"
-#include "hylo/search.h"
 #include "hylo/status.h"
 #include "hylo/svr.h"
 #include "hylo/types.h"
+/* The workspace's layout only: struct hylo_planner embeds these modules'
+ * types. Not part of the API (hylo/internal/, docs/install.md). */
+#include "hylo/internal/edgecache.h"
+#include "hylo/internal/roadmap.h"
+#include "hylo/internal/search.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 typedef enum {
 	HYLO_ASTAR = 0,      /* values as goal_t.ALGORITHM_* */
@@ -142,6 +148,11 @@ typedef struct {
 	uint32_t combo_speed[2][HYLO_MAX_COMBOS][2];
 	uint8_t combo_speed_ok[2][HYLO_MAX_COMBOS];
 	hylo_real heading_change[HYLO_MAX_GRID][HYLO_MAX_GRID];
+	/* the envelope's turn cell of the edges into each roadmap position from
+	 * each neighbour, per heading pair: adjacency entry a's at pair_turn[a *
+	 * pair_turn_stride], kept with the roadmap (0: it does not fit) */
+	uint8_t pair_turn[HYLO_MAX_PAIR_TURNS];
+	uint32_t pair_turn_stride;
 	/* scratch of one evaluation (the combinations of one position) */
 	hylo_real head_xs[HYLO_MAX_COMBOS][HYLO_XS_DIM];
 	hylo_real features[HYLO_MAX_COMBOS * HYLO_MAX_FEATURES];
@@ -195,6 +206,17 @@ hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map);
  */
 hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan *plan);
 
+/**
+ * Checks the fields of goal g that need no map: algorithm and mode numbers,
+ * every entry of start and goal (also those the mode does not use), every
+ * spacing and radius finite and >= 0, time_budget_ms finite and >= 0,
+ * suboptimality, and each sampling grid (at most HYLO_MAX_GRID finite
+ * entries). hylo_planner_plan runs it first; a node may run it when a goal
+ * arrives. HYLO_OK, or a status with a reason naming the field in r (may be
+ * NULL). Does not allocate; safe in a control loop.
+ */
+hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r);
+
 /** The reason for the last failure ("ok" after a success). Never NULL. */
 const char *hylo_planner_reason(const hylo_planner *pl);
 
@@ -220,5 +242,9 @@ hylo_status hylo_planner_edge_costs(hylo_planner *pl, uint32_t tail, const uint3
  * references and tests. No allocation.
  */
 hylo_status hylo_planner_successors(hylo_planner *pl, uint32_t tail, uint32_t *heads, uint32_t *n);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -12,6 +12,10 @@
 #include "hylo/svr.h"
 #include "hylo/types.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /*
  * Edge-cost callback: costs of the n edges tail -> heads[i] in one mode.
  * tail and each heads[i] are sampled coordinates (HYLO_XS_DIM entries, only
@@ -58,5 +62,9 @@ hylo_status hylo_robot_check(const hylo_robot *robot, hylo_reason *r);
 
 /** Index (0 or 1) of mode among the robot's modes, or -1. */
 int hylo_robot_mode_index(const hylo_robot *robot, hylo_mode mode);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
 #include <stddef.h>
 #include "hylo/config.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
 	HYLO_OK = 0,
 	HYLO_E_NULL,            /* a required pointer argument was NULL */
@@ -70,5 +74,9 @@ hylo_status hylo_fail(hylo_reason *r, hylo_status s, const char *fmt, ...)
 
 /* Sets r to "ok". r may be NULL. */
 void hylo_reason_clear(hylo_reason *r);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

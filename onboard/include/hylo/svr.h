@@ -22,6 +22,21 @@
 #include "hylo/types.h"
 
 /*
+ * The model-header format this library reads (onboard/models/README.md).
+ * Every exported header states the format it was written in,
+ * HYLO_MODEL_<NAME>_FORMAT_VERSION, and stops the compilation with an #error
+ * naming both when they differ (or when this macro is missing: a library
+ * older than format versions). The trainer writes this format. Bump it with
+ * any change to hylo_svr_model, hylo_svr_envelope or the header's layout
+ * that makes an older header mean something else, and regenerate the models.
+ */
+#define HYLO_MODEL_FORMAT_VERSION 1
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/*
  * A cost model's envelope (onboard/models/README.md, "Envelope"): a table of
  * lower bounds of the model's predicted cost (hylo_svr_predict, before the
  * planner's floor) that depend only on an edge's distance, its turn (ground,
@@ -202,5 +217,9 @@ void hylo_svr_cache_reset(hylo_svr_cache *c);
  */
 hylo_status hylo_svr_predict_batch(const hylo_svr_model *m, hylo_svr_cache *c,
                                    const double *x, uint32_t n, double *cost);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

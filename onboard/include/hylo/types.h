@@ -4,9 +4,16 @@
 
 #include <stdint.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The planner's floating type. Double throughout: the SVR evaluator must
  * match libsvm to 1e-9 relative. */
 typedef double hylo_real;
+
+/* A monotonic clock in milliseconds (the planner's optional time source). */
+typedef double (*hylo_clock_fn)(void *ctx);
 
 /* Locomotion modes; the values are those of goal_t.MODE_* in msgs/. */
 typedef enum {
@@ -42,5 +49,9 @@ int hylo_mode_valid(int mode);
  * marine vx (signed), flight |v|, double integrator v (signed); 0 for an
  * invalid mode. */
 hylo_real hylo_state_speed(hylo_mode mode, const hylo_real *xs);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

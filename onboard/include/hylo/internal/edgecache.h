@@ -6,14 +6,22 @@
  * node u to every combination of the k-th neighbour in u's position's
  * adjacency list, NaN until evaluated, +inf when infeasible. Fixed memory:
  * when the pool is full, further costs are simply not kept (counted).
+ *
+ * Internal: not part of hylo's API. Installed (hylo/internal/) only because
+ * struct hylo_planner embeds this module's types; its declarations may
+ * change in any release. Include "hylo/planner.h" instead.
  */
 #ifndef HYLO_EDGECACHE_H
 #define HYLO_EDGECACHE_H
 
 #include <stdint.h>
 #include "hylo/config.h"
-#include "hylo/roadmap.h"
+#include "hylo/internal/roadmap.h"
 #include "hylo/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #define HYLO_NO_SLOT UINT32_MAX
 
@@ -40,5 +48,9 @@ void hylo_edge_cache_reset(hylo_edge_cache *c, const hylo_roadmap *rm);
  */
 hylo_real *hylo_edge_cache_group(hylo_edge_cache *c, const hylo_roadmap *rm, uint32_t u,
                                  uint32_t k, int create);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -9,6 +9,10 @@
  * Node ids: the nodes of position i are node_base[i] .. node_base[i] +
  * n_combos(i) - 1. The start and goal are two extra positions with one node
  * each, after all sampled ones.
+ *
+ * Internal: not part of hylo's API. Installed (hylo/internal/) only because
+ * struct hylo_planner embeds this module's types; its declarations may
+ * change in any release. Include "hylo/planner.h" instead.
  */
 #ifndef HYLO_ROADMAP_H
 #define HYLO_ROADMAP_H
@@ -16,10 +20,14 @@
 #include <stdint.h>
 #include "hylo/config.h"
 #include "hylo/map.h"
-#include "hylo/poisson.h"
+#include "hylo/internal/poisson.h"
 #include "hylo/robot.h"
 #include "hylo/status.h"
 #include "hylo/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* Sampling options: everything besides the map that shapes the roadmap. */
 typedef struct {
@@ -146,5 +154,9 @@ hylo_real hylo_roadmap_distance(hylo_point a, hylo_point b);
 
 /** 1 when the two samplings are identical (the roadmap can be reused). */
 int hylo_sampling_equal(const hylo_sampling *a, const hylo_sampling *b);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -10,6 +10,10 @@
  * deterministic sweep over candidate points covering every domain cell: any
  * candidate farther than r from all samples starts a new Bridson growth.
  * Same map, mode, radius and seed give the same samples on every platform.
+ *
+ * Internal: not part of hylo's API. Installed (hylo/internal/) only because
+ * struct hylo_planner embeds this module's types; its declarations may
+ * change in any release. Include "hylo/planner.h" instead.
  */
 #ifndef HYLO_POISSON_H
 #define HYLO_POISSON_H
@@ -17,10 +21,14 @@
 #include <stdint.h>
 #include "hylo/config.h"
 #include "hylo/map.h"
-#include "hylo/rng.h"
-#include "hylo/spatial.h"
+#include "hylo/internal/rng.h"
+#include "hylo/internal/spatial.h"
 #include "hylo/status.h"
 #include "hylo/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 /* Candidates Bridson draws around an active sample before retiring it. */
 #define HYLO_POISSON_TRIES 30
@@ -67,5 +75,9 @@ hylo_status hylo_guard_sample(const hylo_map *m, hylo_guard_kind kind, hylo_real
                               hylo_rng *rng, hylo_poisson_ws *ws,
                               hylo_point *out, uint32_t cap, uint32_t *n,
                               hylo_reason *reason);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

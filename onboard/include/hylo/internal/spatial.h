@@ -3,6 +3,10 @@
  * points (2-D or 3-D: buckets are xy columns, distances are 3-D). Used by the
  * Poisson-disc sampler and by the roadmap's neighbour search, so that no
  * all-pairs loop is needed. Fixed memory; no allocation.
+ *
+ * Internal: not part of hylo's API. Installed (hylo/internal/) only because
+ * struct hylo_planner embeds this module's types; its declarations may
+ * change in any release. Include "hylo/planner.h" instead.
  */
 #ifndef HYLO_SPATIAL_H
 #define HYLO_SPATIAL_H
@@ -11,6 +15,10 @@
 #include "hylo/config.h"
 #include "hylo/status.h"
 #include "hylo/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #define HYLO_SPATIAL_NONE UINT32_MAX
 
@@ -51,5 +59,9 @@ hylo_status hylo_spatial_query(const hylo_spatial *g, const hylo_point *pts,
 /** 1 when some inserted point lies strictly closer than radius to q. */
 int hylo_spatial_any_closer(const hylo_spatial *g, const hylo_point *pts,
                             hylo_point q, hylo_real radius);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

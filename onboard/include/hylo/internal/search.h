@@ -9,6 +9,10 @@
  * heaps: nodes with decrease-key (size <= nodes), deferred groups (size <=
  * HYLO_MAX_DEFERRED). Deterministic: ties in f are broken by larger g, then
  * smaller node id; a deferred group comes before a node of equal key.
+ *
+ * Internal: not part of hylo's API. Installed (hylo/internal/) only because
+ * struct hylo_planner embeds this module's types; its declarations may
+ * change in any release. Include "hylo/planner.h" instead.
  */
 #ifndef HYLO_SEARCH_H
 #define HYLO_SEARCH_H
@@ -17,6 +21,10 @@
 #include "hylo/config.h"
 #include "hylo/status.h"
 #include "hylo/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
 
 #define HYLO_NO_NODE UINT32_MAX
 
@@ -45,9 +53,6 @@ typedef hylo_status (*hylo_resolve_fn)(void *ctx, hylo_search *s, uint32_t u, ui
 /* Lower bound on the cost from u to the goal; must be consistent
  * (h(u) <= c(u, v) + h(v)) for A* to return the optimum. */
 typedef hylo_real (*hylo_heuristic_fn)(void *ctx, uint32_t u);
-
-/* Monotonic clock in milliseconds. */
-typedef double (*hylo_clock_fn)(void *ctx);
 
 typedef struct {
 	uint32_t n_nodes;              /* node ids are 0 .. n_nodes-1, <= HYLO_MAX_NODES */
@@ -135,5 +140,9 @@ uint32_t hylo_search_parent(const hylo_search *s, uint32_t v);
  */
 hylo_status hylo_search_path(const hylo_search *s, uint32_t goal, uint32_t *out,
                              uint32_t cap, uint32_t *n, hylo_reason *r);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -1,0 +1,6 @@
+#include "hylo/version.h"
+
+const char *hylo_version(void)
+{
+	return HYLO_VERSION;
+}

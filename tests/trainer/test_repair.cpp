@@ -1,0 +1,275 @@
+// The repair stage (trainer --stage repair, trainer/repair.hpp) and its warm
+// start. A neighbour's solution, transplanted, leads Ambot ground sample 0
+// (a goal behind and to the left) into the basin 25% below the one the
+// straight-line starts reach. On a small double-integrator dataset with
+// labels made dearer, cheaper and removed by hand: the dear label is lowered
+// back, the impossibly cheap one is kept byte for byte (a repair never
+// raises a label), the removed one converges again, the rows past N are
+// untouched; --jobs does not change a byte; a repair killed part-way and
+// resumed (a torn row appended) gives the same bytes; a second repair does
+// nothing; generation refuses to extend a repaired dataset. Prints TAP.
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+#include "tests/tap.hpp"
+#include "trainer/collocation.hpp"
+#include "trainer/dataset.hpp"
+#include "trainer/numerics.hpp"
+#include "trainer/params.hpp"
+#include "trainer/repair.hpp"
+#include "trainer/svr_export.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+namespace fs = std::filesystem;
+
+std::string slurp(const std::string &path)
+{
+	std::ifstream f(path, std::ios::binary);
+	std::ostringstream ss;
+	ss << f.rdbuf();
+	return ss.str();
+}
+
+void spit(const std::string &path, const std::string &text)
+{
+	std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+}
+
+std::vector<std::string> lines_of(const std::string &text)
+{
+	std::vector<std::string> out;
+	std::stringstream ss(text);
+	for (std::string l; std::getline(ss, l);)
+		out.push_back(l);
+	return out;
+}
+
+std::string joined(const std::vector<std::string> &lines)
+{
+	std::string out;
+	for (const auto &l : lines)
+		out += l + "\n";
+	return out;
+}
+
+// Row text with field k replaced.
+std::string with_field(const std::string &row, size_t k, const std::string &value)
+{
+	std::vector<std::string> f = csv_fields(row);
+	f.at(k) = value;
+	std::string out;
+	for (size_t i = 0; i < f.size(); i++)
+		out += (i ? "," : "") + f[i];
+	return out;
+}
+
+size_t count_lines(const std::string &path)
+{
+	std::string t = slurp(path);
+	return static_cast<size_t>(std::count(t.begin(), t.end(), '\n'));
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+	if (!pin_numerics(argc, argv))
+		return 1;
+
+	// ---- the warm start: a neighbour's solution, transplanted ----------
+	{
+		RobotParams ambot = load_robot("trainer/params/ambot.yaml");
+		// Ambot ground sample 0; its neighbour has the goal 0.15 m away.
+		double a[4] = {0, 0, 0.73451828298622091, 0};
+		double b[4] = {-2.0485834379539933, 3.7672478923170489, 0.43868580694182063, -0.2803914970404775};
+		double bn[4] = {b[0] + 0.1, b[1] - 0.1, b[2], b[3] + 0.05};
+		SolveOptions o = training_solve_options();
+		SolveOptions line_opt = o;
+		line_opt.strategy_starts = false;
+		Solution line = solve_bvp("ground", ambot, a, b, line_opt);
+		// The neighbour solved from one start reversing towards its goal (its
+		// rear facing it), as planar_strategy_guesses makes it.
+		std::vector<double> fa = full_state("ground", ambot, a), fb = full_state("ground", ambot, bn);
+		double bearing = std::atan2(bn[1], bn[0]) + 3.14159265358979323846;
+		double h = -0.14 + std::remainder(bearing + 0.14, 2 * 3.14159265358979323846);
+		double mid[4] = {0.5 * bn[0], 0.5 * bn[1], -0.6, h};
+		Solution none, nb = solve_bvp_guesses("ground", ambot, a, bn, o, {{6.0, {fa, full_state("ground", ambot, mid), fb}}}, none);
+		// Transplanted into sample 0 and solved from it alone.
+		Guess g = transplanted_guess(nb.traj, nb.T, fa, full_state("ground", ambot, b), 21);
+		Solution warm = solve_bvp_guesses("ground", ambot, a, b, o, {g}, none);
+		std::printf("# ambot ground sample 0: straight lines %.4f J, neighbour %.4f J, warm-started %.4f J\n",
+			    line.cost, nb.cost, warm.cost);
+		// The two basins: about 98 J backing towards the goal, about 131 J
+		// driving forward and turning (straight lines, and the committed
+		// label 130.2 J).
+		check(g.path.size() == 21 && g.path.front() == fa && g.path.back() == full_state("ground", ambot, b),
+		      "a transplanted path runs exactly from the row's start to its goal");
+		check(nb.converged && warm.converged && line.converged && warm.cost < 0.8 * line.cost && warm.cost < 100,
+		      "Ambot ground sample 0: a neighbour's solution leads into the basin below 100 J, the straight lines "
+		      "end 25% or more above it",
+		      std::to_string(warm.cost) + " vs " + std::to_string(line.cost));
+		bool threw = false;
+		try {
+			Guess bad = g;
+			bad.path.back()[0] += 0.5;
+			solve_bvp_guesses("ground", ambot, a, b, o, {bad}, none);
+		} catch (const std::invalid_argument &e) {
+			threw = std::string(e.what()).find("does not run from the BVP's start to its goal") != std::string::npos;
+		}
+		check(threw, "a guess that does not end at the goal is refused");
+	}
+
+	// ---- the stage, on the double integrator ----------------------------
+	const fs::path dir = fs::temp_directory_path() / ("hylo_repair_" + std::to_string(getpid()));
+	fs::remove_all(dir);
+	RobotParams di = load_robot("trainer/params/di.yaml");
+	GenOptions g;
+	g.mode = "di_neg";
+	g.samples = 16;
+	g.jobs = 2;
+	g.progress = false;
+	g.out_dir = (dir / "gen").string();
+	generate(di, g);
+	const std::string csv = slurp(g.out_dir + "/di_neg.csv"), meta = slurp(g.out_dir + "/di_neg.csv.meta");
+	std::vector<std::string> rows = lines_of(csv);   // rows[i + 1] is sample i
+	const size_t ic = csv_column("di_neg", "cost_j"), iv = csv_column("di_neg", "converged");
+	// Three converged rows among the first 12: one made dearer, one cheaper
+	// than any solution, one removed (not converged).
+	std::vector<size_t> conv;
+	for (size_t i = 0; i < 12; i++)
+		if (csv_fields(rows[i + 1])[iv] == "1")
+			conv.push_back(i);
+	check(conv.size() >= 3, "the double-integrator dataset has three converged rows among its first 12",
+	      std::to_string(conv.size()));
+	if (conv.size() < 3)
+		return tap_finish();
+	const size_t dear = conv[0], cheap = conv[1], gone = conv[2];
+	auto cost_of = [&](const std::string &row) { return std::stod(csv_fields(row)[ic]); };
+	const double true_dear = cost_of(rows[dear + 1]), true_gone = cost_of(rows[gone + 1]);
+	std::vector<std::string> edited = rows;
+	edited[dear + 1] = with_field(rows[dear + 1], ic, format_double(1.3 * true_dear));
+	edited[cheap + 1] = with_field(rows[cheap + 1], ic, format_double(0.7 * cost_of(rows[cheap + 1])));
+	edited[gone + 1] = with_field(with_field(rows[gone + 1], ic, "0"), iv, "0");
+	auto setup = [&](const std::string &name) {
+		fs::create_directories(dir / name);
+		spit((dir / name / "di_neg.csv").string(), joined(edited));
+		spit((dir / name / "di_neg.csv.meta").string(), meta);
+		RepairOptions r;
+		r.gen = g;
+		r.gen.out_dir = (dir / name).string();
+		r.gen.samples = 12;
+		r.gen.chunk = 2;
+		return r;
+	};
+
+	RepairOptions r1 = setup("one");
+	r1.gen.jobs = 1;
+	RepairSummary s1 = repair(di, r1);
+	const std::string out1 = slurp(r1.gen.out_dir + "/di_neg.csv");
+	std::vector<std::string> got = lines_of(out1);
+	bool never_raised = got.size() == edited.size();
+	for (size_t i = 0; never_raised && i < 12; i++) {
+		std::vector<std::string> was = csv_fields(edited[i + 1]), now = csv_fields(got[i + 1]);
+		if (was[iv] == "1")
+			never_raised = now[iv] == "1" && std::stod(now[ic]) <= std::stod(was[ic]);
+	}
+	check(never_raised, "repair never raises a label nor loses a converged row");
+	check(got.size() > cheap + 1 && got[cheap + 1] == edited[cheap + 1],
+	      "a label cheaper than any solution is kept byte for byte");
+	check(got.size() > dear + 1 && std::fabs(cost_of(got[dear + 1]) - true_dear) <= 1e-5 * true_dear,
+	      "a label made 30% dearer is lowered back to the optimum",
+	      got.size() > dear + 1 ? got[dear + 1] : "");
+	check(got.size() > gone + 1 && csv_fields(got[gone + 1])[iv] == "1" &&
+		      std::fabs(cost_of(got[gone + 1]) - true_gone) <= 1e-5 * true_gone,
+	      "a row without a label gets the optimum again");
+	bool tail = got.size() == edited.size();
+	for (size_t i = 13; tail && i < edited.size(); i++)
+		tail = got[i] == edited[i];
+	check(tail, "rows past N are the input's bytes");
+	check(s1.lowered == 1 && s1.newly_converged == 1 && s1.rows == 12 && s1.solved_again == 12,
+	      "the summary counts one label lowered by more than 0.5% and one newly converged",
+	      std::to_string(s1.lowered) + " lowered, " + std::to_string(s1.newly_converged) + " newly converged");
+	const std::string meta1 = slurp(r1.gen.out_dir + "/di_neg.csv.meta");
+	check(meta1.rfind(meta, 0) == 0 && meta1.find("repaired_rows: 12\nrepair_neighbours: 4\n") != std::string::npos &&
+		      meta1.find("repair_blas: ") != std::string::npos &&
+		      !fs::exists(r1.gen.out_dir + "/di_neg.csv.repair") &&
+		      !fs::exists(r1.gen.out_dir + "/di_neg.csv.repair.meta"),
+	      "the .meta keeps the input's lines and records the repair; no in-progress file is left");
+
+	RepairOptions r2 = setup("two");
+	r2.gen.jobs = 2;
+	repair(di, r2);
+	check(slurp(r2.gen.out_dir + "/di_neg.csv") == out1 &&
+		      slurp(r2.gen.out_dir + "/di_neg.csv.meta") == meta1,
+	      "--jobs 1 and 2: the same bytes");
+
+	// Killed part-way (a child process running the repair, SIGKILL once the
+	// sidecar has rows), a torn row appended, resumed.
+	RepairOptions r3 = setup("killed");
+	r3.gen.jobs = 1;
+	const std::string side = solutions_path(r3.gen), work = r3.gen.out_dir + "/di_neg.csv.repair";
+	pid_t pid = fork();
+	if (pid == 0) {
+		try {
+			repair(di, r3);
+		} catch (...) {
+		}
+		_exit(0);
+	}
+	for (int k = 0; k < 20000 && count_lines(side) < 6; k++)
+		usleep(1000);
+	kill(pid, SIGKILL);
+	waitpid(pid, nullptr, 0);
+	size_t side_rows = count_lines(side), work_rows = count_lines(work);
+	bool partial = side_rows < 13 || work_rows < 13;
+	std::ofstream(side, std::ios::app) << "7,0.1";   // torn
+	if (fs::exists(work))
+		std::ofstream(work, std::ios::app) << "3,-0.2";
+	RepairSummary s3 = repair(di, r3);
+	check(partial && slurp(r3.gen.out_dir + "/di_neg.csv") == out1 &&
+		      slurp(r3.gen.out_dir + "/di_neg.csv.meta") == meta1,
+	      "a repair killed part-way and resumed (torn rows appended) gives the same bytes",
+	      "killed with " + std::to_string(side_rows) + " sidecar and " + std::to_string(work_rows) +
+		      " repair lines; resumed " + std::to_string(s3.solved_again) + " solves");
+
+	RepairSummary again = repair(di, r1);
+	check(again.already && slurp(r1.gen.out_dir + "/di_neg.csv") == out1,
+	      "a second repair with the same settings does nothing");
+	GenOptions more = g;
+	more.out_dir = r1.gen.out_dir;
+	more.samples = 20;
+	std::string why;
+	try {
+		generate(di, more);
+	} catch (const std::exception &e) {
+		why = e.what();
+	}
+	check(why.find("made under other settings") != std::string::npos && why.find("repaired_rows: 12") != std::string::npos,
+	      "generation refuses to extend a repaired dataset, naming the repair", why);
+
+	// Another stream's dataset is refused.
+	RepairOptions r4 = setup("seed");
+	r4.gen.seed = 2;
+	why.clear();
+	try {
+		repair(di, r4);
+	} catch (const std::invalid_argument &e) {
+		why = e.what();
+	}
+	check(why.find("not this stream's") != std::string::npos && why.find("seed: 1 vs seed: 2") != std::string::npos,
+	      "a dataset of another seed is refused", why);
+	fs::remove_all(dir);
+	return tap_finish();
+}

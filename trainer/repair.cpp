@@ -1,0 +1,507 @@
+#include "trainer/repair.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <sstream>
+#include <stdexcept>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <vector>
+
+#include "trainer/collocation.hpp"
+#include "trainer/numerics.hpp"
+#include "trainer/processes.hpp"
+#include "trainer/sha256.hpp"
+#include "trainer/svr_export.hpp"
+
+namespace hylo::trainer {
+namespace {
+
+using internal::meta_differences;
+using internal::meta_text;
+using internal::read_file;
+using internal::resume_point;
+using internal::ResumePoint;
+using internal::same_stream;
+using internal::write_all;
+using internal::write_meta;
+
+// A label lowered by more than this fraction counts as lowered.
+constexpr double kLowered = 0.005;
+// A solution replaces a label only if cheaper by more than this fraction:
+// starts that reach the same optimum agree to about 1e-8 (Ipopt's tol), and
+// such a tie would only churn the row's bytes.
+constexpr double kMinImprovement = 1e-6;
+
+// CPU seconds of the waited-for worker processes so far.
+double children_cpu_s()
+{
+	struct rusage ru;
+	if (getrusage(RUSAGE_CHILDREN, &ru) != 0)
+		return 0;
+	return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+	       1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
+
+// Whether b (converged) is a better label than a.
+bool better(const Solution &b, const Solution &a)
+{
+	return b.converged && (!a.converged || b.cost < (1 - kMinImprovement) * a.cost);
+}
+
+std::string join(const std::vector<std::string> &v, const std::string &sep)
+{
+	std::string out;
+	for (size_t k = 0; k < v.size(); k++)
+		out += (k ? sep : "") + v[k];
+	return out;
+}
+
+// Lines of text (without their newlines); a torn last line dropped.
+std::vector<std::string> lines_of(const std::string &text)
+{
+	std::vector<std::string> out;
+	size_t pos = 0;
+	for (size_t nl; (nl = text.find('\n', pos)) != std::string::npos; pos = nl + 1)
+		out.push_back(text.substr(pos, nl - pos));
+	return out;
+}
+
+// A row's result columns (csv_columns' cost_j ... replay_cost_j) as a
+// Solution: what csv_row prints of it.
+Solution result_of(const std::vector<std::string> &f, size_t first, const std::string &where)
+{
+	Solution s;
+	try {
+		s.cost = std::stod(f.at(first));
+		s.T = std::stod(f.at(first + 1));
+		s.converged = f.at(first + 2) == "1";
+		s.status_text = f.at(first + 3);
+		s.iterations = std::stoi(f.at(first + 4));
+		s.segments = std::stoi(f.at(first + 5));
+		s.replay_error = std::stod(f.at(first + 6));
+		s.replay_cost = std::stod(f.at(first + 7));
+	} catch (const std::exception &) {
+		throw std::invalid_argument(where + ": a result column is missing or not a number");
+	}
+	return s;
+}
+
+// One solved row of the sidecar: its result and path.
+struct Stored {
+	Solution s;
+	std::vector<std::vector<double>> path;   // path_points full states (converged rows)
+};
+
+std::vector<std::string> sidecar_columns(const std::string &mode, int points)
+{
+	std::vector<std::string> c = {"index", "cost_j", "T_s", "converged", "status", "iterations",
+				      "segments", "replay_error", "replay_cost_j"};
+	for (int p = 0; p < points; p++)
+		for (int k = 0; k < state_dim(mode); k++)
+			c.push_back("p" + std::to_string(p) + "_x" + std::to_string(k));
+	return c;
+}
+
+// Sample i's sidecar line: the current solver's result and its path.
+std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uint64_t i)
+{
+	const std::string &mode = opt.gen.mode;
+	double a[6] = {0}, b[6] = {0};
+	draw_pair(robot.mode(mode), opt.gen.seed, i, a, b);
+	Solution s;
+	try {
+		s = solve_bvp(mode, robot, a, b, opt.gen.solve);
+	} catch (const std::exception &e) {
+		s = Solution();
+		s.status_text = std::string("error: ") + e.what();
+	}
+	// csv_row's result columns, then the path.
+	std::vector<std::string> f = csv_fields(csv_row(mode, i, a, b, s));
+	std::vector<std::string> out = {std::to_string(i)};
+	out.insert(out.end(), f.end() - 8, f.end());
+	const size_t nx = static_cast<size_t>(state_dim(mode));
+	std::vector<std::vector<double>> path;
+	if (s.converged)
+		path = transplanted_guess(s.traj, s.T, full_state(mode, robot, a), full_state(mode, robot, b),
+					  opt.path_points).path;
+	for (int p = 0; p < opt.path_points; p++)
+		for (size_t k = 0; k < nx; k++)
+			out.push_back(s.converged ? format_double(path[static_cast<size_t>(p)][k]) : "0");
+	return join(out, ",");
+}
+
+Stored parse_sidecar_line(const std::string &mode, const std::string &line, uint64_t i, int points,
+			  const std::string &where)
+{
+	std::vector<std::string> f = csv_fields(line);
+	const size_t nx = static_cast<size_t>(state_dim(mode));
+	if (f.size() != 9 + nx * static_cast<size_t>(points) || f[0] != std::to_string(i))
+		throw std::runtime_error(where + ": not the sidecar row of sample " + std::to_string(i));
+	Stored st;
+	st.s = result_of(f, 1, where);
+	if (st.s.converged)
+		for (int p = 0; p < points; p++) {
+			std::vector<double> x(nx);
+			for (size_t k = 0; k < nx; k++)
+				x[k] = std::stod(f[9 + static_cast<size_t>(p) * nx + k]);
+			st.path.push_back(std::move(x));
+		}
+	return st;
+}
+
+// Extends the sidecar to the first n rows (resumable, a chunk at a time);
+// returns how many rows this call solved.
+uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint64_t n)
+{
+	const std::string path = solutions_path(opt.gen), meta_path = path + ".meta";
+	const std::string meta = meta_text(robot, opt.gen) + "path_points: " + std::to_string(opt.path_points) + "\n";
+	const std::string header = join(sidecar_columns(opt.gen.mode, opt.path_points), ",") + "\n";
+	std::string existing = read_file(path);
+	uint64_t next = 0;
+	if (!existing.empty() || access(meta_path.c_str(), F_OK) == 0) {
+		std::string old_meta = read_file(meta_path);
+		if (old_meta != meta)
+			throw std::runtime_error(path + " was made under other settings: " +
+						 meta_differences(old_meta, meta) + "; remove it (it is solved again)");
+		ResumePoint r = resume_point(existing, header);
+		next = r.rows;
+		if (r.rows >= n)
+			return 0;
+		if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
+			throw std::runtime_error("cannot truncate " + path);
+	} else {
+		write_meta(meta_path, meta);
+	}
+	int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+	if (fd < 0)
+		throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+	struct stat fs;
+	if (fstat(fd, &fs) == 0 && fs.st_size == 0)
+		write_all(fd, header, path);
+	const uint64_t first = next;
+	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
+		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
+		std::vector<std::string> rows =
+			fork_each(e - c, opt.gen.jobs, [&](size_t k) { return sidecar_line(robot, opt, c + k); });
+		std::string text;
+		for (size_t k = 0; k < rows.size(); k++) {
+			if (rows[k].empty())
+				throw std::runtime_error("the process solving sample " + std::to_string(c + k) + " failed");
+			text += rows[k] + "\n";
+		}
+		write_all(fd, text, path);
+		if (fsync(fd) != 0)
+			throw std::runtime_error("cannot sync " + path);
+		if (opt.gen.progress)
+			std::fprintf(stderr, "%s: %llu/%llu rows solved again\n", path.c_str(),
+				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
+	}
+	close(fd);
+	return n - first;
+}
+
+std::vector<Stored> read_sidecar(const RepairOptions &opt, uint64_t n)
+{
+	const std::string path = solutions_path(opt.gen);
+	std::vector<std::string> lines = lines_of(read_file(path));
+	if (lines.size() < n + 1)
+		throw std::runtime_error(path + " has " + std::to_string(lines.empty() ? 0 : lines.size() - 1) +
+					 " rows, not " + std::to_string(n));
+	std::vector<Stored> out;
+	for (uint64_t i = 0; i < n; i++)
+		out.push_back(parse_sidecar_line(opt.gen.mode, lines[i + 1], i, opt.path_points,
+						 path + " line " + std::to_string(i + 2)));
+	return out;
+}
+
+// The k nearest rows of each row with a converged sidecar solution, in the
+// sampled coordinates (x1 and x2), each scaled by its range over the rows
+// (a coordinate with none left out); ties by index.
+std::vector<std::vector<uint64_t>> nearest(const std::vector<std::vector<double>> &coords,
+					   const std::vector<Stored> &sol, int k)
+{
+	const size_t n = coords.size(), d = n ? coords[0].size() : 0;
+	std::vector<double> scale(d, 0);
+	for (size_t c = 0; c < d; c++) {
+		double lo = coords[0][c], hi = coords[0][c];
+		for (const auto &x : coords) {
+			lo = std::min(lo, x[c]);
+			hi = std::max(hi, x[c]);
+		}
+		scale[c] = hi > lo ? 1.0 / (hi - lo) : 0.0;
+	}
+	std::vector<std::vector<uint64_t>> out(n);
+	std::vector<std::pair<double, uint64_t>> cand;
+	for (size_t i = 0; i < n; i++) {
+		cand.clear();
+		for (size_t j = 0; j < n; j++) {
+			if (j == i || !sol[j].s.converged)
+				continue;
+			double s = 0;
+			for (size_t c = 0; c < d; c++) {
+				double v = (coords[i][c] - coords[j][c]) * scale[c];
+				s += v * v;
+			}
+			cand.emplace_back(s, j);
+		}
+		size_t m = std::min(cand.size(), static_cast<size_t>(std::max(0, k)));
+		std::partial_sort(cand.begin(), cand.begin() + static_cast<std::ptrdiff_t>(m), cand.end());
+		for (size_t q = 0; q < m; q++)
+			out[i].push_back(cand[q].second);
+	}
+	return out;
+}
+
+// The repair's lines of a dataset's .meta (and of the in-progress file's):
+// its settings, and the repairing trainer's solver and numerics.
+std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
+{
+	std::string out = "repaired_rows: " + std::to_string(opt.gen.samples) +
+			  "\nrepair_neighbours: " + std::to_string(opt.neighbours) +
+			  "\nrepair_path_points: " + std::to_string(opt.path_points) + "\n";
+	std::istringstream in(meta_text(robot, opt.gen));
+	for (std::string line; std::getline(in, line);) {
+		std::string key = line.substr(0, line.find(": "));
+		if (key == "robot" || key == "mode" || key == "seed" || key == "draws" || key == "params_sha256")
+			continue;   // the stream's, in the dataset's own lines
+		out += "repair_" + line + "\n";
+	}
+	return out;
+}
+
+// meta without the lines of an earlier repair, then this one's.
+std::string repaired_meta(const std::string &meta, const std::string &lines)
+{
+	std::string out;
+	std::istringstream in(meta);
+	for (std::string line; std::getline(in, line);)
+		if (line.rfind("repaired_rows: ", 0) != 0 && line.rfind("repair_", 0) != 0)
+			out += line + "\n";
+	return out + lines;
+}
+
+bool contains_lines(const std::string &meta, const std::string &lines)
+{
+	std::istringstream in(lines);
+	for (std::string line; std::getline(in, line);)
+		if (("\n" + meta).find("\n" + line + "\n") == std::string::npos)
+			return false;
+	return true;
+}
+
+}  // namespace
+
+std::string solutions_path(const GenOptions &opt)
+{
+	return opt.out_dir + "/" + opt.mode + ".solutions.csv";
+}
+
+RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
+{
+	auto t0 = std::chrono::steady_clock::now();
+	RepairOptions opt = ro;
+	opt.gen.shard = opt.gen.shards = 1;
+	const std::string &mode = opt.gen.mode;
+	const uint64_t n = opt.gen.samples;
+	if (opt.neighbours < 1 || opt.path_points < 2)
+		throw std::invalid_argument("repair needs at least one neighbour and two path points");
+	RepairSummary sum;
+	sum.rows = n;
+	sum.path = dataset_path(opt.gen);
+	const std::string meta_path = sum.path + ".meta";
+	const std::string input = read_file(sum.path), input_meta = read_file(meta_path);
+	if (input.empty() || input_meta.empty())
+		throw std::invalid_argument("repair: no dataset " + sum.path + " with its .meta (run --stage gen first)");
+	if (!same_stream(input_meta, meta_text(robot, opt.gen)))
+		throw std::invalid_argument("repair: " + sum.path + " is not this stream's (" +
+					    meta_differences(input_meta, meta_text(robot, opt.gen)) + ")");
+	const std::string lines_meta = repair_lines(robot, opt);
+	if (contains_lines(input_meta, lines_meta)) {
+		sum.already = true;
+		return sum;
+	}
+	std::vector<std::string> lines = lines_of(input);
+	const std::string header = join(csv_columns(mode), ",");
+	if (lines.empty() || lines[0] != header)
+		throw std::invalid_argument(sum.path + ": line 1 is not the header of a " + mode + " dataset");
+	if (lines.size() < n + 1)
+		throw std::invalid_argument("repair: " + sum.path + " has " + std::to_string(lines.size() - 1) +
+					    " rows, fewer than the " + std::to_string(n) + " asked for");
+	// The rows must be this stream's samples.
+	const size_t ix = csv_column(mode, "x1_0"), ic = csv_column(mode, "cost_j");
+	const int d = sampled_dim(mode);
+	std::vector<std::vector<double>> coords(n);
+	std::vector<Solution> stored(n);
+	for (uint64_t i = 0; i < n; i++) {
+		std::string where = sum.path + " line " + std::to_string(i + 2);
+		std::vector<std::string> f = csv_fields(lines[i + 1]);
+		double a[6] = {0}, b[6] = {0};
+		draw_pair(robot.mode(mode), opt.gen.seed, i, a, b);
+		bool same = f.size() == csv_columns(mode).size() && f[0] == std::to_string(i);
+		for (int k = 0; same && k < d; k++)
+			same = f[ix + static_cast<size_t>(k)] == format_double(a[k]) &&
+			       f[ix + static_cast<size_t>(d + k)] == format_double(b[k]);
+		if (!same)
+			throw std::invalid_argument(where + ": not sample " + std::to_string(i) + " of this stream");
+		coords[i].assign(a, a + d);
+		coords[i].insert(coords[i].end(), b, b + d);
+		stored[i] = result_of(f, ic, where);
+	}
+	std::string input_rows;
+	for (uint64_t i = 0; i <= n; i++)
+		input_rows += lines[i] + "\n";
+	const std::string input_sha = sha256_hex(input_rows);
+
+	// The in-progress file: resumed if it is this repair's of these rows.
+	const std::string work = sum.path + ".repair", work_meta_path = work + ".meta";
+	const std::string work_meta = "repair_of_sha256: " + input_sha + "\n" + lines_meta;
+	std::string existing = read_file(work);
+	uint64_t next = 0;
+	if (!existing.empty() || access(work_meta_path.c_str(), F_OK) == 0) {
+		std::string old = read_file(work_meta_path);
+		if (old != work_meta && existing == input_rows && old.find('\n') != std::string::npos &&
+		    old.substr(old.find('\n') + 1) == lines_meta) {
+			// Interrupted between replacing the dataset and its .meta: finish.
+			write_meta(meta_path, repaired_meta(input_meta, lines_meta));
+			std::remove(work.c_str());
+			std::remove(work_meta_path.c_str());
+			sum.already = true;
+			return sum;
+		}
+		if (old != work_meta)
+			throw std::runtime_error(work + " is a repair under other settings or of other rows: " +
+						 meta_differences(old, work_meta) + "; remove it");
+		ResumePoint r = resume_point(existing, header + "\n");
+		next = std::min(r.rows, n);
+		if (truncate(work.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
+			throw std::runtime_error("cannot truncate " + work);
+	} else {
+		write_meta(work_meta_path, work_meta);
+	}
+
+	double cpu0 = children_cpu_s();
+	sum.solved_again = extend_sidecar(robot, opt, n);
+	sum.solve_cpu_s = children_cpu_s() - cpu0;
+	cpu0 = children_cpu_s();
+	std::vector<Stored> sol = read_sidecar(opt, n);
+	std::vector<std::vector<uint64_t>> near = nearest(coords, sol, opt.neighbours);
+	// Each row's incumbent: the cheaper converged of the stored label and the
+	// current solver's, and the row text it stands for (the input's own
+	// bytes where the stored label is kept).
+	auto incumbent = [&](uint64_t i, std::string &text) {
+		const Solution &a = stored[i], &b = sol[i].s;
+		if (better(b, a)) {
+			double x1[6] = {0}, x2[6] = {0};
+			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2);
+			text = csv_row(mode, i, x1, x2, b);
+			return b;
+		}
+		text = lines[i + 1];
+		return a;
+	};
+
+	int fd = open(work.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+	if (fd < 0)
+		throw std::runtime_error("cannot write " + work + ": " + std::strerror(errno));
+	if (next == 0) {
+		struct stat fs;
+		if (fstat(fd, &fs) == 0 && fs.st_size == 0)
+			write_all(fd, header + "\n", work);
+	}
+	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
+		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
+		std::vector<std::string> rows = fork_each(e - c, opt.gen.jobs, [&](size_t k) {
+			uint64_t i = c + k;
+			std::string text;
+			Solution inc = incumbent(i, text);
+			double x1[6] = {0}, x2[6] = {0};
+			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2);
+			std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
+			std::vector<Guess> guesses;
+			for (uint64_t j : near[i]) {
+				Trajectory tr;
+				tr.nx = state_dim(mode);
+				const auto &path = sol[j].path;
+				for (size_t p = 0; p < path.size(); p++) {
+					tr.t.push_back(sol[j].s.T * static_cast<double>(p) / static_cast<double>(path.size() - 1));
+					tr.x.insert(tr.x.end(), path[p].begin(), path[p].end());
+				}
+				guesses.push_back(transplanted_guess(tr, sol[j].s.T, a, b, opt.path_points));
+			}
+			try {
+				Solution s = solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve, guesses, inc);
+				if (better(s, inc))
+					text = csv_row(mode, i, x1, x2, s);
+			} catch (const std::exception &) {
+				// keep the incumbent
+			}
+			return text;
+		});
+		std::string text;
+		for (size_t k = 0; k < rows.size(); k++) {
+			if (rows[k].empty())
+				throw std::runtime_error("the process repairing sample " + std::to_string(c + k) + " failed");
+			text += rows[k] + "\n";
+		}
+		write_all(fd, text, work);
+		if (fsync(fd) != 0)
+			throw std::runtime_error("cannot sync " + work);
+		sum.repaired_now += e - c;
+		if (opt.gen.progress)
+			std::fprintf(stderr, "%s: %llu/%llu rows repaired\n", work.c_str(),
+				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
+	}
+	close(fd);
+	sum.warm_cpu_s = children_cpu_s() - cpu0;
+
+	// Done: the repaired rows, then the input's past n, replace the dataset.
+	std::vector<std::string> repaired = lines_of(read_file(work));
+	if (repaired.size() != n + 1)
+		throw std::runtime_error(work + " has " + std::to_string(repaired.size() - 1) + " rows, not " +
+					 std::to_string(n));
+	std::string out;
+	for (const auto &l : repaired)
+		out += l + "\n";
+	for (size_t i = n + 1; i < lines.size(); i++)
+		out += lines[i] + "\n";
+	const size_t conv = csv_column(mode, "converged");
+	std::vector<double> drops;
+	for (uint64_t i = 0; i < n; i++) {
+		std::vector<std::string> f = csv_fields(repaired[i + 1]);
+		bool now = f[conv] == "1";
+		double cost = std::stod(f[ic]);
+		if (now && !stored[i].converged)
+			sum.newly_converged++;
+		if (now && stored[i].converged && cost < (1 - kLowered) * stored[i].cost) {
+			drops.push_back(1 - cost / stored[i].cost);
+			std::string side;
+			(void)incumbent(i, side);
+			if (side == repaired[i + 1])
+				sum.lowered_by_solver++;
+			else
+				sum.lowered_by_neighbours++;
+		}
+	}
+	sum.lowered = drops.size();
+	if (!drops.empty()) {
+		std::sort(drops.begin(), drops.end());
+		size_t m = drops.size();
+		sum.median_drop = m % 2 ? drops[m / 2] : 0.5 * (drops[m / 2 - 1] + drops[m / 2]);
+		sum.max_drop = drops.back();
+	}
+	write_meta(sum.path, out);   // atomic: a temporary file, fsync'd, renamed
+	write_meta(meta_path, repaired_meta(input_meta, lines_meta));
+	std::remove(work.c_str());
+	std::remove(work_meta_path.c_str());
+	sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+	return sum;
+}
+
+}  // namespace hylo::trainer

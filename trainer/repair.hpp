@@ -1,0 +1,78 @@
+// The repair stage (trainer --stage repair, issue #35): labels that are the
+// best optimum found, not the first. Each of a dataset's first N rows is
+// solved again from the solutions of its K nearest rows (the "memory of
+// motion" warm start of learned trajectory optimization: a neighbour's path,
+// moved to run between this row's states, transplanted_guess), and its label
+// becomes the cheapest accepted solution of the stored one, the current
+// solver's and those warm starts'. A label is only ever lowered, and only by
+// more than 1e-6 relative (less is a tie, Ipopt's tolerance), or a row that
+// did not converge gets one; the rows are otherwise the input's bytes.
+//
+// The datasets store no trajectories, so the neighbours' solutions come from
+// a sidecar, <out>/<mode>.solutions.csv: every row solved again by the
+// current solver (solve_bvp, training options), its result and its path
+// (path_points states uniformly in time). Solving again is the only way to
+// a path for the committed rows and costs about one generation of the rows;
+// a stored path is 21 x 6-16 numbers, 1.5-3 kB a row, too much to commit
+// with every dataset. The sidecar is resumable and reused by later runs;
+// the repair reads only it (Jacobi: row i's warm starts do not depend on
+// whether row j < i was repaired already), so the result does not depend on
+// --jobs, on chunking or on an interruption.
+//
+// Files in <out>: <mode>.csv (the dataset, at least N rows, its .meta of
+// this stream), <mode>.solutions.csv(.meta) (the sidecar), <mode>.csv.repair
+// (.meta) (the repaired rows while in progress, appended a chunk at a time,
+// fsync'd; a re-run resumes). When every row is done the dataset is
+// replaced atomically (a temporary file renamed over it): the repaired rows,
+// then the input's rows past N unchanged; its .meta gets the repair's lines
+// (repaired_rows, repair_neighbours, repair_path_points and the repairing
+// solver's settings and numerics as repair_<line>), so generation refuses
+// to extend it, and a second repair with the same settings does nothing.
+#ifndef HYLO_TRAINER_REPAIR_HPP
+#define HYLO_TRAINER_REPAIR_HPP
+
+#include <cstdint>
+#include <string>
+
+#include "trainer/dataset.hpp"
+#include "trainer/params.hpp"
+
+namespace hylo::trainer {
+
+struct RepairOptions {
+	// mode, out_dir, samples (N: the rows repaired, the first N), seed, jobs,
+	// chunk, solve (the solver's options), progress.
+	GenOptions gen;
+	int neighbours = 4;      // K: warm starts per row
+	int path_points = 21;    // states per stored path (a 20-segment coarse mesh's knots)
+};
+
+struct RepairSummary {
+	uint64_t rows = 0;             // N
+	uint64_t solved_again = 0;     // sidecar rows solved by this run
+	uint64_t repaired_now = 0;     // rows repaired by this run (the rest resumed)
+	uint64_t lowered = 0;          // converged before and after, label lower by more than 0.5%
+	uint64_t lowered_by_solver = 0;     // of those, by the current solver alone
+	uint64_t lowered_by_neighbours = 0; // of those, by a neighbour's warm start
+	uint64_t newly_converged = 0;  // rows without a label before that have one now
+	double median_drop = 0, max_drop = 0;   // relative drops of the lowered rows
+	bool already = false;          // the dataset's meta records this repair already: nothing done
+	double solve_cpu_s = 0;        // CPU time of this run's sidecar solves (its worker processes)
+	double warm_cpu_s = 0;         // and of its warm-started solves
+	double seconds = 0;
+	std::string path;
+};
+
+// Repairs the first opt.gen.samples rows of <out>/<mode>.csv (see above).
+// Throws std::invalid_argument for a missing or short dataset, another
+// stream's, or a row that is not this stream's sample; std::runtime_error
+// for I/O errors and for a sidecar or an in-progress repair made under other
+// settings (naming the differing lines).
+RepairSummary repair(const RobotParams &robot, const RepairOptions &opt);
+
+// The sidecar's file for a run with these options.
+std::string solutions_path(const GenOptions &opt);
+
+}  // namespace hylo::trainer
+
+#endif
