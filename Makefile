@@ -30,6 +30,7 @@ include mk/fuzz.mk
 include mk/cross.mk
 include mk/casestudies.mk
 include mk/install.mk
+include mk/docs.mk
 
 # Header dependencies of everything compiled so far (-MMD -MP).
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)

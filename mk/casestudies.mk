@@ -1,6 +1,7 @@
 # The paper's case studies (tools/casestudies/): build/bin/hylo-casestudies
-# runs them and writes docs/results.{md,json}; plot.py draws the figures.
-#   make casestudies         every study (see the README for how long)
+# runs them and writes docs/results.{md,json}; plot.py draws the figures;
+# docs/provenance.json records the models and scenes they were made from.
+#   make casestudies         every study (see docs/casestudies.md for how long)
 #   make casestudies QUICK=1 the DI convergence on 3 spacings (a check)
 HYLO_CASESTUDIES := $(BUILD)/bin/hylo-casestudies
 
@@ -36,6 +37,7 @@ casestudies: deps
 	@mkdir -p docs/results
 	$(HYLO_CASESTUDIES) --out docs $(if $(QUICK),--quick)
 	.venv/bin/python tools/casestudies/plot.py docs/results.json docs/results
+	tools/provenance record docs/results.md docs/results.json docs/results/*
 
 # Test: the command line and the quick Ambot study (tests/casestudies/).
 tests/casestudies/test_casestudies.sh: $(HYLO_CASESTUDIES)

@@ -10,7 +10,7 @@ LCM_GEN_DIR := $(BUILD)/gen/lcm
 LCM_STAMP := $(LCM_GEN_DIR)/.stamp
 MSG_C_SRCS := $(MSG_NAMES:%=$(LCM_GEN_DIR)/c/hylo_%.c)
 MSG_NOPUBSUB_SRCS := $(MSG_NAMES:%=$(LCM_GEN_DIR)/c-nopubsub/hylo_%.c)
-# lcm-gen's C does not pass -pedantic -Wextra (deps.md).
+# lcm-gen's C does not pass -pedantic -Wextra (docs/deps.md).
 LCM_GEN_REQUIRED := -std=c99 -ffp-contract=off -Wall -Werror -Wno-pedantic -Wno-format -Wno-unused-parameter
 LCM_GEN_CFLAGS := $(LCM_GEN_REQUIRED) $(LCM_CFLAGS) $(CPPFLAGS) $(CFLAGS)
 

@@ -1,7 +1,7 @@
 # The offscreen renderer and the golden-image comparator (tools/render/).
 #   build/bin/hylo-render    plan + map (+ trajectory) -> PNG, OSMesa + libpng + FreeType
 #   build/bin/hylo-pngdiff   golden comparison with a tolerance, diff images
-# Link -lOSMesa and never -lGL (deps.md: with -lGL every call is a no-op).
+# Link -lOSMesa and never -lGL (docs/deps.md: with -lGL every call is a no-op).
 
 RENDER_CFLAGS := $(NODE_CFLAGS) $(OSMESA_CFLAGS) $(PNG_CFLAGS) $(FREETYPE_CFLAGS)
 RENDER_INC := $(NODE_INC) -Itools/render
@@ -52,7 +52,8 @@ update-goldens: deps
 	@$(MAKE) --no-print-directory all
 	@UPDATE_GOLDENS=1 tests/render/test_render.sh
 
-# make pictures: every scene's plan drawn into docs/pictures/ (for the README).
+# make pictures: every scene's plan drawn into docs/pictures/ (for the README),
+# with what each was made from recorded in docs/provenance.json.
 pictures: deps
 	@$(MAKE) --no-print-directory all
 	@tools/pictures.sh

@@ -53,8 +53,8 @@ ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST)
 TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) tests/trainer/test_trainer_cli.sh \
 	tests/trainer/test_numerics.sh
 
-# make models: regenerates every committed model (datasets resume; see the
-# README for the time it takes). MODEL_SAMPLES= overrides the sample counts.
+# make models: regenerates every committed model (datasets resume; see
+# docs/cost-models.md for the time it takes). MODEL_SAMPLES= overrides the sample counts.
 MODEL_JOBS ?= $(shell nproc)
 MODEL_LIST := di:di_neg di:di_pos ambot:ground ambot:marine drivocopter:ground drivocopter:flight
 models: deps $(TRAINER)
@@ -72,6 +72,7 @@ MODEL_PICTURES := ambot:ground ambot:marine drivocopter:ground drivocopter:fligh
 model-pictures: venv-report $(TRAINER) $(BUILD)/bin/hylo-cost
 	@for rm in $(MODEL_PICTURES); do \
 		.venv/bin/python tools/models/plot_models.py $${rm%%:*} $${rm##*:} docs/models || exit 1; \
+		tools/provenance record docs/models/$${rm%%:*}_$${rm##*:}_*.png || exit 1; \
 	done
 
 # Trainer solve-time benchmark (tools/bench/bench_trainer.cpp).

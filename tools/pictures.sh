@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # make pictures: plans every scene through the planner node (file:// logs)
 # with the committed models, smooths the plan (hylo-smooth) and draws both
-# with hylo-render into docs/pictures/<scene>.png. A scene whose robot has no committed model yet
-# is drawn without a path (the title says why).
+# with hylo-render into docs/pictures/<scene>.png, and records the scene,
+# robot file and models each was made from (tools/provenance). A scene whose
+# robot has no committed model yet is drawn without a path (the title says why).
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -20,6 +21,7 @@ for scene in scenes/*.yaml; do
   "$B/bin/hylo-smooth" --quiet --lcm-url "file://$W/$name.planned.log?speed=0" \
     --out-url "file://$W/$name.traj.log?mode=w" 2> "$W/$name.smooth.log" || status=1
   "$B/bin/hylo-render" --log "$W/$name.in.log" --log "$W/$name.plan.log" --log "$W/$name.traj.log" \
-    --camera "$("$B/bin/hylo-scene" "$scene" --print-camera)" --out "$OUT/$name.png" || status=1
+    --camera "$("$B/bin/hylo-scene" "$scene" --print-camera)" --out "$OUT/$name.png" &&
+    tools/provenance record "$OUT/$name.png" || status=1
 done
 exit $status

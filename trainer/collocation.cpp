@@ -250,8 +250,8 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool 
 	ok = ok && app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
 	if (opt.objective_scale != 1)
 		ok = ok && app->Options()->SetNumericValue("obj_scaling_factor", opt.objective_scale);
-	// Monotone barrier from a small start converged on every robot mode tried,
-	// where the adaptive strategy hit the iteration limit (stiff friction terms).
+	// Monotone barrier from a small start: the adaptive strategy hit the
+	// iteration limit on stiff friction terms (docs/decisions.md).
 	ok = ok && app->Options()->SetStringValue("mu_strategy", "monotone");
 	// A warm start is already near the optimum: a small barrier keeps it there.
 	ok = ok && app->Options()->SetNumericValue("mu_init", warm ? 1e-5 : 1e-2);
@@ -272,7 +272,7 @@ Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool 
 		ok = ok && set_ipopt_option(*app, o);
 	if (!ok)
 		throw std::logic_error("an Ipopt option was refused");
-	// An empty options file name: never read ./ipopt.opt (deps.md).
+	// An empty options file name: never read ./ipopt.opt (docs/deps.md).
 	if (app->Initialize("") != Ipopt::Solve_Succeeded)
 		throw std::runtime_error("Ipopt failed to initialize");
 	return app;
@@ -332,9 +332,8 @@ constexpr double kPi = 3.14159265358979323846;
 // it starts in, so a basin no start leads into is never found:
 // - backing up with the start's heading, through the midpoint, and driving
 //   forward facing the goal (from the straight line alone, goals behind the
-//   robot often settled on driving forward and turning round, up to a third
-//   above the backing-up optimum; README, Models); durations from the path
-//   length;
+//   robot often ended in a worse local optimum; docs/decisions.md, "Training
+//   labels"); durations from the path length;
 // - (issue #35) backing up with the start's heading at twice that duration;
 //   reversing towards the goal, the rear facing it, through the midpoint;
 //   and turning on the spot to that heading, reversing, turning on the spot
@@ -408,23 +407,10 @@ ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 		     : mode == "flight" ? info_of(FlightModel(p, robot.g))
 					: info_of(DiModel(p, mode == "di_pos"));
 	i.refinements = p.refinements;
-	// Flight. The rotors' time constant is 13 ms: at least 80 segments and
-	// at most 20 ms per segment (at 30 ms knot-to-knot replays were up to
-	// 0.045 off, and the refinements warm-started from there hit 1,000
-	// iterations). From a straight-line
-	// guess the cold relax-100 solve took 120-320 Ipopt iterations and
-	// continuations not starting at 100 never converged; from the Hermite
-	// guess it takes 25-76, and these finer steps avoid the 500-1,000-
-	// iteration steps seen going 30 -> 10. Every start of a flight edge
-	// tried ended within 0.02% of the others (their meshes differ), so the
-	// first start whose replay passes is kept.
-	// MUMPS's column permutation and scaling (MC64) cost more than they
-	// save on a flight BVP's KKT system (80-160 segments x 20 unknowns): without
-	// them the dataset's first 16 samples took 2.2x less CPU; of its first
-	// 100 all converged as before and 98 labels agreed to 1e-8 (the other
-	// two to 0.08%, different refined meshes); of its first 1,632, 4 were
-	// lost and 1 gained, 22 labels moved by more than 1e-8 (at most 0.16%).
-	// Ground samples saved nothing.
+	// Flight: segments of at most 20 ms (the rotors' time constant is 13 ms),
+	// the Hermite guess with fine continuation steps, the first start that
+	// passes, and no MC64 in MUMPS (2.2x less CPU, same labels); each
+	// measured in docs/decisions.md, "Flight training: five changes".
 	if (mode == "flight") {
 		i.mumps_permuting_scaling = 0;
 		i.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
@@ -522,9 +508,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	std::sort(levels.begin(), levels.end(), std::greater<double>());
 	levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
 	// MUMPS's permutation and scaling as the mode sets it in single-mode
-	// BVPs (the training samples, where it was measured); multi-phase
-	// problems keep it: without it the fixed DFDFD sequence on the 30 m
-	// chasm (hylo-casestudies) failed after 407 s, with it it converges.
+	// BVPs; multi-phase problems keep it (without it a chasm crossing failed;
+	// docs/decisions.md, "Flight training: five changes").
 	const int permuting_scaling = base.info.size() == 1 ? base.info[0].mumps_permuting_scaling
 								 : kMumpsChoosesPermutingScaling;
 	// A continuation or refinement step's options: the tightest iteration
@@ -533,9 +518,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	for (const ModeInfo &i : base.info)
 		if (i.step_max_iter > 0)
 			step_opt.max_iter = std::min(step_opt.max_iter, i.step_max_iter);
-	// Smoothing: a long plan's steps can need more (the relax-1 step of
-	// hylo's 30 m chasm plan and the refinements of its 50 m one stopped at
-	// flight's 400).
+	// Smoothing: a long plan's steps can need more than flight's 400
+	// (docs/decisions.md, "Smoothing long plans").
 	if (opt.step_max_iter > 0)
 		step_opt.max_iter = opt.step_max_iter;
 	// A step that runs out of its own limit gives its start up.
@@ -579,7 +563,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 		}
 		best.starts++;
 		// Continuation: smoother problems first, each starting the next; the
-		// last (1) has models.md's exact constants.
+		// last (1) has docs/models.md's exact constants.
 		std::vector<double> start;
 		for (double relax : levels) {
 			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)

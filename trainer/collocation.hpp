@@ -92,7 +92,7 @@ struct Solution {
 	Trajectory traj;
 };
 
-// Mode names the trainer knows and their sampled dimension (models.md section 7).
+// Mode names the trainer knows and their sampled dimension (docs/models.md section 7).
 bool known_mode(const std::string &mode);
 int sampled_dim(const std::string &mode);
 // Modes as numbered in goal_t (MODE_*) and onboard (hylo_mode); "" or 0 for
@@ -147,7 +147,7 @@ Guess transplanted_guess(const Trajectory &traj, double T, const std::vector<dou
 			 const std::vector<double> &b, int points);
 
 // State and input sizes of a mode, and the full state its sampled
-// coordinates stand for (the virtual constraints of models.md section 7).
+// coordinates stand for (the virtual constraints of docs/models.md section 7).
 int state_dim(const std::string &mode);
 int input_dim(const std::string &mode);
 std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs);

@@ -20,11 +20,9 @@ namespace hylo::trainer {
 
 // The solver's options for training pairs (and `trainer --solve`, so that it
 // reproduces a row): a start is refined only if its coarse cost is within 5%
-// of the best refined one. On 40 Ambot ground pairs: 40% less solve time
-// than refining every start, costs up by 0.65% at most, less than the
-// committed rows and today's full solver differ (README, Trainer). Ground
-// and marine pairs also get the strategy guesses (solve_bvp_strategies:
-// backing up, facing the goal, and issue #35's three).
+// of the best refined one (40% less solve time, docs/decisions.md, "Training
+// labels"). Ground and marine pairs also get the strategy guesses
+// (solve_bvp_strategies: backing up, facing the goal, and issue #35's three).
 inline SolveOptions training_solve_options()
 {
 	SolveOptions o;
@@ -54,7 +52,7 @@ struct GenSummary {
 	std::string path;
 };
 
-// Relative coordinates of models.md section 7 for a pair of sampled states,
+// Relative coordinates of docs/models.md section 7 for a pair of sampled states,
 // the columns f0, f1, ... of a dataset (hylo_relative, onboard/features.h).
 std::vector<double> relative_coords(const std::string &mode, const double *x1s, const double *x2s);
 

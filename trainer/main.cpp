@@ -5,6 +5,7 @@
 // output directory or dataset).
 #include <malloc.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,6 +31,31 @@ public:
 	using std::invalid_argument::invalid_argument;
 };
 
+std::string joined(const std::vector<std::string> &v)
+{
+	std::string out;
+	for (const std::string &x : v)
+		out += (out.empty() ? "" : ", ") + x;
+	return out;
+}
+
+bool has_mode(const std::vector<std::string> &modes, const std::string &mode)
+{
+	return std::find(modes.begin(), modes.end(), mode) != modes.end();
+}
+
+// The robots of trainer/params/ with their modes, one line each; with mode
+// set, only those that have it.
+std::string robots_text(const std::string &mode)
+{
+	std::string out;
+	for (const auto &r : list_robots())
+		if (mode.empty() || has_mode(r.second, mode))
+			out += "\n  " + r.first + " (" + (r.second.empty() ? "does not load" : joined(r.second)) + ")";
+	std::string where = robot_dir() + "/" + (mode.empty() ? "" : " with mode " + mode);
+	return out.empty() ? "no robot in " + where : "robots in " + where + ":" + out;
+}
+
 void usage(FILE *f)
 {
 	std::fprintf(f,
@@ -43,7 +69,7 @@ void usage(FILE *f)
 		"turn or climb, and speeds).\n"
 		"\n"
 		"  --mode M          di_neg, di_pos, ground, marine or flight (required); switch:\n"
-		"                    print the robot's mode switches and their costs (models.md\n"
+		"                    print the robot's mode switches and their costs (docs/models.md\n"
 		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required; installed:\n"
 		"                    PREFIX/share/hylo/params/R.yaml; $HYLO_PARAMS_DIR/R.yaml first)\n"
@@ -79,7 +105,7 @@ void usage(FILE *f)
 		"                    in --out relabels it in place (kept as <file>.straight)\n"
 		"  --models-dir DIR  where export writes headers (default: onboard/models)\n"
 		"  --solve X1 X2     solve one BVP between sampled states (comma-separated,\n"
-		"                    models.md section 7 order) and print the result\n"
+		"                    docs/models.md section 7 order) and print the result\n"
 		"  --json            --solve: print JSON\n"
 		"  --trajectory      --solve --json: include time, state and input samples\n"
 		"  --quiet           no progress output\n"
@@ -94,6 +120,7 @@ void usage(FILE *f)
 		"masked (GLIBC_TUNABLES glibc.cpu.hwcaps); it refuses to run with another BLAS.\n"
 		"\n"
 		"Exit codes: 0 done, 1 failure while running, 2 bad usage or input.\n");
+	std::fprintf(f, "\n%s\n", robots_text("").c_str());
 }
 
 std::vector<double> parse_vector(const std::string &text, int dim, const std::string &what)
@@ -161,7 +188,7 @@ void print_solution(const Solution &s, const std::string &mode, const std::strin
 	std::printf("}\n");
 }
 
-// trainer --mode switch: the robot's mode switches (models.md section 6).
+// trainer --mode switch: the robot's mode switches (docs/models.md section 6).
 int print_switches(const RobotParams &robot, const SolveOptions &opt, bool json)
 {
 	struct Switch {
@@ -196,6 +223,28 @@ int print_switches(const RobotParams &robot, const SolveOptions &opt, bool json)
 	if (json)
 		std::printf("]}\n");
 	return 0;
+}
+
+// The usage error for a missing --mode or --robot: what exists, and a
+// command that would work.
+std::string missing_mode_or_robot(const std::string &mode, const std::string &robot)
+{
+	auto robots = list_robots();
+	if (!robot.empty()) {
+		for (const auto &r : robots)
+			if (r.first == robot && !r.second.empty())
+				return "--mode is required (see --help); robot " + robot + " has modes " +
+				       joined(r.second) + " (and switch: its mode switches)\ne.g. trainer --mode " +
+				       r.second[0] + " --robot " + robot;
+		return "--mode is required (see --help); " + robots_text("");
+	}
+	std::string text = (mode.empty() ? "--mode and --robot are required" : "--robot is required") +
+			   std::string(" (see --help); ") + robots_text(mode == "switch" ? "" : mode);
+	for (const auto &r : robots)
+		if (!r.second.empty() && (mode.empty() || mode == "switch" || has_mode(r.second, mode)))
+			return text + "\ne.g. trainer --mode " + (mode.empty() ? r.second[0] : mode) + " --robot " +
+			       r.first;
+	return text;
 }
 
 int run(int argc, char **argv)
@@ -286,20 +335,20 @@ int run(int argc, char **argv)
 			throw Usage("unknown option '" + a + "' (see --help)");
 		}
 	}
-	if (mode.empty() || robot_name.empty())
-		throw Usage("--mode and --robot are required (see --help)");
-	if (!known_mode(mode) && mode != "switch")
+	if (!mode.empty() && !known_mode(mode) && mode != "switch")
 		throw Usage("unknown mode '" + mode + "' (di_neg, di_pos, ground, marine, flight, switch)");
+	if (mode.empty() || robot_name.empty())
+		throw Usage(missing_mode_or_robot(mode, robot_name));
 	RobotParams robot;
 	try {
 		robot = load_robot(robot_file(robot_name));
 	} catch (const ParamError &e) {
-		throw Usage(std::string("robot '") + robot_name + "': " + e.what());
+		throw Usage(std::string("robot '") + robot_name + "': " + e.what() + "; " + robots_text(mode == "switch" ? "" : mode));
 	}
 	if (mode == "switch")
 		return print_switches(robot, po.gen.solve, json);
 	if (!robot.modes.count(mode))
-		throw Usage("robot " + robot_name + " has no mode '" + mode + "'");
+		throw Usage("robot " + robot_name + " has no mode '" + mode + "'; " + robots_text(mode == "switch" ? "" : mode));
 	if (solve) {
 		int d = sampled_dim(mode);
 		std::vector<double> a = parse_vector(solve1, d, "--solve X1"), b = parse_vector(solve2, d, "--solve X2");
@@ -327,10 +376,8 @@ int main(int argc, char **argv)
 {
 	if (!pin_numerics(argc, argv))
 		return 1;
-	// Keep freed memory in the heap. MUMPS allocates and frees its
-	// workspace at every factorization; with glibc's defaults each one was
-	// mapped afresh and zeroed page by page, 11% of a flight generator's CPU
-	// time in the kernel (perf). Same labels, about 10% faster (README).
+	// Keep freed memory in the heap: MUMPS allocates and frees its workspace
+	// at every factorization (10% faster, same labels; docs/decisions.md).
 	mallopt(M_MMAP_THRESHOLD, 256 << 20);
 	mallopt(M_TRIM_THRESHOLD, 512 << 20);
 	try {

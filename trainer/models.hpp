@@ -1,11 +1,11 @@
-// The dynamics and running cost of every mode (models.md sections 1-5),
+// The dynamics and running cost of every mode (docs/models.md sections 1-5),
 // written once and templated on the scalar so that plain doubles and Eigen's
 // forward-mode AutoDiff and the Hessian's second-order type share the same code.
 //
 // Each model has, for state x (NX), input u (NU):
 //   eval(x, u, f, L, path): f = x' (NX), L = running cost [W], path (NP)
 //   bounds on x, u, path and the final time T; the boundary state built from
-//   sampled coordinates with the virtual constraints of models.md section 7.
+//   sampled coordinates with the virtual constraints of docs/models.md section 7.
 #ifndef HYLO_TRAINER_MODELS_HPP
 #define HYLO_TRAINER_MODELS_HPP
 
@@ -26,11 +26,11 @@ using std::tan;
 using std::tanh;
 }  // namespace ad
 
-// Smoothing: models.md fixes the constants (relax = 1). The solver also
+// Smoothing: docs/models.md fixes the constants (relax = 1). The solver also
 // solves with them multiplied by relax > 1 first (a continuation: a smoother
 // problem whose solution starts the exact one); only relax = 1 results count.
 
-// Positive part of a power, smoothed (models.md section 1): (P + sqrt(P^2 + d^2)) / 2.
+// Positive part of a power, smoothed (docs/models.md section 1): (P + sqrt(P^2 + d^2)) / 2.
 template <class S>
 S positive_power(const S &P, double relax)
 {
@@ -53,7 +53,7 @@ struct Bounds {
 	double T_min = 0, T_max = 0;
 };
 
-// ---- double integrator (models.md section 2) ------------------------------
+// ---- double integrator (docs/models.md section 2) ------------------------------
 struct DiModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 2, NU = 1, NP = 0, NS = 2;
@@ -92,7 +92,7 @@ struct DiModel {
 	double typical_speed() const { return 0.5; }
 };
 
-// ---- skid-steer ground mode (models.md section 3) ------------------------
+// ---- skid-steer ground mode (docs/models.md section 3) ------------------------
 struct GroundModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 6, NU = 2, NP = 0, NS = 4;
@@ -156,7 +156,7 @@ struct GroundModel {
 	double typical_speed() const { return 0.5 * vmax; }
 };
 
-// ---- marine mode (models.md section 4) ----------------------------------
+// ---- marine mode (docs/models.md section 4) ----------------------------------
 struct MarineModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 8, NU = 2, NP = 0, NS = 4;
@@ -227,7 +227,7 @@ struct MarineModel {
 	double typical_speed() const { return 0.5 * vmax_w; }
 };
 
-// ---- quadrotor flight mode (models.md section 5) -------------------------
+// ---- quadrotor flight mode (docs/models.md section 5) -------------------------
 struct FlightModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
 	static constexpr int NX = 16, NU = 4, NP = 1, NS = 6;

@@ -1,5 +1,5 @@
 // The numerics a label depends on, pinned so that every machine computes the
-// same labels (README, The trainer):
+// same labels (docs/decisions.md, "Training labels do not depend on the CPU"):
 //  - BLAS and LAPACK: Debian's reference libraries (libblas3, liblapack3),
 //    linked by an rpath (NUMERICS_LDFLAGS, mk/config.mk). OpenBLAS picks its
 //    kernels by CPU and its sums depend on buffer alignment; a program that

@@ -1,7 +1,9 @@
 #include "trainer/params.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <dirent.h>
 #include <unistd.h>
 #include <set>
 #include <vector>
@@ -11,7 +13,7 @@
 namespace hylo::trainer {
 namespace {
 
-// Required parameters of each mode (models.md sections 2-5, 8).
+// Required parameters of each mode (docs/models.md sections 2-5, 8).
 const std::map<std::string, std::vector<std::string>> kRequired = {
 	{"ground", {"m", "Iz", "B", "Lc", "r", "G", "kt", "R", "Vcc", "crr", "mut", "Cy", "Pd", "vmax"}},
 	{"marine", {"m", "Iz", "B", "Jm", "kt", "R", "Vcc", "kT", "kq", "dx", "dy", "Cy_w", "dw", "Pd",
@@ -81,6 +83,27 @@ const ModeParams &RobotParams::mode(const std::string &name) const
 	return it->second;
 }
 
+namespace {
+
+// Where robot files are looked for when the working directory has none: the
+// checkout the binary was built in (CHECKOUT/build/bin/trainer), or an
+// install (PREFIX/bin/hylo-trainer, PREFIX/share/hylo/params: make install).
+std::vector<std::string> other_params_dirs()
+{
+	char exe[4096];
+	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+	if (n <= 0)
+		return {};
+	exe[n] = '\0';
+	std::string up[3] = {exe, "", ""};   // the binary's folder, its parent, theirs
+	up[0] = up[0].substr(0, up[0].rfind('/'));
+	up[1] = up[0].substr(0, up[0].rfind('/'));
+	up[2] = up[1].substr(0, up[1].rfind('/'));
+	return {up[2] + "/trainer/params", up[1] + "/share/hylo/params"};
+}
+
+}  // namespace
+
 std::string robot_file(const std::string &name)
 {
 	const char *dir = std::getenv("HYLO_PARAMS_DIR");
@@ -89,23 +112,54 @@ std::string robot_file(const std::string &name)
 	std::string here = "trainer/params/" + name + ".yaml";
 	if (access(here.c_str(), F_OK) == 0)
 		return here;
-	// Run from elsewhere: the files beside the binary's checkout
-	// (CHECKOUT/build/bin/trainer), or those of an install
-	// (PREFIX/bin/hylo-trainer, PREFIX/share/hylo/params: make install).
-	char exe[4096];
-	ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-	if (n > 0) {
-		exe[n] = '\0';
-		std::string up[3] = {exe, "", ""};   // the binary's folder, its parent, theirs
-		up[0] = up[0].substr(0, up[0].rfind('/'));
-		up[1] = up[0].substr(0, up[0].rfind('/'));
-		up[2] = up[1].substr(0, up[1].rfind('/'));
-		for (const std::string &there : {up[2] + "/trainer/params/" + name + ".yaml",
-						 up[1] + "/share/hylo/params/" + name + ".yaml"})
-			if (access(there.c_str(), F_OK) == 0)
-				return there;
+	for (const std::string &d : other_params_dirs()) {
+		std::string there = d + "/" + name + ".yaml";
+		if (access(there.c_str(), F_OK) == 0)
+			return there;
 	}
 	return here;
+}
+
+std::string robot_dir()
+{
+	const char *dir = std::getenv("HYLO_PARAMS_DIR");
+	if (dir && *dir)
+		return dir;
+	if (access("trainer/params", F_OK) == 0)
+		return "trainer/params";
+	for (const std::string &d : other_params_dirs())
+		if (access(d.c_str(), F_OK) == 0)
+			return d;
+	return "trainer/params";
+}
+
+std::vector<std::pair<std::string, std::vector<std::string>>> list_robots()
+{
+	std::vector<std::pair<std::string, std::vector<std::string>>> robots;
+	std::string dir = robot_dir();
+	DIR *d = opendir(dir.c_str());
+	if (!d)
+		return robots;
+	std::vector<std::string> names;
+	while (struct dirent *e = readdir(d)) {
+		std::string f = e->d_name;
+		if (f.size() > 5 && f.compare(f.size() - 5, 5, ".yaml") == 0 && f[0] != '.')
+			names.push_back(f.substr(0, f.size() - 5));
+	}
+	closedir(d);
+	std::sort(names.begin(), names.end());
+	for (const std::string &name : names) {
+		std::vector<std::string> modes;
+		try {
+			RobotParams r = load_robot(dir + "/" + name + ".yaml");
+			for (const auto &m : r.modes)
+				modes.push_back(m.first);
+		} catch (const std::exception &) {
+			// A file that does not load is listed without modes.
+		}
+		robots.emplace_back(name, modes);
+	}
+	return robots;
 }
 
 RobotParams load_robot(const std::string &path)

@@ -1,5 +1,5 @@
 // Robot parameter files (trainer/params/<robot>.yaml): the physical
-// parameters of models.md section 8 per mode, and the ranges training pairs
+// parameters of docs/models.md section 8 per mode, and the ranges training pairs
 // are drawn from. Strict: an unknown key, a missing key or a bad value is an
 // error naming the file, the key and the line.
 #ifndef HYLO_TRAINER_PARAMS_HPP
@@ -8,6 +8,8 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace hylo::trainer {
 
@@ -46,6 +48,13 @@ RobotParams load_robot(const std::string &path);
 // of the working directory, else of the checkout the binary was built in,
 // else share/hylo/params/ of the prefix it was installed into (make install).
 std::string robot_file(const std::string &name);
+
+// The folder robot_file() looks in (without a name to find).
+std::string robot_dir();
+
+// The robots of robot_dir(), sorted by name, each with its modes (sorted;
+// empty for a file that does not load).
+std::vector<std::pair<std::string, std::vector<std::string>>> list_robots();
 
 }  // namespace hylo::trainer
 

@@ -176,7 +176,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 				    {"mirror images", std::to_string(fo.symmetries.size()) +
 							      " per training pair (feature_symmetries, trainer/dataset.cpp)"});
 	if (g.mode == "flight") {
-		// Takeoff and landing (models.md section 6): hover at h to hover at h+1, and back.
+		// Takeoff and landing (docs/models.md section 6): hover at h to hover at h+1, and back.
 		TakeoffLanding tl = takeoff_landing(robot, g.solve);
 		m.constants = {{"TAKEOFF_J", tl.takeoff_j, "ground rest -> hover 1 m above [J]"},
 			       {"LANDING_J", tl.landing_j, "hover 1 m above -> ground rest [J]"}};

@@ -6,7 +6,7 @@
 
 namespace hylo::trainer {
 
-// Tolerances a replay must meet (models.md section 1): the end state within
+// Tolerances a replay must meet (docs/models.md section 1): the end state within
 // kReplayStateTol of the collocation's, scaled by each state's typical
 // magnitude, and the cost within kReplayCostTol relative.
 constexpr double kReplayStateTol = 2e-2;

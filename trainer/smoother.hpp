@@ -40,7 +40,7 @@ constexpr double kAirClearanceM = 0.5;
 
 struct Waypoint {
 	int mode = 0;                  // goal_t MODE_*
-	double state[6] = {};          // sampled coordinates (models.md section 7)
+	double state[6] = {};          // sampled coordinates (docs/models.md section 7)
 	bool guard = false;
 };
 
@@ -65,8 +65,8 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan);
 
 // Smooths a plan: the multi-phase problem from the plan itself, and if that
-// fails, from its straightened copy (a roadmap's sideways S-curves made the
-// exact-constant step of hylo's 30 m chasm plan fail at 1,000 iterations).
+// fails, from its straightened copy (a roadmap's sideways S-curves can stall
+// Ipopt; docs/decisions.md, "Smoothing long plans").
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
 			       const std::vector<double> &T_scales = {});
@@ -74,9 +74,9 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 // The plan's neighbours in mode sequence: for each ground run between two
 // flights, the plan with that run flown over instead (the landing, the drive
 // and the takeoff removed, the two flights joined), one plan per such run.
-// Near the crossover between flying over and driving through (the 50 m
-// chasm: DFD 3,981.9 J against DFDFD 4,003.7 J), sequences differ by less
-// than the SVR's error, so the planner's choice is checked exactly.
+// Near the crossover between flying over and driving through, sequences
+// differ by less than the SVR's error, so the planner's choice is checked
+// exactly (docs/smoothing.md).
 std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan);
 
 // The cheapest converged smoothing (smooth_plan) of the plan and of each
@@ -85,19 +85,11 @@ MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypo
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
 			       const std::vector<double> &T_scales = {});
 
-// Solver options of the smoother: an open-loop replay of a whole phase (tens
-// of metres) drifts with its length, so a phase's replayed end state may be
-// 0.05 off (scaled: metres, m/s, rad) where a training edge may be 0.02 off.
-// Flight segments of up to 40 ms instead of 20: a 30 m flight at 50 ms
-// segments replayed knot to knot within 0.046 and its cost within 0.04% of
-// its replay (at 20 ms it is 500 segments, 0.8 s per Ipopt iteration).
-// Every solve (cold start, continuation step, refinement) may take up to
-// 1,000 Ipopt iterations (chasm crossings needed over 400, flight's step
-// limit in training). The objective is scaled up 100 times: a long plan's
-// guessed duration (30 s over the 70 m chasm) made its scaling, 1 / (10 T),
-// so small that Ipopt crawled (a Hessian regularization of 1e-2 held for
-// hundreds of iterations) and DFD's relax-100 step stopped at 1,000
-// iterations; scaled, it takes 81 and the whole solve 62 s.
+// Solver options of the smoother, for plans of tens of metres: a phase's
+// replayed end state within 0.05 (scaled; training: 0.02), flight segments
+// up to 40 ms (training: 20), up to 1,000 Ipopt iterations per solve, and
+// the objective scaled up 100 times (docs/decisions.md, "Smoothing long
+// plans").
 SolveOptions smoothing_solve_options();
 
 // Exact cost of the plan's own path: every edge solved on its own as a

@@ -26,14 +26,10 @@ struct FitOptions {
 	// Sparsity: of the grid points whose cross-validated median relative
 	// error is at most sparse_median and whose mean is within
 	// sparse_mean_slack of the best mean, the one with the widest tube
-	// (epsilon); if there is none, the best mean. A wider tube has far fewer
-	// support vectors, so the onboard evaluation is faster (Ambot ground,
-	// 7,000 pairs: 4,622 SVs at 0.005, 2,121 at 0.05; held-out median 0.9% ->
-	// 1.4%, p95 12% either way). The budget is half the 3% median target;
-	// models that do not meet it keep their most accurate point, and so do
-	// models fitted on at most sparse_min_train pairs (fast at any tube
-	// width; a wider tube moved Drivocopter flight's 8 m cruise edge from
-	// 17% to 28% too high).
+	// (epsilon); if there is none, the best mean. Models fitted on at most
+	// sparse_min_train pairs keep their most accurate point. Fewer support
+	// vectors, a faster planner, the same p95 (docs/decisions.md, "Large
+	// models take the widest tube").
 	double sparse_median = 0.015;
 	double sparse_mean_slack = 0.1;
 	size_t sparse_min_train = 2000;

@@ -118,7 +118,7 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 		on_guard(p, k, g);
 		p.switch_cost += costs.landing_j;
 	} else {
-		throw std::invalid_argument("no mode switch " + pair + " (models.md section 6)");
+		throw std::invalid_argument("no mode switch " + pair + " (docs/models.md section 6)");
 	}
 }
 

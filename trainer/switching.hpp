@@ -1,4 +1,4 @@
-// Mode switches of multi-phase problems (models.md section 6): the reset map
+// Mode switches of multi-phase problems (docs/models.md section 6): the reset map
 // between consecutive phases, the guard the switch point stays on, and the
 // switching cost.
 //   di_pos <-> di_neg   guard p = 0, identity reset, cost 0

@@ -4,7 +4,7 @@
  * Format: onboard/models/README.md.
  *
  * robot file: trainer/params/di.yaml
- * robot file sha256: 8f9ca35b775dcfbd1775c759749159ff739d1a9d6b58b420c31adf9f126fddcb
+ * robot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a
  * dataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457
  * samples: 2000 (1120 converged)
  * seed: 1
@@ -1093,7 +1093,7 @@ static const hylo_svr_model hylo_model_di_di_neg = {
 	.max_distance_m = 2,
 	.speed_min_mps = -1,
 	.speed_max_mps = 1,
-	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: 8f9ca35b775dcfbd1775c759749159ff739d1a9d6b58b420c31adf9f126fddcb\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
 
@@ -1697,7 +1697,7 @@ static const hylo_svr_model hylo_model_di_di_neg_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
-	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: 8f9ca35b775dcfbd1775c759749159ff739d1a9d6b58b420c31adf9f126fddcb\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
 

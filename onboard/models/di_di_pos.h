@@ -4,7 +4,7 @@
  * Format: onboard/models/README.md.
  *
  * robot file: trainer/params/di.yaml
- * robot file sha256: 8f9ca35b775dcfbd1775c759749159ff739d1a9d6b58b420c31adf9f126fddcb
+ * robot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a
  * dataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c
  * samples: 2000 (921 converged)
  * seed: 1
@@ -943,7 +943,7 @@ static const hylo_svr_model hylo_model_di_di_pos = {
 	.max_distance_m = 2,
 	.speed_min_mps = -1,
 	.speed_max_mps = 1,
-	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: 8f9ca35b775dcfbd1775c759749159ff739d1a9d6b58b420c31adf9f126fddcb\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
 
@@ -1321,7 +1321,7 @@ static const hylo_svr_model hylo_model_di_di_pos_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
-	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: 8f9ca35b775dcfbd1775c759749159ff739d1a9d6b58b420c31adf9f126fddcb\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
 

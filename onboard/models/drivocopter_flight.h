@@ -4,7 +4,7 @@
  * Format: onboard/models/README.md.
  *
  * robot file: trainer/params/drivocopter.yaml
- * robot file sha256: f8f7679d194943c9229838a2eaaa80dbf17977440495e80188fd1702f705ea93
+ * robot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a
  * dataset sha256: 8c50db2e63b9f1bd2cd064d93fe2b3c4c51638cb454b5f0775d22bc0f0c61eac
  * samples: 17016 (16971 converged)
  * seed: 1
@@ -35457,7 +35457,7 @@ static const hylo_svr_model hylo_model_drivocopter_flight = {
 	.max_distance_m = 9,
 	.speed_min_mps = 0,
 	.speed_max_mps = 8,
-	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: f8f7679d194943c9229838a2eaaa80dbf17977440495e80188fd1702f705ea93\ndataset sha256: 8c50db2e63b9f1bd2cd064d93fe2b3c4c51638cb454b5f0775d22bc0f0c61eac\nsamples: 17016 (16971 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0420, max 0.9292 relative; MAE 10.54 J\nsvr: C 3, gamma 0.29999999999999999, epsilon 0.02, 8852 support vectors\nfeasibility accuracy: 0.99647369967675581\nmirror images: 1 per training pair (feature_symmetries, trainer/dataset.cpp)\nenvelope: 37 x 73 x 9 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 8c50db2e63b9f1bd2cd064d93fe2b3c4c51638cb454b5f0775d22bc0f0c61eac\nsamples: 17016 (16971 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0420, max 0.9292 relative; MAE 10.54 J\nsvr: C 3, gamma 0.29999999999999999, epsilon 0.02, 8852 support vectors\nfeasibility accuracy: 0.99647369967675581\nmirror images: 1 per training pair (feature_symmetries, trainer/dataset.cpp)\nenvelope: 37 x 73 x 9 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_drivocopter_flight_envelope,
 };
 
@@ -35694,7 +35694,7 @@ static const hylo_svr_model hylo_model_drivocopter_flight_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
-	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: f8f7679d194943c9229838a2eaaa80dbf17977440495e80188fd1702f705ea93\ndataset sha256: 8c50db2e63b9f1bd2cd064d93fe2b3c4c51638cb454b5f0775d22bc0f0c61eac\nsamples: 17016 (16971 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0420, max 0.9292 relative; MAE 10.54 J\nsvr: C 3, gamma 0.29999999999999999, epsilon 0.02, 8852 support vectors\nfeasibility accuracy: 0.99647369967675581\nmirror images: 1 per training pair (feature_symmetries, trainer/dataset.cpp)\nenvelope: 37 x 73 x 9 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 8c50db2e63b9f1bd2cd064d93fe2b3c4c51638cb454b5f0775d22bc0f0c61eac\nsamples: 17016 (16971 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0420, max 0.9292 relative; MAE 10.54 J\nsvr: C 3, gamma 0.29999999999999999, epsilon 0.02, 8852 support vectors\nfeasibility accuracy: 0.99647369967675581\nmirror images: 1 per training pair (feature_symmetries, trainer/dataset.cpp)\nenvelope: 37 x 73 x 9 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
 

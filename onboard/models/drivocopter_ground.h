@@ -4,7 +4,7 @@
  * Format: onboard/models/README.md.
  *
  * robot file: trainer/params/drivocopter.yaml
- * robot file sha256: f8f7679d194943c9229838a2eaaa80dbf17977440495e80188fd1702f705ea93
+ * robot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a
  * dataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc
  * samples: 11520 (11223 converged)
  * seed: 1
@@ -14001,7 +14001,7 @@ static const hylo_svr_model hylo_model_drivocopter_ground = {
 	.max_distance_m = 4.5,
 	.speed_min_mps = 0,
 	.speed_max_mps = 3,
-	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: f8f7679d194943c9229838a2eaaa80dbf17977440495e80188fd1702f705ea93\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_drivocopter_ground_envelope,
 };
 
@@ -14815,7 +14815,7 @@ static const hylo_svr_model hylo_model_drivocopter_ground_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
-	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: f8f7679d194943c9229838a2eaaa80dbf17977440495e80188fd1702f705ea93\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
+	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Live UDP multicast between separate processes, only inside a network
-# namespace this test creates (deps.md): the planner node, the scene
+# namespace this test creates (docs/deps.md): the planner node, the scene
 # publisher, the listener, the Python client, and lcm-logger recording the
 # session; then lcm-logplayer replays the recorded maps and goals into a new
 # node, whose plans must equal the live ones. Where namespaces or the Python

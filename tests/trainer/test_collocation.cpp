@@ -1,5 +1,5 @@
 // The trainer's numerics: Ipopt's derivative checker on every mode's
-// transcription, the double integrator's closed forms (models.md section 2),
+// transcription, the double integrator's closed forms (docs/models.md section 2),
 // the CVODE replay (a converged solution replays; a corrupted control is
 // caught), and boundary states out of bounds. Prints TAP.
 #include <cmath>

@@ -89,7 +89,7 @@ void derivative_tests(const RobotParams &ambot)
 
 }
 
-// Drive, take off, fly, land, drive: the switch conditions of models.md section 6.
+// Drive, take off, fly, land, drive: the switch conditions of docs/models.md section 6.
 void takeoff_landing_joins(const RobotParams &drivo)
 {
 	double g0[4] = {0, 0, 0, 0}, g1[4] = {5, 0, 0, 0}, g3[4] = {20, 0, 0, 0};

@@ -37,6 +37,24 @@ if grep -q "^start T=.* relax 1: solved" "$T/err" && grep -q "^  replay di_neg: 
    ! grep -q "^start" "$T/out"; then
   tap_ok "--debug traces every solve and replay on stderr"; else
   tap_not_ok "--debug traces every solve and replay on stderr" "$(head -3 "$T/err")"; fi
+if grep -q "^robots in trainer/params/:" "$T/help" && grep -q "^  ambot (ground, marine)$" "$T/help" &&
+   grep -q "^  di (di_neg, di_pos)$" "$T/help" && grep -q "^  drivocopter (flight, ground)$" "$T/help"; then
+  tap_ok "--help lists the robots and their modes"; else tap_not_ok "--help lists the robots and their modes"; fi
+# A missing --robot or --mode: exit 2, the robots (or modes) that exist, a command that works.
+expect_fail "--mode without --robot: exit 2" 2 "--robot is required" "$TR" --mode ground
+if grep -q "robots in trainer/params/ with mode ground:" "$T/err" && grep -q "^  ambot (ground, marine)$" "$T/err" &&
+   grep -q "^  drivocopter (flight, ground)$" "$T/err" && ! grep -q "^  di " "$T/err" &&
+   grep -q "^e.g. trainer --mode ground --robot ambot$" "$T/err"; then
+  tap_ok "--mode ground without --robot lists the robots with that mode and a command"; else
+  tap_not_ok "--mode ground without --robot lists the robots with that mode and a command" "$(cat "$T/err")"; fi
+expect_fail "--robot without --mode: exit 2, its modes" 2 "robot di has modes di_neg, di_pos" "$TR" --robot di
+expect_fail "neither: exit 2, every robot" 2 "^  di (di_neg, di_pos)$" "$TR"
+expect_fail "unknown robot: exit 2, the robots that exist" 2 "^  ambot (ground, marine)$" "$TR" --mode ground --robot nobot
+expect_fail "robot without that mode: exit 2, the robots with it" 2 "^  drivocopter (flight, ground)$" \
+  "$TR" --mode flight --robot ambot --solve 0,0,0,0,0,0 1,0,0,0,0,0
+mkdir -p "$T/onlydi"
+cp trainer/params/di.yaml "$T/onlydi/mydi.yaml"
+expect_fail "the list follows HYLO_PARAMS_DIR" 2 "^  mydi (di_neg, di_pos)$" env HYLO_PARAMS_DIR="$T/onlydi" "$TR" --mode di_neg
 expect_fail "unknown mode: exit 2" 2 "unknown mode 'swim'" "$TR" --mode swim --robot ambot --solve 0 0
 expect_fail "unknown robot: exit 2 naming the file" 2 "trainer/params/nobot.yaml" "$TR" --mode ground --robot nobot --solve 0 0
 expect_fail "malformed --solve vector: exit 2" 2 "'x' in '0,x,0,0'" "$TR" --mode ground --robot ambot --solve 0,x,0,0 1,0,0,0
@@ -184,7 +202,7 @@ if grep -q "^refine_within: inf$" "$T/rwinf/di_neg.csv.meta" && grep -A3 -- "--r
   tap_ok "--refine-within inf is recorded in the .meta; --help gives its default"
 else tap_not_ok "--refine-within inf is recorded in the .meta; --help gives its default" "$(grep refine "$T/rwinf/di_neg.csv.meta")"; fi
 
-# --mode switch: the robot's switches (models.md section 6).
+# --mode switch: the robot's switches (docs/models.md section 6).
 if "$TR" --mode switch --robot ambot --json > "$T/sw.json" &&
    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); s=[(x["from"],x["to"],x["cost_j"]) for x in d["switches"]]; assert s == [("ground","marine",0),("marine","ground",0)], s' "$T/sw.json"; then
   tap_ok "--mode switch: Ambot's two shoreline switches at no cost"

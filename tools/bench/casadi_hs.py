@@ -2,7 +2,7 @@
 """The trainer's bare Hermite-Simpson solves, redone with CasADi (PyPI casadi,
 Ipopt inside) for make bench: the same transcription (separated form,
 piecewise-linear input, same segments, bounds, initial guess, T guess,
-scaling, tolerance and Ipopt options) of models.md's dynamics, written here a
+scaling, tolerance and Ipopt options) of docs/models.md's dynamics, written here a
 second time in CasADi's symbolic expressions. Reads the BVPs and hylo's
 figures that bench_trainer wrote, prints a table, writes result rows.
 
@@ -24,7 +24,7 @@ def load_params(robot):
     return y["g"], {m: v["params"] for m, v in y["modes"].items()}
 
 
-def pos_power(P):   # models.md section 1, relax 1
+def pos_power(P):   # docs/models.md section 1, relax 1
     return (P + ca.sqrt(P * P + 0.1 ** 2)) * 0.5
 
 

@@ -18,7 +18,7 @@ static void usage(FILE *f)
 	fprintf(f,
 		"usage: hylo-cost --robot R --mode M [--json] X1 X2\n"
 		"Prints the predicted energy of the edge X1 -> X2 (sampled coordinates of mode M,\n"
-		"comma-separated, models.md section 7: ground/marine px,py,vx,theta;\n"
+		"comma-separated, docs/models.md section 7: ground/marine px,py,vx,theta;\n"
 		"flight px,py,pz,vx,vy,vz; di_neg/di_pos p,v) and whether the mode's\n"
 		"feasibility classifier, if any, predicts a solution, and the model's envelope:\n"
 		"the lower bound of its cost over every heading that the planner's search may\n"

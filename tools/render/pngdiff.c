@@ -1,7 +1,7 @@
 /*
  * hylo-pngdiff: the golden-image comparator. Two images match when at most
  * a given fraction of their pixels differ by more than a per-channel
- * tolerance (goldens are tied to the Mesa version, deps.md, so exact bytes
+ * tolerance (goldens are tied to the Mesa version, docs/deps.md, so exact bytes
  * are too strict across machines). On a mismatch it says how many pixels,
  * where and by how much, and can write a diff image. --within MASK also
  * requires every differing pixel to lie on MASK's drawn pixels (grown by a

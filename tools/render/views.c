@@ -11,7 +11,7 @@
 #define LEGEND_H 30     /* pixels of the legend strip */
 #define FONT_PX 13
 #define AMBOT_LENGTH_M 0.60   /* outline drawn along the smoothed trajectory */
-#define AMBOT_WIDTH_M 0.45    /* the track width B of models.md */
+#define AMBOT_WIDTH_M 0.45    /* the track width B of docs/models.md */
 #define DRONE_ARM_M 0.35
 
 static const rgba_color BG = {0.97f, 0.97f, 0.97f, 1};

@@ -3,9 +3,8 @@
  * with -D; the workspace (struct hylo_planner) grows with them. Exceeding a
  * capacity at run time returns a status naming it (HYLO_E_CAP_*), never an
  * out-of-bounds write. The defaults hold every committed scene several times
- * over (the largest roadmap: 1,248 positions, 10,560 nodes, 32,336 adjacency
- * entries, 170,488 successor groups) in about 12 MB, plus the SVR caches'
- * memory sized by the models (hylo_planner_size).
+ * over in about 12 MB, plus the SVR caches' memory sized by the models
+ * (hylo_planner_size; docs/decisions.md, "Planner capacities").
  */
 #ifndef HYLO_CONFIG_H
 #define HYLO_CONFIG_H
@@ -79,8 +78,7 @@
 #endif
 
 /* Support vectors of one SVR model (a sanity limit: the caches' memory is
- * sized by the loaded models; the largest committed one, drivocopter_flight,
- * has 8,852), and features of one model. */
+ * sized by the loaded models), and features of one model. */
 #ifndef HYLO_MAX_SV
 #define HYLO_MAX_SV 65536
 #endif

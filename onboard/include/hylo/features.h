@@ -1,7 +1,7 @@
 /*
  * The SVR's inputs for an edge, in two steps.
  *
- * 1. Relative coordinates (models.md section 7; what a training dataset
+ * 1. Relative coordinates (docs/models.md section 7; what a training dataset
  *    stores as f0, f1, ...). The optimal cost is invariant to translation
  *    (all modes) and, for ground and marine, to rotation about z:
  *   ground, marine: (dx', dy', wrap(theta2 - theta1), vx1, vx2), where
@@ -11,11 +11,10 @@
  *   flight:         (p2 - p1, v1, v2), horizontal components rotated
  *                   into the heading of the horizontal displacement
  *                   (else of v1, else of v2): dx' = |(dx, dy)|, dy' = 0
- *                   (9). models.md has world axes (yaw is 0 by the
- *                   virtual constraint); the cost changes by at most
- *                   0.1% under a turn about z (measured at 30 and 45
- *                   degrees), and these features let every training
- *                   pair teach every heading.
+ *                   (9). docs/models.md has world axes; the cost is
+ *                   nearly invariant under a turn about z, and these
+ *                   features let every training pair teach every
+ *                   heading (docs/decisions.md).
  *   di_neg, di_pos: (p1, v1, p2, v2), absolute: the domain bound
  *                   p = 0 breaks translation invariance            (4)
  *
@@ -29,11 +28,9 @@
  *    least heading change of any path that ends at the goal (face it, drive,
  *    turn to the goal heading), and arc = |wrap(s*dtheta - 2b)|, zero when one
  *    circular arc joins the two poses. Skid-steer turning pays a Coulomb-like
- *    resistance (models.md section 3), so the cost is kinked along exactly
+ *    resistance (docs/models.md section 3), so the cost is kinked along exactly
  *    these quantities, which an RBF kernel on (dx', dy', dtheta) smooths
- *    over. They cut Ambot ground's held-out median relative error about
- *    threefold and its 95th percentile from about 20% to 12% (README,
- *    "Models", has the numbers).
+ *    over (docs/decisions.md, "Ground and marine models see 8 features").
  * The trainer computes the same features with these functions.
  */
 #ifndef HYLO_FEATURES_H

@@ -40,7 +40,7 @@ typedef enum {
 #endif
 
 /* A takeoff/landing point's flight twin hovers this high above it [m]
- * (models.md section 6). */
+ * (docs/models.md section 6). */
 #define HYLO_TAKEOFF_HEIGHT_M 1.0
 
 /* The caller's view of a decoded map_t. Nothing is copied until
