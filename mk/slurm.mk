@@ -19,12 +19,13 @@ models-slurm: $(TRAINER)
 			$(SLURM_ARGS) || exit 1; \
 	done
 
-# The gather step's checks (no Slurm needed), then the job-array scripts on a
-# throwaway single-node cluster (skipped, and said why, without root or the
-# packages; `make test` installs them).
+# The gather step's checks and the scripts run by hand (no Slurm needed), then
+# the scripts on a throwaway single-node cluster (skipped, and said why,
+# without root or the packages; `make test` installs them).
 tests/trainer/test_gather.sh: $(TRAINER)
+tests/slurm/test_slurm_scripts.sh: $(TRAINER)
 tests/slurm/test_slurm_cluster.sh: $(TRAINER)
 test: slurm-deps
-TESTS += tests/trainer/test_gather.sh tests/slurm/test_slurm_cluster.sh
+TESTS += tests/trainer/test_gather.sh tests/slurm/test_slurm_scripts.sh tests/slurm/test_slurm_cluster.sh
 
 .PHONY: slurm-deps models-slurm

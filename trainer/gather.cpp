@@ -93,6 +93,25 @@ GatherReport gather(const RobotParams &robot, const GenOptions &opt)
 	if (opt.shards < 2)
 		throw std::invalid_argument("gather needs N >= 2 shards (an unsharded run writes the dataset itself)");
 	GatherReport r;
+	GenOptions u = opt;
+	u.shard = u.shards = 1;
+	r.path = dataset_path(u);
+	// The unsharded dataset may be there already (as generation would, one of
+	// other settings with every row asked for is taken as it is), and one that
+	// the merge could not replace is reported before any shard is generated.
+	const std::string meta_path = r.path + ".meta", meta = meta_text(robot, u);
+	const std::string old_meta = read_file(meta_path), existing = read_file(r.path);
+	if (exists(r.path) || exists(meta_path)) {
+		const uint64_t rows = internal::resume_point(existing, header_line(opt.mode)).rows;
+		if ((old_meta == meta || internal::same_stream(old_meta, meta)) && rows >= opt.samples) {
+			r.merged = r.unchanged = true;
+			r.rows = opt.samples;
+			return r;
+		}
+		if (old_meta != meta)
+			throw std::invalid_argument(r.path + " exists and was made under other settings (" +
+						    meta_differences(old_meta, meta) + "); move it away to gather");
+	}
 	std::string merged;
 	for (int k = 1; k <= opt.shards; k++) {
 		std::string text;
@@ -103,29 +122,17 @@ GatherReport gather(const RobotParams &robot, const GenOptions &opt)
 			r.resubmit.push_back(k);
 		else if (r.foreign.empty() && r.resubmit.empty())
 			merged += text;
+		r.rows += c.rows;
 		r.shards.push_back(c);
 	}
-	GenOptions u = opt;
-	u.shard = u.shards = 1;
-	r.path = dataset_path(u);
 	if (!r.foreign.empty() || !r.resubmit.empty())
 		return r;
-
-	// The unsharded stream's .meta: a shard's without its samples and shard lines.
-	const std::string meta_path = r.path + ".meta", meta = meta_text(robot, u);
-	if (exists(r.path) || exists(meta_path)) {
-		const std::string old_meta = read_file(meta_path), existing = read_file(r.path);
-		if (old_meta != meta)
-			throw std::invalid_argument(r.path + " exists and was made under other settings (" +
-						    meta_differences(old_meta, meta) + "); move it away to gather");
-		if (existing.size() >= merged.size() && existing.compare(0, merged.size(), merged) == 0) {
-			r.merged = r.unchanged = true;
-			return r;
-		}
-		if (merged.compare(0, existing.size(), existing) != 0)
-			throw std::invalid_argument(r.path + " exists and holds other rows than the shards; move it away to gather");
-	}
-	// The .meta first: a dataset without one would not be resumed or fitted.
+	// A shorter unsharded dataset of this stream (an interrupted run) is
+	// replaced by the merged one, which starts with its rows.
+	if (merged.compare(0, existing.size(), existing) != 0)
+		throw std::invalid_argument(r.path + " exists and holds other rows than the shards; move it away to gather");
+	// The unsharded stream's .meta (a shard's without its samples and shard
+	// lines) first: a dataset without one would not be resumed or fitted.
 	internal::write_meta(meta_path, meta);
 	internal::write_meta(r.path, merged);
 	r.merged = true;
@@ -136,10 +143,8 @@ std::string gather_text(const GatherReport &r)
 {
 	static const char *names[] = {"ok", "missing", "incomplete", "torn", "not this stream's"};
 	std::string out;
-	const std::string n = std::to_string(r.shards.size());
-	uint64_t rows = 0;
+	const std::string n = std::to_string(r.shards.size()), rows = std::to_string(r.rows);
 	for (const ShardCheck &c : r.shards) {
-		rows += c.rows;
 		out += "shard " + std::to_string(c.shard) + "/" + n + " " + names[c.state] + ": " +
 		       (c.state == ShardCheck::ok ? std::to_string(c.rows) + " rows, " + c.path : c.detail) + "\n";
 	}
@@ -149,8 +154,8 @@ std::string gather_text(const GatherReport &r)
 	if (!r.resubmit.empty())
 		out += "resubmit: --array=" + list(r.resubmit) + "\n";
 	if (r.merged)
-		out += r.unchanged ? r.path + " already starts with these " + std::to_string(rows) + " rows; left as it is\n"
-				   : "merged " + n + " shards, " + std::to_string(rows) + " rows, into " + r.path + "\n";
+		out += r.unchanged ? r.path + " already holds the " + rows + " rows of this stream; no shard needed\n"
+				   : "merged " + n + " shards, " + rows + " rows, into " + r.path + "\n";
 	return out;
 }
 

@@ -29,16 +29,20 @@ struct GatherReport {
 	std::vector<int> resubmit;     // missing, incomplete or torn: their tasks resume them
 	std::vector<int> foreign;      // to move away (and then resubmit)
 	std::string path;              // the merged dataset
-	bool merged = false;           // every shard ok and path holds them
-	bool unchanged = false;        // path already held these rows (and maybe more): left as it was
+	uint64_t rows = 0;             // complete rows found (all of them when merged)
+	bool merged = false;           // path holds every row
+	bool unchanged = false;        // path held them already; shards not read
 };
 
-// opt is the generation's options with shards = N (shard is ignored). Checks
-// every shard against the .meta this trainer would write for it; when all are
-// complete, writes the unsharded .meta and then the dataset (each atomically:
-// a temporary file, fsync'd, renamed). An existing unsharded dataset is
-// replaced only if it is a prefix of the merged one; one holding the merged
-// rows and more is kept; anything else is an error (std::invalid_argument).
+// opt is the generation's options with shards = N (shard is ignored). When
+// the unsharded dataset already holds opt.samples rows of this stream (under
+// these settings or, as generation accepts, others) it is left as it is and
+// no shard is read. Otherwise every shard is checked against the .meta this
+// trainer would write for it; when all are complete the unsharded .meta and
+// then the dataset are written (each atomically: a temporary file, fsync'd,
+// renamed). An existing unsharded dataset is replaced only if it is of these
+// settings and a prefix of the merged one, else std::invalid_argument (before
+// any shard is read when its settings differ).
 GatherReport gather(const RobotParams &robot, const GenOptions &opt);
 
 // One line per shard and what to do, as `trainer --stage gather` prints it.

@@ -99,9 +99,20 @@ tr_di --stage gen --out "$T/sh" > "$T/resume.out"
 if grep -q "48 samples in .* (48 resumed)" "$T/resume.out" && cmp -s "$T/sh/di_neg.csv" "$T/ref/di_neg.csv"; then
 	tap_ok "an unsharded run over the merged dataset resumes all 48 rows and changes nothing"; else
 	tap_not_ok "an unsharded run over the merged dataset resumes all 48 rows" "$(cat "$T/resume.out")"; fi
-gather; expect "gathering again leaves the dataset as it is" 0 $? "already starts with these 48 rows; left as it is"
+gather; expect "gathering again leaves the dataset as it is" 0 $? "di_neg.csv already holds the 48 rows of this stream; no shard needed"
 tr_di --stage gen --samples 60 --out "$T/sh" > /dev/null
 cp "$T/sh/di_neg.csv" "$T/longer"
-gather; expect "a longer unsharded dataset of the same stream is kept" 0 $? "already starts with these 48 rows"
+rm "$(shard 2)"
+gather; expect "a longer unsharded dataset of the stream is kept, no shard needed" 0 $? "already holds the 48 rows"
 tap_check "... byte for byte" cmp "$T/sh/di_neg.csv" "$T/longer"
+# A complete dataset labelled under other settings (as the committed ones are) is taken as generation takes it.
+mkdir -p "$T/old" && head -n 49 "$T/longer" > "$T/old/di_neg.csv" && sed 's/^blas: .*/blas: another/' "$T/sh/di_neg.csv.meta" > "$T/old/di_neg.csv.meta"
+tr_di --stage gather --shards 3 --out "$T/old" > "$T/out" 2> "$T/err"; rc=$?
+if [ $rc -eq 0 ] && grep -q "already holds the 48 rows of this stream; no shard needed" "$T/out"; then
+	tap_ok "a complete dataset of this stream under other numerics needs no shard (as gen resumes it)"; else
+	tap_not_ok "a complete dataset of this stream under other numerics needs no shard" "exit $rc: $(cat "$T/out" "$T/err")"; fi
+tr_di --samples 60 --stage gather --shards 3 --out "$T/old" > "$T/out" 2> "$T/err"; rc=$?
+if [ $rc -eq 2 ] && grep -q "di_neg.csv exists and was made under other settings (blas: another vs blas: " "$T/err"; then
+	tap_ok "... but 60 rows of it are refused before any shard is read (exit 2, naming the line)"; else
+	tap_not_ok "... but 60 rows of it are refused before any shard is read" "exit $rc: $(cat "$T/out" "$T/err")"; fi
 tap_finish
