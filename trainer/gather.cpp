@@ -47,6 +47,8 @@ ShardCheck check_shard(const RobotParams &robot, GenOptions o, int k, std::strin
 	text = read_file(c.path);
 	// The trainer writes the .meta first, then the header (shard 1) and rows.
 	const std::string header = k == 1 ? header_line(o.mode) : "";
+	if (text.empty() && c.want > 0)
+		return set(ShardCheck::incomplete, "0 of " + std::to_string(c.want) + " rows");
 	if (text.compare(0, header.size(), header) != 0) {
 		if (text.size() < header.size() && header.compare(0, text.size(), text) == 0)
 			return set(ShardCheck::torn, "a torn header (" + std::to_string(text.size()) + " bytes)");

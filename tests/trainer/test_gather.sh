@@ -58,6 +58,9 @@ gather; expect "a short shard and a torn tail: named with their rows, exit 1" 1 
 	"resubmit: --array=1,3"
 printf 'index,f0' > "$(shard 1)"
 gather; expect "a torn header: named, exit 1" 1 $? "shard 1/3 torn: a torn header (8 bytes)" "resubmit: --array=1,3"
+rm "$(shard 1)"
+gather; expect "a .meta without its file (killed before a row): 0 rows, exit 1" 1 $? "shard 1/3 incomplete: 0 of 16 rows" \
+	"resubmit: --array=1,3"
 if [ ! -e "$T/sh/di_neg.csv" ] && [ ! -e "$T/sh/di_neg.csv.meta" ]; then tap_ok "nothing merged while shards are missing"; else
 	tap_not_ok "nothing merged while shards are missing"; fi
 tr_di --shard 1/3 --jobs 2 --out "$T/sh" > /dev/null && tr_di --shard 3/3 --jobs 2 --out "$T/sh" > "$T/resume3.out"
