@@ -21,6 +21,7 @@ include mk/config.mk
 include mk/msgs.mk
 include mk/onboard.mk
 include mk/trainer.mk
+include mk/slurm.mk
 include mk/bench.mk
 include mk/bench_plan.mk
 include mk/node.mk

@@ -73,14 +73,14 @@ void usage(FILE *f)
 		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required; installed:\n"
 		"                    PREFIX/share/hylo/params/R.yaml; $HYLO_PARAMS_DIR/R.yaml first)\n"
-		"  --stage S         gen, repair, fit, export or all (gen, fit, export; default:\n"
-		"                    all); export reads the header fit wrote into --out and adds\n"
-		"                    the envelope (minutes). repair: each of the dataset's first\n"
-		"                    N rows is solved again and from the solutions of its\n"
-		"                    --neighbours nearest rows (kept in <out>/<mode>.solutions.csv,\n"
-		"                    resumable); a label is only ever lowered; the dataset is\n"
-		"                    replaced atomically when every row is done (resumable, its\n"
-		"                    .meta records the repair; docs/decisions.md)\n"
+		"  --stage S         gen, repair, fit, export, all (gen, fit, export) or gather\n"
+		"                    (default: all; gen with --shard); export reads the header fit\n"
+		"                    wrote into --out and adds the envelope (minutes). repair: each\n"
+		"                    of the dataset's first N rows is solved again and from the\n"
+		"                    solutions of its --neighbours nearest rows (kept in\n"
+		"                    <out>/<mode>.solutions.csv, resumable); a label is only ever\n"
+		"                    lowered; the dataset is replaced atomically when every row is\n"
+		"                    done (resumable, its .meta records the repair; docs/decisions.md)\n"
 		"  --samples N       training pairs: gen extends the dataset to N rows, repair\n"
 		"                    and fit use its first N (default: 11520; flight 17016; di 2000)\n"
 		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
@@ -93,7 +93,12 @@ void usage(FILE *f)
 		"                    number of cores)\n"
 		"  --seed S          seed of the sample stream (default: 1)\n"
 		"  --out DIR         dataset directory (default: build/datasets/<robot>)\n"
-		"  --shard K/N       generate only the K-th of N slices of the stream (default: 1/1)\n"
+		"  --shard K/N       generate only the K-th of N slices of the stream into\n"
+		"                    <out>/<mode>.shard-K-of-N.csv (default: 1/1); gen only\n"
+		"  --shards N        gather: check the N shards in --out (same --samples, --seed\n"
+		"                    and solver options), name the ones to resubmit (exit 1) or\n"
+		"                    move away (exit 2), else merge them into <out>/<mode>.csv,\n"
+		"                    byte for byte an unsharded run's (docs/trainer.md)\n"
 		"  --segments N      collocation segments (default: 20)\n"
 		"  --ipopt-option NAME=VALUE\n"
 		"                    set an Ipopt option on every solve, after hylo's own settings\n"
@@ -250,7 +255,8 @@ std::string missing_mode_or_robot(const std::string &mode, const std::string &ro
 int run(int argc, char **argv)
 {
 	PipelineOptions po;
-	std::string mode, robot_name, solve1, solve2, stage = "all";
+	std::string mode, robot_name, solve1, solve2, stage;
+	int gather_shards = 0;
 	bool solve = false, json = false, traj = false;
 	po.gen.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 	long long samples = -1;
@@ -313,6 +319,8 @@ int run(int argc, char **argv)
 			po.models_dir = val();
 		} else if (a == "--segments") {
 			po.gen.solve.segments = static_cast<int>(integer(2));
+		} else if (a == "--shards") {
+			gather_shards = static_cast<int>(integer(2));
 		} else if (a == "--shard") {
 			std::string v = val();
 			int k = 0, n = 0;
@@ -365,8 +373,18 @@ int run(int argc, char **argv)
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;
 	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(mode);
-	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all")
-		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, all)");
+	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
+		stage = po.gen.shards > 1 ? "gen" : "all";
+	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&
+	    stage != "gather")
+		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, all, gather)");
+	if (stage == "gather") {
+		if (gather_shards == 0 || po.gen.shards > 1)
+			throw Usage("--stage gather needs --shards N (the N of the tasks' --shard K/N), not --shard");
+		po.gen.shards = gather_shards;
+	} else if (gather_shards != 0) {
+		throw Usage("--shards N is for --stage gather; a shard task takes --shard K/N");
+	}
 	return run_pipeline(robot, po, stage);
 }
 

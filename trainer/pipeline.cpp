@@ -10,6 +10,7 @@
 
 #include "trainer/collocation.hpp"
 #include "trainer/envelope.hpp"
+#include "trainer/gather.hpp"
 #include "trainer/repair.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
@@ -254,6 +255,24 @@ uint64_t default_samples(const std::string &mode)
 
 int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage)
 {
+	// A shard is a slice of the stream, not a dataset: fitting it, or a stale
+	// unsharded file beside it, would be wrong. The gather step makes the dataset.
+	if (opt.gen.shards > 1 && stage != "gen" && stage != "gather")
+		throw std::invalid_argument("--shard K/N only generates (--stage gen); gather the N shards with "
+					    "--stage gather --shards N, then run --stage " + stage + " without --shard");
+	if (stage == "gather") {
+		GatherReport r = gather(robot, opt.gen);
+		std::printf("gather %s %s: %d shards of %llu samples, seed %llu\n%s", robot.robot.c_str(),
+			    opt.gen.mode.c_str(), opt.gen.shards, static_cast<unsigned long long>(opt.gen.samples),
+			    static_cast<unsigned long long>(opt.gen.seed), gather_text(r).c_str());
+		if (!r.foreign.empty())
+			std::fprintf(stderr, "trainer: gather: %zu shard(s) not of this stream or settings; see above\n",
+				     r.foreign.size());
+		else if (!r.resubmit.empty())
+			std::fprintf(stderr, "trainer: gather: %zu of %d shards to resubmit\n", r.resubmit.size(),
+				     opt.gen.shards);
+		return !r.foreign.empty() ? 2 : !r.resubmit.empty() ? 1 : 0;
+	}
 	if (stage == "gen" || stage == "all") {
 		GenSummary s = generate(robot, opt.gen);
 		std::printf("gen %s %s: %llu samples in %s (%llu resumed), %llu converged, %llu rejected, %.1f s\n",

@@ -23,9 +23,12 @@ struct PipelineOptions {
 // The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000 (di).
 uint64_t default_samples(const std::string &mode);
 
-// Runs stage "gen", "repair", "fit", "export" or "all" (gen, fit, export);
-// returns the exit code. "repair" repairs the dataset's first samples rows
-// (trainer/repair.hpp).
+// Runs stage "gen", "repair", "fit", "export", "all" (gen, fit, export) or
+// "gather"; returns the exit code. "repair" repairs the dataset's first
+// samples rows (trainer/repair.hpp). "gather" (gen.shards = N) checks and
+// merges the N shards (trainer/gather.hpp): exit 1 when some are to be
+// resubmitted, 2 when some are not this stream's. A sharded run (N > 1)
+// only generates: other stages throw std::invalid_argument.
 // "fit" writes <out>/<robot>_<mode>.h (the fitted model) and
 // <out>/<mode>.fit.json; "export" reads that header, adds the envelope
 // (ground, marine, flight; trainer/envelope.hpp) and writes the result into
