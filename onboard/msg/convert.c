@@ -50,6 +50,8 @@ void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 	/* Negative: refused by hylo_msg_check_goal; 0 (no limit) if it gets here. */
 	g->max_expansions = msg->max_expansions < 0 ? 0 : (uint64_t)msg->max_expansions;
 	g->suboptimality = msg->suboptimality;
+	g->alternatives = count(msg->alternatives);
+	g->alternatives_within = msg->alternatives_within;
 }
 
 int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome)

@@ -145,6 +145,8 @@ hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
 	skip(&w, 8, "time_budget_ms");
 	get_count(&w, "max_expansions");
 	skip(&w, 8, "suboptimality");
+	skip(&w, 1, "alternatives");
+	skip(&w, 8, "alternatives_within");
 	return finish(&w);
 }
 

@@ -43,6 +43,44 @@ static void publish(hylo_node *node, const hylo_plan_t *msg)
 	}
 }
 
+/*
+ * The alternatives of the plan just published (goal.alternatives >= 2), one
+ * plan_alternative_t each, cheapest first. Each is extracted into the node's
+ * plan in turn (its path fields; the rest stays the goal's plan's), so the
+ * plan must be published before this.
+ */
+static void publish_alternatives(hylo_node *node, int64_t utime)
+{
+	hylo_plan *plan = node->plan;
+	uint32_t k, n = plan->n_alternatives;
+	hylo_plan_alternative_t alt;
+	int r;
+
+	if (node->current.goal.alternatives < 2 || plan->status != HYLO_OK)
+		return;
+	for (k = 0; k < n; k++) {
+		if (hylo_planner_alternative(node->planner, k, plan) != HYLO_OK)
+			return;
+		memset(&alt, 0, sizeof alt);
+		alt.utime = utime;
+		alt.request_id = plan->request_id;
+		alt.index = (int32_t)k;
+		alt.count = (int32_t)n;
+		alt.mode_changes = (int32_t)plan->alternative_switches[k];
+		hylo_msg_plan(plan, utime, node->msg_buf, &alt.plan);
+		pthread_mutex_lock(&node->pub_lock);
+		r = hylo_plan_alternative_t_publish(node->out, node->ch_alternative, &alt);
+		pthread_mutex_unlock(&node->pub_lock);
+		if (r != 0) {
+			node->n_publish_errors++;
+			if (node->log)
+				fprintf(node->log, "hylo-planner: could not publish on %s\n",
+					node->ch_alternative);
+			return;
+		}
+	}
+}
+
 static void log_request(hylo_node *node, const hylo_plan *plan)
 {
 	int8_t st = hylo_msg_plan_status(plan->status, plan->outcome);
@@ -409,6 +447,7 @@ int hylo_node_step(hylo_node *node)
 {
 	hylo_node_slot *cur = &node->current;
 	hylo_plan_t msg;
+	int64_t utime;
 	int took_map = take_map(node);
 
 	pthread_mutex_lock(&node->lock);
@@ -425,9 +464,11 @@ int hylo_node_step(hylo_node *node)
 	cur->goal.headings = cur->headings;
 	cur->goal.air_speeds = cur->air_speeds;
 	hylo_planner_plan(node->planner, &cur->goal, node->plan);
-	hylo_msg_plan(node->plan, utime_now(), node->msg_buf, &msg);
+	utime = utime_now();
+	hylo_msg_plan(node->plan, utime, node->msg_buf, &msg);
 	publish(node, &msg);
 	log_request(node, node->plan);
+	publish_alternatives(node, utime);
 
 	pthread_mutex_lock(&node->lock);
 	node->n_planned++;
@@ -521,6 +562,7 @@ int hylo_node_init(hylo_node *node, lcm_t *in, lcm_t *out, const char *prefix,
 	if (channel(node->ch_map, prefix, "HYLO_MAP", log) ||
 	    channel(node->ch_goal, prefix, "HYLO_GOAL", log) ||
 	    channel(node->ch_plan, prefix, "HYLO_PLAN", log) ||
+	    channel(node->ch_alternative, prefix, "HYLO_PLAN_ALTERNATIVE", log) ||
 	    channel(node->ch_status, prefix, "HYLO_STATUS", log))
 		goto fail;
 	/* Raw subscriptions: a goal that does not decode still gets an answer. */

@@ -1,6 +1,7 @@
 /*
  * The LCM planner node: subscribes <prefix>HYLO_MAP and <prefix>HYLO_GOAL,
- * answers every goal with exactly one <prefix>HYLO_PLAN and reports maps and
+ * answers every goal with exactly one <prefix>HYLO_PLAN (and, when the goal
+ * asks for alternatives, one <prefix>HYLO_PLAN_ALTERNATIVE each) and reports maps and
  * counters on <prefix>HYLO_STATUS. Messages are checked (onboard/msg/wire.c)
  * and decoded here, at the edge; the planning core only sees views and keeps
  * its no-allocation guarantee. One log line per request.
@@ -30,6 +31,7 @@
 #include "hylo/planner.h"
 #include "hylo_msg.h"
 #include "hylo_node_status_t.h"
+#include "hylo_plan_alternative_t.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -75,6 +77,7 @@ typedef struct {
 	hylo_plan_msg_buf *msg_buf;
 	char ch_map[HYLO_NODE_CHANNEL_LEN], ch_goal[HYLO_NODE_CHANNEL_LEN];
 	char ch_plan[HYLO_NODE_CHANNEL_LEN], ch_status[HYLO_NODE_CHANNEL_LEN];
+	char ch_alternative[HYLO_NODE_CHANNEL_LEN];
 	FILE *log;                      /* one line per request; NULL: silent */
 	int verbose;
 	int32_t recv_buf_bytes;         /* reported in node_status_t */

@@ -112,6 +112,9 @@ hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_
 	pl->roadmap.built = 0;
 	pl->cache.enabled = 0;
 	pl->h_valid = 0;
+	pl->n_found = 0;
+	pl->layers = 1;
+	pl->layer_stride = 0;
 	pl->n_goal_adj = 0;
 	pl->n_start_adj = 0;
 	memset(pl->links_goal, 0, sizeof pl->links_goal);
@@ -201,6 +204,7 @@ static hylo_status ingest_map(hylo_planner *pl, const hylo_map_view *map)
 	pl->has_map = 0;
 	pl->roadmap.built = 0;
 	pl->h_valid = 0;
+	pl->n_found = 0;
 	pl->map_generation++;
 	st = hylo_map_ingest(&pl->map, map, &pl->reason);
 	if (st != HYLO_OK)
@@ -396,6 +400,14 @@ hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "suboptimality %g must be 0 (the optimum) or a finite number >= 1",
 				 g->suboptimality);
+	if (isnan(g->alternatives_within) || (g->alternatives_within != 0 && g->alternatives_within < 1))
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "alternatives_within %g must be 0 (the default, %g) or >= 1",
+				 g->alternatives_within, HYLO_ALTERNATIVES_WITHIN);
+	if (g->alternatives > HYLO_MAX_ALTERNATIVES)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "alternatives %lu: at most HYLO_MAX_ALTERNATIVES = %d",
+				 (unsigned long)g->alternatives, HYLO_MAX_ALTERNATIVES);
 	grids[0] = g->speeds;
 	grids[1] = g->headings;
 	grids[2] = g->air_speeds;
@@ -518,7 +530,7 @@ static hylo_status connect_terminals(hylo_planner *pl, const hylo_goal *g, hylo_
 
 static hylo_real node_heuristic(void *ctx, uint32_t u)
 {
-	return hylo_planner_h((const hylo_planner *)ctx, u);
+	return hylo_planner_search_h((const hylo_planner *)ctx, u);
 }
 
 /* ---- plan extraction --------------------------------------------------- */
@@ -552,7 +564,7 @@ static void fill_plan(hylo_planner *pl, const uint32_t *path, const hylo_real *c
 	plan->total_cost = plan->cost[n - 1];
 }
 
-/* The search's path to the goal node. */
+/* The search's path to its node goal_node (the goal, or a copy of it). */
 static hylo_status extract(hylo_planner *pl, uint32_t goal_node, hylo_plan *plan)
 {
 	uint32_t k, n;
@@ -562,10 +574,48 @@ static hylo_status extract(hylo_planner *pl, uint32_t goal_node, hylo_plan *plan
 			      &pl->reason);
 	if (st != HYLO_OK)
 		return st;
-	for (k = 0; k < n; k++)
+	for (k = 0; k < n; k++) {
 		pl->path_cost[k] = hylo_search_cost(&pl->search, pl->path[k]);
+		pl->path[k] = hylo_planner_graph_node(pl, pl->path[k]);
+	}
 	fill_plan(pl, pl->path, pl->path_cost, n, plan);
 	return HYLO_OK;
+}
+
+/* Changes of travel mode on the search's best path to its node v (moves
+ * are edges within a mode; a switch edge alone changes nothing). */
+static uint32_t switches_to(const hylo_planner *pl, uint32_t v)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t n = 0, steps = 0, u;
+	int last = -1;
+
+	for (u = hylo_search_parent(&pl->search, v); u != HYLO_NO_NODE && steps < pl->search.n_nodes;
+	     v = u, u = hylo_search_parent(&pl->search, u), steps++) {
+		int mu = rm->pos[rm->node_pos[hylo_planner_graph_node(pl, u)]].mode;
+		int mv = rm->pos[rm->node_pos[hylo_planner_graph_node(pl, v)]].mode;
+
+		if (mu != mv)
+			continue;
+		n += last >= 0 && mu != last;
+		last = mu;
+	}
+	return n;
+}
+
+/* The same for a plan's waypoints: consecutive ones in one mode are a move. */
+static uint32_t travel_changes(const hylo_plan *plan)
+{
+	uint32_t n = 0, w;
+	int last = -1;
+
+	for (w = 1; w < plan->n_waypoints; w++) {
+		if (plan->mode[w] != plan->mode[w - 1])
+			continue;
+		n += last >= 0 && plan->mode[w] != last;
+		last = plan->mode[w];
+	}
+	return n;
 }
 
 /* ---- planning ---------------------------------------------------------- */
@@ -584,6 +634,8 @@ static void plan_begin(const hylo_planner *pl, const hylo_goal *g, hylo_plan *pl
 	plan->lower_bound = 0;
 	plan->n_waypoints = 0;
 	plan->n_modes = 0;
+	plan->n_alternatives = 0;
+	plan->max_switches = 0;
 	plan->n_nodes = 0;
 	plan->n_edges = 0;
 	plan->n_edges_evaluated = 0;
@@ -654,24 +706,31 @@ static hylo_status finish(hylo_planner *pl, hylo_plan *plan)
 
 	if (plan->outcome == HYLO_FOUND) {
 		plan->lower_bound = 0;
+		pl->n_found = 1;
+		pl->found[0] = goal;
 		return extract(pl, goal, plan);
 	}
 	if (plan->outcome == HYLO_NO_PATH) {
 		if (pl->walk_len > 0) {
 			walk_plan(pl, plan);
 			plan->outcome = HYLO_FOUND;
+			pl->n_found = 1;
+			pl->found[0] = HYLO_NO_NODE;
 		}
 		return HYLO_OK;
 	}
 	if (!isfinite(reached) && pl->walk_len == 0)
 		return HYLO_OK;
+	pl->n_found = 1;
 	if (isfinite(reached) && !(pl->walk_len > 0 && pl->bound <= reached)) {
 		hylo_status st = extract(pl, goal, plan);
 
 		if (st != HYLO_OK)
 			return st;
+		pl->found[0] = goal;
 	} else {
 		walk_plan(pl, plan);
+		pl->found[0] = HYLO_NO_NODE;
 	}
 	plan->outcome = HYLO_FOUND_UNPROVEN;
 	lower = pl->use_heuristic && pl->weight == 1 ? hylo_search_min_key(&pl->search) : 0;
@@ -688,6 +747,9 @@ static void reset_counts(hylo_planner *pl)
 	pl->n_cached = 0;
 	pl->walk_len = 0;
 	pl->bound = INFINITY;
+	pl->n_found = 0;
+	pl->layers = 1;
+	pl->layer_stride = pl->roadmap.n_nodes + 2;
 }
 
 static void report_counts(const hylo_planner *pl, hylo_plan *plan)
@@ -700,6 +762,41 @@ static void report_counts(const hylo_planner *pl, hylo_plan *plan)
 	plan->n_infeasible = pl->n_infeasible;
 }
 
+/* Copies of the graph for k alternatives: one per number of mode switches
+ * so far, as many as HYLO_MAX_SWITCH_LAYERS and HYLO_MAX_NODES allow (the
+ * last holds that many switches or more); 1 (the graph) for one plan. */
+static uint32_t layers_for(const hylo_planner *pl, uint32_t k)
+{
+	uint32_t l = HYLO_MAX_NODES / pl->layer_stride;
+
+	if (k <= 1 || l < 2)
+		return 1;
+	return l < HYLO_MAX_SWITCH_LAYERS ? l : HYLO_MAX_SWITCH_LAYERS;
+}
+
+/*
+ * After a search over copies of the graph: the goal copies it closed are the
+ * best paths of distinct mode sequences, cheapest first (each the optimum
+ * of its number of switches on the roadmap, or w times it). The plan is the
+ * first; the budget cuts only the later ones.
+ */
+static hylo_status finish_alternatives(hylo_planner *pl, hylo_plan *plan)
+{
+	uint32_t k, n = hylo_search_n_found(&pl->search);
+
+	if (n == 0)
+		return HYLO_OK;
+	plan->outcome = HYLO_FOUND;
+	plan->lower_bound = 0;
+	pl->n_found = n;
+	for (k = 0; k < n; k++) {
+		pl->found[k] = hylo_search_found(&pl->search, k);
+		plan->alternative_cost[k] = hylo_search_cost(&pl->search, pl->found[k]);
+		plan->alternative_switches[k] = switches_to(pl, pl->found[k]);
+	}
+	return extract(pl, pl->found[0], plan);
+}
+
 static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, double t0)
 {
 	hylo_roadmap *rm = &pl->roadmap;
@@ -707,34 +804,47 @@ static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan,
 	hylo_graph graph;
 	hylo_status st = HYLO_OK;
 	double deadline = g->time_budget_ms > 0 ? t0 + g->time_budget_ms : INFINITY;
+	uint32_t goals[HYLO_MAX_SEARCH_GOALS], k, want;
+	hylo_real within = g->alternatives_within > 0 ? g->alternatives_within : HYLO_ALTERNATIVES_WITHIN;
 
 	memset(&unlimited, 0, sizeof unlimited);
 	memset(&budget, 0, sizeof budget);
 	budget.clock = pl->cfg.clock;
 	budget.clock_ctx = pl->cfg.clock_ctx;
 	pl->use_heuristic = g->algorithm == HYLO_ASTAR;
+	pl->h_reach = g->alternatives > 1 && within > HYLO_HEURISTIC_REACH ? within : HYLO_HEURISTIC_REACH;
 	if (pl->use_heuristic)
 		st = hylo_planner_heuristic(pl, &unlimited);
 	if (st != HYLO_OK)
 		return st;
-	if (pl->use_heuristic)
+	/* The walk's bound would prune every path dearer than the best. */
+	pl->layers = layers_for(pl, g->alternatives);
+	pl->layer_mode[0] = (uint8_t)g->start_mode;
+	pl->layer_mode[1] = pl->robot->n_modes == 2 && (int)pl->robot->modes[0].mode == g->start_mode
+				    ? (uint8_t)pl->robot->modes[1].mode
+				    : (uint8_t)pl->robot->modes[0].mode;
+	plan->max_switches = pl->layers - 1;
+	if (pl->use_heuristic && pl->layers == 1)
 		pl->bound = hylo_planner_greedy_walk(pl, deadline);
 	budget.max_expansions = g->max_expansions;
 	budget.time_budget_ms = g->time_budget_ms > 0 ? deadline - now_ms(pl) : 0;
 	plan->outcome = HYLO_BUDGET_EXHAUSTED;
 	if (g->time_budget_ms > 0 && budget.time_budget_ms <= 0)
 		return finish(pl, plan);
-	graph.n_nodes = rm->n_nodes + 2;
+	graph.n_nodes = pl->layer_stride * pl->layers;
 	graph.expand = hylo_planner_expand;
 	graph.resolve = hylo_planner_resolve;
 	graph.heuristic = pl->use_heuristic ? node_heuristic : NULL;
 	graph.weight = pl->weight;
 	graph.ctx = pl;
-	st = hylo_search_run(&pl->search, &graph, rm->n_nodes, rm->n_nodes + 1, &budget,
-			     &plan->outcome, &pl->reason);
+	for (k = 0; k < pl->layers; k++)
+		goals[k] = k * pl->layer_stride + rm->n_nodes + 1;
+	want = pl->layers == 1 ? 1 : g->alternatives < pl->layers ? g->alternatives : pl->layers;
+	st = hylo_search_run_goals(&pl->search, &graph, rm->n_nodes, goals, pl->layers, want,
+				   within, &budget, &plan->outcome, &pl->reason);
 	if (st != HYLO_OK)
 		return st;
-	return finish(pl, plan);
+	return pl->layers == 1 ? finish(pl, plan) : finish_alternatives(pl, plan);
 }
 
 static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, double t0)
@@ -760,7 +870,32 @@ static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, do
 	reset_counts(pl);
 	st = search(pl, g, plan, t0);
 	report_counts(pl, plan);
+	if (st == HYLO_OK && pl->n_found > 0) {
+		plan->n_alternatives = pl->n_found;
+		if (pl->layers == 1) {
+			plan->alternative_cost[0] = plan->total_cost;
+			plan->alternative_switches[0] = travel_changes(plan);
+		}
+	} else {
+		pl->n_found = 0;
+	}
 	return st;
+}
+
+hylo_status hylo_planner_alternative(hylo_planner *pl, uint32_t k, hylo_plan *plan)
+{
+	if (!pl || !plan)
+		return pl ? hylo_fail(&pl->reason, HYLO_E_NULL, "hylo_planner_alternative: NULL argument")
+			  : HYLO_E_NULL;
+	if (k >= pl->n_found)
+		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
+				 "alternative %lu: the last plan has %lu", (unsigned long)k,
+				 (unsigned long)pl->n_found);
+	if (pl->found[k] == HYLO_NO_NODE) {
+		walk_plan(pl, plan);
+		return HYLO_OK;
+	}
+	return extract(pl, pl->found[k], plan);
 }
 
 hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan *plan)
@@ -779,6 +914,7 @@ hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan
 	} else {
 		t0 = now_ms(pl);
 		hylo_reason_clear(&pl->reason);
+		pl->n_found = 0;
 		st = run(pl, goal, plan, t0);
 		plan->plan_ms = now_ms(pl) - t0;
 		if (st == HYLO_OK && plan->outcome != HYLO_FOUND)

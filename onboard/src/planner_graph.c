@@ -395,20 +395,59 @@ static hylo_status evaluate(hylo_planner *pl, uint32_t i, uint32_t c, const hylo
 }
 
 /* What a group's heads are offered for: the search (s) with A*'s pruning, or
- * the greedy walk (heads whose heuristic is below h_below). */
+ * the greedy walk (heads whose heuristic is below h_below). With layers
+ * (alternatives), the search's node of graph node v in layer l is
+ * l * layer_stride + v; a head's layer is given by the edge's kind (move:
+ * along a mode; swap: a switch edge). */
 typedef struct {
 	hylo_search *s;       /* NULL for the walk: nothing is closed */
+	uint32_t tail;        /* the tail's node in the search */
+	uint32_t move, swap;  /* layer offsets of the heads of moves and of switches */
 	hylo_real g;          /* cost of the tail */
 	hylo_real h_below;    /* +inf: every head */
 } offer;
 
+uint32_t hylo_planner_graph_node(const hylo_planner *pl, uint32_t u)
+{
+	return pl->layers > 1 ? u % pl->layer_stride : u;
+}
+
+hylo_real hylo_planner_search_h(const hylo_planner *pl, uint32_t u)
+{
+	return pl->h_node[hylo_planner_graph_node(pl, u)];
+}
+
+/*
+ * Layer l counts the changes of mode between the stretches a path has
+ * travelled so far: its travel mode is the start's for even l, the other
+ * one for odd l. A move in another mode than that starts a new stretch
+ * (l + 1, at most the last layer); a switch edge alone does not, so
+ * switching to and fro at one guard is no new sequence.
+ */
+static void offer_for(const hylo_planner *pl, hylo_search *s, uint32_t u, offer *o)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t layer = pl->layers > 1 ? u / pl->layer_stride : 0, next = layer;
+	uint8_t mode = rm->pos[rm->node_pos[hylo_planner_graph_node(pl, u)]].mode;
+
+	if (layer + 1 < pl->layers && mode != pl->layer_mode[layer % 2])
+		next = layer + 1;
+	o->s = s;
+	o->tail = u;
+	o->move = next * pl->layer_stride;
+	o->swap = layer * pl->layer_stride;
+	o->g = hylo_search_cost(s, u);
+	o->h_below = INFINITY;
+}
+
 /* 1 when head v is worth a cost: open, able to reach the goal, and (A*)
  * possibly on a path cheaper than the walk's with an edge of cost at
  * least lb. */
-static int wanted(const hylo_planner *pl, const offer *o, uint32_t v, hylo_real lb, hylo_real *hv)
+static int wanted(const hylo_planner *pl, const offer *o, uint32_t v, uint32_t layer, hylo_real lb,
+		  hylo_real *hv)
 {
 	*hv = pl->use_heuristic ? hylo_planner_h(pl, v) : 0;
-	if (o->s && hylo_search_closed(o->s, v))
+	if (o->s && hylo_search_closed(o->s, layer + v))
 		return 0;
 	if (pl->use_heuristic && !isfinite(*hv))
 		return 0;
@@ -457,7 +496,7 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 	for (c2 = 0; c2 < q->n_combos; c2++) {
 		got[c2] = NAN;
-		if (!wanted(pl, o, q->node_base + c2, lb[c2], &hv))
+		if (!wanted(pl, o, q->node_base + c2, o->move, lb[c2], &hv))
 			continue;
 		if (cached && !isnan(cached[c2]))
 			got[c2] = cached[c2];
@@ -476,7 +515,7 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 		if (isfinite(got[c2]) &&
 		    !(pl->use_heuristic && o->s &&
 		      o->g + got[c2] + hylo_planner_h(pl, q->node_base + c2) > pl->bound * (1 + BOUND_SLACK)))
-			st = emit(pl, q->node_base + c2, got[c2], heads, costs, cap, n);
+			st = emit(pl, o->move + q->node_base + c2, got[c2], heads, costs, cap, n);
 	return st;
 }
 
@@ -504,13 +543,13 @@ static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uin
 	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++) {
 		hylo_real b = lb[c2], f;
 
-		if (!wanted(pl, o, q->node_base + c2, b, &hv))
+		if (!wanted(pl, o, q->node_base + c2, o->move, b, &hv))
 			continue;
 		if (cached && !isnan(cached[c2])) {
 			pl->n_cached++;
 			if (isfinite(cached[c2]) &&
 			    !(pl->use_heuristic && o->g + cached[c2] + hv > pl->bound * (1 + BOUND_SLACK)))
-				st = emit(pl, q->node_base + c2, cached[c2], heads, costs, cap, n);
+				st = emit(pl, o->move + q->node_base + c2, cached[c2], heads, costs, cap, n);
 			continue;
 		}
 		need = 1;
@@ -520,7 +559,7 @@ static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uin
 	}
 	if (st != HYLO_OK || !need)
 		return st;
-	if (pl->use_heuristic && o->s && hylo_search_defer(o->s, u, group, key))
+	if (pl->use_heuristic && o->s && hylo_search_defer(o->s, o->tail, group, key))
 		return HYLO_OK;
 	return resolve_group(pl, o, u, group, j, heads, costs, cap, n);
 }
@@ -541,8 +580,8 @@ static hylo_status switch_edges(hylo_planner *pl, const offer *o, uint32_t u, ui
 	for (k = 0; k < m && st == HYLO_OK; k++) {
 		uint32_t v = rm->pos[rm->pos[i].twin].node_base + combos[k];
 
-		if (wanted(pl, o, v, sw, &hv))
-			st = emit(pl, v, sw, heads, costs, cap, n);
+		if (wanted(pl, o, v, o->swap, sw, &hv))
+			st = emit(pl, o->swap + v, sw, heads, costs, cap, n);
 	}
 	return st;
 }
@@ -577,10 +616,8 @@ hylo_status hylo_planner_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t 
 	offer o;
 
 	(void)r;
-	o.s = s;
-	o.g = hylo_search_cost(s, u);
-	o.h_below = INFINITY;
-	return successors(pl, &o, u, heads, costs, cap, n);
+	offer_for(pl, s, u, &o);
+	return successors(pl, &o, hylo_planner_graph_node(pl, u), heads, costs, cap, n);
 }
 
 hylo_status hylo_planner_resolve(void *ctx, hylo_search *s, uint32_t u, uint32_t group,
@@ -588,7 +625,7 @@ hylo_status hylo_planner_resolve(void *ctx, hylo_search *s, uint32_t u, uint32_t
 				 hylo_reason *r)
 {
 	hylo_planner *pl = ctx;
-	uint32_t n_adj, i = pl->roadmap.node_pos[u];
+	uint32_t n_adj, v = hylo_planner_graph_node(pl, u), i = pl->roadmap.node_pos[v];
 	const uint32_t *adj = hylo_planner_neighbours(pl, i, &n_adj);
 	offer o;
 
@@ -596,11 +633,9 @@ hylo_status hylo_planner_resolve(void *ctx, hylo_search *s, uint32_t u, uint32_t
 	*n = 0;
 	if (group != HYLO_GOAL_GROUP && group >= n_adj)
 		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "resolve: node %u has no group %u",
-				 (unsigned)u, (unsigned)group);
-	o.s = s;
-	o.g = hylo_search_cost(s, u);
-	o.h_below = INFINITY;
-	return resolve_group(pl, &o, u, group, group == HYLO_GOAL_GROUP ? pl->goal_pos : adj[group],
+				 (unsigned)v, (unsigned)group);
+	offer_for(pl, s, u, &o);
+	return resolve_group(pl, &o, v, group, group == HYLO_GOAL_GROUP ? pl->goal_pos : adj[group],
 			     heads, costs, cap, n);
 }
 
@@ -622,6 +657,9 @@ hylo_real hylo_planner_greedy_walk(hylo_planner *pl, double deadline)
 
 	pl->walk_len = 0;
 	o.s = NULL;
+	o.tail = u;
+	o.move = 0;
+	o.swap = 0;
 	o.g = 0;
 	for (step = 0; step < HYLO_MAX_WAYPOINTS; step++) {
 		uint32_t best_v = goal + 1, ui = rm->node_pos[u];

@@ -12,18 +12,16 @@
  * it sees obstacles, water, mode switches and the costs of changing speed
  * and heading. One backward Dijkstra from the goal (no model evaluation, one
  * envelope lookup per edge) settles the nodes in order of their distance;
- * it stops once it has passed the start's own distance by HEURISTIC_REACH,
+ * it stops once it has passed the start's own distance by a factor (reach),
  * and every node not settled by then gets that radius R, no more: still
  * admissible and consistent (an unsettled node's distance is at least R),
  * and a node beyond R could only be on a plan costing more than R. A new
  * start on the same goal reuses the distances when it lies well inside R.
  */
 
-/* How far past the start's distance the backward search goes. */
-#define HEURISTIC_REACH 1.25
 
 /* Node ids around the graph's: the goal's, and a sentinel the search
- * reaches once the radius is HEURISTIC_REACH times the start's distance. */
+ * reaches once the radius is pl->h_reach times the start's distance. */
 static uint32_t sentinel(const hylo_planner *pl)
 {
 	return pl->roadmap.n_nodes + 2;
@@ -102,8 +100,10 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 		return HYLO_OK;
 	j = rm->node_pos[v];
 	cj = v - rm->pos[j].node_base;
+	if (j == pl->start_pos && !isfinite(pl->h_reach))   /* every node is wanted */
+		return HYLO_OK;
 	if (j == pl->start_pos)   /* its distance is known: go on to the sentinel */
-		return push(pl, s, sentinel(pl), (HEURISTIC_REACH - 1) * hylo_search_cost(s, v), heads,
+		return push(pl, s, sentinel(pl), (pl->h_reach - 1) * hylo_search_cost(s, v), heads,
 			    costs, cap, n);
 	hylo_planner_node_state(pl, j, cj, head);
 	/* Same-mode neighbours are symmetric: j's list is also its predecessors. */
@@ -166,7 +166,7 @@ static int still_valid(hylo_planner *pl)
 	    memcmp(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs) != 0)
 		return 0;
 	d = start_distance(pl);
-	if (!(HEURISTIC_REACH * d <= pl->h_radius))
+	if (!(pl->h_reach * d <= pl->h_radius))
 		return 0;
 	pl->h_node[pl->roadmap.n_nodes] = d;
 	return 1;

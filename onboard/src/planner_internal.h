@@ -86,6 +86,16 @@ hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i);
 
 /* The heuristic of node u. */
 hylo_real hylo_planner_h(const hylo_planner *pl, uint32_t u);
+/* The graph node of the search's node u (alternatives search the graph's
+ * copies, one per layer: hylo_planner.layers). */
+uint32_t hylo_planner_graph_node(const hylo_planner *pl, uint32_t u);
+/* The same for the search's node u (a graph node's copy in a layer). */
+hylo_real hylo_planner_search_h(const hylo_planner *pl, uint32_t u);
+
+/* How far past the start's distance the heuristic's backward search goes
+ * for one plan; for alternatives, as far as they are sought
+ * (alternatives_within, when that is further; +inf: every node). */
+#define HYLO_HEURISTIC_REACH 1.25
 
 /* Computes h_node for the current goal (planner_heuristic.c), or keeps it
  * when the roadmap and the goal are those it was computed for. */

@@ -199,6 +199,10 @@ static void reset(hylo_search *s, uint32_t n_nodes)
 	s->stats.decrease_keys = 0;
 	s->stats.deferred = 0;
 	s->stats.resolved = 0;
+	s->n_goals = 0;
+	s->n_found = 0;
+	s->want = 0;
+	s->within = INFINITY;
 	for (i = 0; i < n_nodes; i++) {
 		s->g[i] = INFINITY;
 		s->parent[i] = HYLO_NO_NODE;
@@ -206,9 +210,11 @@ static void reset(hylo_search *s, uint32_t n_nodes)
 	}
 }
 
-static hylo_status check_args(const hylo_graph *g, uint32_t start, uint32_t goal,
-			      const hylo_budget *b, hylo_reason *r)
+static hylo_status check_args(const hylo_graph *g, uint32_t start, const uint32_t *goals,
+			      uint32_t n_goals, uint32_t want, const hylo_budget *b, hylo_reason *r)
 {
+	uint32_t k;
+
 	if (!g->expand)
 		return hylo_fail(r, HYLO_E_NULL, "hylo_search_run: graph has no expand callback");
 	if (!(g->weight >= 1) || !isfinite(g->weight))
@@ -218,11 +224,17 @@ static hylo_status check_args(const hylo_graph *g, uint32_t start, uint32_t goal
 		return hylo_fail(r, HYLO_E_CAP_NODES,
 				 "search: %lu nodes, more than HYLO_MAX_NODES = %lu",
 				 (unsigned long)g->n_nodes, (unsigned long)HYLO_MAX_NODES);
-	if (start >= g->n_nodes || goal >= g->n_nodes)
+	if (n_goals < 1 || n_goals > HYLO_MAX_SEARCH_GOALS || want < 1 || want > n_goals)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
-				 "search: start %lu or goal %lu not below n_nodes = %lu",
-				 (unsigned long)start, (unsigned long)goal,
-				 (unsigned long)g->n_nodes);
+				 "search: %lu goals, %lu wanted: need 1 <= wanted <= goals <= HYLO_MAX_SEARCH_GOALS = %d",
+				 (unsigned long)n_goals, (unsigned long)want, HYLO_MAX_SEARCH_GOALS);
+	if (start >= g->n_nodes)
+		return hylo_fail(r, HYLO_E_BAD_VALUE, "search: start %lu not below n_nodes = %lu",
+				 (unsigned long)start, (unsigned long)g->n_nodes);
+	for (k = 0; k < n_goals; k++)
+		if (goals[k] >= g->n_nodes)
+			return hylo_fail(r, HYLO_E_BAD_VALUE, "search: goal %lu not below n_nodes = %lu",
+					 (unsigned long)goals[k], (unsigned long)g->n_nodes);
 	if (isnan(b->time_budget_ms) || b->time_budget_ms < 0)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "search: time_budget_ms = %g must be >= 0", b->time_budget_ms);
@@ -230,6 +242,17 @@ static hylo_status check_args(const hylo_graph *g, uint32_t start, uint32_t goal
 		return hylo_fail(r, HYLO_E_NULL,
 				 "search: time_budget_ms = %g needs a clock", b->time_budget_ms);
 	return HYLO_OK;
+}
+
+/* At most HYLO_MAX_SEARCH_GOALS compares. */
+static int is_goal(const hylo_search *s, uint32_t v)
+{
+	uint32_t k;
+
+	for (k = 0; k < s->n_goals; k++)
+		if (s->goals[k] == v)
+			return 1;
+	return 0;
 }
 
 /* Milliseconds since t0 into *elapsed; a broken clock stops the search. */
@@ -245,8 +268,8 @@ static hylo_status clock_elapsed(const hylo_budget *b, double t0, double *elapse
 }
 
 /* Relaxes edge u -> v of cost c. Closed heads are final (consistent h). */
-static hylo_status relax(hylo_search *s, const hylo_graph *g, uint32_t goal, uint32_t u,
-			 uint32_t v, hylo_real c, hylo_reason *r)
+static hylo_status relax(hylo_search *s, const hylo_graph *g, uint32_t u, uint32_t v,
+			 hylo_real c, hylo_reason *r)
 {
 	hylo_real ng, h;
 	hylo_status st;
@@ -272,7 +295,7 @@ static hylo_status relax(hylo_search *s, const hylo_graph *g, uint32_t goal, uin
 	st = heuristic(g, v, &h, r);
 	if (st != HYLO_OK)
 		return st;
-	if (isinf(h) && v != goal) {
+	if (isinf(h) && !is_goal(s, v)) {
 		s->heap_pos[v] = SEARCH_DEAD;
 		return HYLO_OK;
 	}
@@ -291,8 +314,8 @@ static hylo_status relax(hylo_search *s, const hylo_graph *g, uint32_t goal, uin
 
 /* Expands node u, or resolves its deferred group (group != HYLO_NO_NODE),
  * and relaxes the successors it returns. */
-static hylo_status successors(hylo_search *s, const hylo_graph *g, uint32_t goal, uint32_t u,
-			      uint32_t group, hylo_reason *r)
+static hylo_status successors(hylo_search *s, const hylo_graph *g, uint32_t u, uint32_t group,
+			      hylo_reason *r)
 {
 	uint32_t k, n = 0;
 	hylo_status st;
@@ -320,16 +343,23 @@ static hylo_status successors(hylo_search *s, const hylo_graph *g, uint32_t goal
 				 (unsigned long)HYLO_MAX_SUCCESSORS);
 	s->stats.edges_evaluated += n;
 	for (k = 0; k < n; k++) {
-		st = relax(s, g, goal, u, s->heads[k], s->costs[k], r);
+		st = relax(s, g, u, s->heads[k], s->costs[k], r);
 		if (st != HYLO_OK)
 			return st;
 	}
 	return HYLO_OK;
 }
 
-static hylo_status search_loop(hylo_search *s, const hylo_graph *g, uint32_t goal,
-			       const hylo_budget *b, double t0, hylo_outcome *outcome,
-			       hylo_reason *r)
+/* When the search ends: every wanted goal closed (found), nothing left
+ * (found when some goal was), or the budget spent (found when some goal was:
+ * those are final, only the later ones are missing). */
+static hylo_outcome ended(const hylo_search *s, hylo_outcome none)
+{
+	return s->n_found > 0 ? HYLO_FOUND : none;
+}
+
+static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_budget *b,
+			       double t0, hylo_outcome *outcome, hylo_reason *r)
 {
 	hylo_status st;
 	uint32_t u;
@@ -337,12 +367,13 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, uint32_t goa
 	/* Each pass closes one node or resolves one deferred group; a node
 	 * defers at most HYLO_MAX_SUCCESSORS groups when it is closed. */
 	for (;;) {
-		if (s->heap_size == 0 && s->n_deferred == 0) {
-			*outcome = HYLO_NO_PATH;
+		if ((s->heap_size == 0 && s->n_deferred == 0) ||
+		    (s->n_found > 0 && hylo_search_min_key(s) > s->within * s->g[s->found[0]])) {
+			*outcome = ended(s, HYLO_NO_PATH);
 			return HYLO_OK;
 		}
 		if (b->max_expansions > 0 && s->stats.expansions >= b->max_expansions) {
-			*outcome = HYLO_BUDGET_EXHAUSTED;
+			*outcome = ended(s, HYLO_BUDGET_EXHAUSTED);
 			return HYLO_OK;
 		}
 		if (b->time_budget_ms > 0 && s->stats.expansions > 0 &&
@@ -353,7 +384,7 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, uint32_t goa
 			if (st != HYLO_OK)
 				return st;
 			if (elapsed >= b->time_budget_ms) {
-				*outcome = HYLO_BUDGET_EXHAUSTED;
+				*outcome = ended(s, HYLO_BUDGET_EXHAUSTED);
 				return HYLO_OK;
 			}
 		}
@@ -362,41 +393,48 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, uint32_t goa
 
 			defer_pop(s, &u, &group);
 			s->stats.resolved++;
-			st = successors(s, g, goal, u, group, r);
+			st = successors(s, g, u, group, r);
 			if (st != HYLO_OK)
 				return st;
 			continue;
 		}
 		u = heap_pop(s);
 		s->stats.expansions++;
-		if (u == goal) {
-			*outcome = HYLO_FOUND;
-			return HYLO_OK;
+		if (is_goal(s, u)) {
+			s->found[s->n_found++] = u;
+			if (s->n_found == s->want) {
+				*outcome = HYLO_FOUND;
+				return HYLO_OK;
+			}
+			continue;
 		}
-		st = successors(s, g, goal, u, HYLO_NO_NODE, r);
+		st = successors(s, g, u, HYLO_NO_NODE, r);
 		if (st != HYLO_OK)
 			return st;
 	}
 }
 
-hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
-			    uint32_t goal, const hylo_budget *budget,
-			    hylo_outcome *outcome, hylo_reason *r)
+hylo_status hylo_search_run_goals(hylo_search *s, const hylo_graph *g, uint32_t start,
+				  const uint32_t *goals, uint32_t n_goals, uint32_t want, hylo_real within,
+				  const hylo_budget *budget, hylo_outcome *outcome, hylo_reason *r)
 {
 	hylo_reason local;
 	hylo_real h;
 	double t0 = 0;
 	hylo_status st;
+	uint32_t k;
 
 	/* expand may write into r, so it always gets one. */
 	if (!r)
 		r = &local;
-	if (!s || !g || !budget || !outcome)
+	if (!s || !g || !goals || !budget || !outcome)
 		return hylo_fail(r, HYLO_E_NULL, "hylo_search_run: NULL argument");
 	*outcome = HYLO_NO_PATH;
 	/* A failed call leaves no stale results behind. */
 	reset(s, 0);
-	st = check_args(g, start, goal, budget, r);
+	st = check_args(g, start, goals, n_goals, want, budget, r);
+	if (st == HYLO_OK && !(within >= 1))
+		st = hylo_fail(r, HYLO_E_BAD_VALUE, "search: within = %g must be >= 1", within);
 	if (st != HYLO_OK)
 		return st;
 	if (budget->time_budget_ms > 0) {
@@ -405,21 +443,43 @@ hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
 			return hylo_fail(r, HYLO_E_BAD_VALUE, "search: clock returned %g", t0);
 	}
 	reset(s, g->n_nodes);
+	for (k = 0; k < n_goals; k++)
+		s->goals[k] = goals[k];
+	s->n_goals = n_goals;
+	s->want = want;
+	s->within = within;
 	s->weight = g->weight;
 	st = heuristic(g, start, &h, r);
 	if (st != HYLO_OK)
 		return st;
-	if (isinf(h) && start != goal) {
+	if (isinf(h) && !is_goal(s, start)) {
 		s->heap_pos[start] = SEARCH_DEAD;
 	} else {
 		s->g[start] = 0;
 		heap_push(s, start, s->weight * h);
 		s->stats.pushes++;
 	}
-	st = search_loop(s, g, goal, budget, t0, outcome, r);
+	st = search_loop(s, g, budget, t0, outcome, r);
 	if (st == HYLO_OK)
 		hylo_reason_clear(r);
 	return st;
+}
+
+hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
+			    uint32_t goal, const hylo_budget *budget,
+			    hylo_outcome *outcome, hylo_reason *r)
+{
+	return hylo_search_run_goals(s, g, start, &goal, 1, 1, INFINITY, budget, outcome, r);
+}
+
+uint32_t hylo_search_n_found(const hylo_search *s)
+{
+	return s ? s->n_found : 0;
+}
+
+uint32_t hylo_search_found(const hylo_search *s, uint32_t k)
+{
+	return s && k < s->n_found ? s->found[k] : HYLO_NO_NODE;
 }
 
 hylo_real hylo_search_weight(const hylo_search *s)

@@ -13,6 +13,7 @@
 #include <cmocka.h>
 
 #include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,6 +53,21 @@ static void on_plan(const lcm_recv_buf_t *rbuf, const char *channel, const hylo_
 		received[n_received++] = hylo_plan_t_copy(msg);
 }
 
+/* Alternatives received on HYLO_PLAN_ALTERNATIVE since the last reset. */
+static hylo_plan_alternative_t_subscription_t *alt_sub;
+static hylo_plan_alternative_t *alts[MAX_PLANS];
+static int n_alts;
+
+static void on_alternative(const lcm_recv_buf_t *rbuf, const char *channel,
+			   const hylo_plan_alternative_t *msg, void *user)
+{
+	(void)rbuf;
+	(void)channel;
+	(void)user;
+	if (n_alts < MAX_PLANS)
+		alts[n_alts++] = hylo_plan_alternative_t_copy(msg);
+}
+
 static void on_status(const lcm_recv_buf_t *rbuf, const char *channel,
 		      const hylo_node_status_t *msg, void *user)
 {
@@ -73,6 +89,9 @@ static void clear_received(void)
 	for (k = 0; k < n_received; k++)
 		hylo_plan_t_destroy(received[k]);
 	n_received = 0;
+	for (k = 0; k < n_alts; k++)
+		hylo_plan_alternative_t_destroy(alts[k]);
+	n_alts = 0;
 }
 
 /* Delivers what was published (admission), then lets the node work until
@@ -141,6 +160,9 @@ static void goal_msg(const hylo_goal *g, hylo_goal_t *msg)
 	msg->air_speeds_mps = (double *)g->air_speeds;
 	msg->time_budget_ms = g->time_budget_ms;
 	msg->max_expansions = (int32_t)g->max_expansions;
+	msg->suboptimality = g->suboptimality;
+	msg->alternatives = (int8_t)g->alternatives;
+	msg->alternatives_within = g->alternatives_within;
 }
 
 static void send_map(const tu_map *m)
@@ -223,6 +245,55 @@ static void test_end_to_end(void **state)
 	p = ask(&g);
 	assert_int_equal(p->status, HYLO_PLAN_T_STATUS_OK);
 	assert_same_as_library(p, &river, &g);
+}
+
+/* A goal asking for alternatives gets its plan on HYLO_PLAN as before and
+ * then each alternative on HYLO_PLAN_ALTERNATIVE, cheapest first, equal to
+ * the library's; a goal asking for one plan gets none. */
+static void test_alternatives(void **state)
+{
+	hylo_goal g = tu_goal_river();
+	const hylo_plan_t *p;
+	uint32_t k, w;
+
+	(void)state;
+	send_map(&river);
+	g.request_id = 31;
+	g.alternatives = 3;
+	g.alternatives_within = INFINITY;
+	p = ask(&g);
+	assert_int_equal(p->status, HYLO_PLAN_T_STATUS_OK);
+	assert_same_as_library(p, &river, &g);
+	assert_true(ref_plan->n_alternatives >= 2);
+	assert_int_equal(n_alts, ref_plan->n_alternatives);
+	for (k = 0; k < (uint32_t)n_alts; k++) {
+		const hylo_plan_alternative_t *a = alts[k];
+
+		assert_true(a->request_id == 31 && a->plan.request_id == 31);
+		assert_int_equal(a->index, k);
+		assert_int_equal(a->count, n_alts);
+		assert_int_equal(a->mode_changes, ref_plan->alternative_switches[k]);
+		assert_true(a->plan.total_cost_j == ref_plan->alternative_cost[k]);
+		assert_int_equal(hylo_planner_alternative(reference, k, ref_plan), HYLO_OK);
+		assert_int_equal(a->plan.n_waypoints, ref_plan->n_waypoints);
+		for (w = 0; w < ref_plan->n_waypoints; w++)
+			assert_memory_equal(a->plan.state[w], ref_plan->state[w], sizeof a->plan.state[w]);
+		if (k == 0) {
+			assert_int_equal(a->plan.n_waypoints, p->n_waypoints);
+			assert_true(a->plan.total_cost_j == p->total_cost_j);
+		}
+	}
+	g.request_id = 32;
+	g.alternatives = 1;
+	ask(&g);
+	assert_int_equal(n_alts, 0);
+	/* More than HYLO_MAX_ALTERNATIVES: a bad request naming the field. */
+	g.request_id = 33;
+	g.alternatives = HYLO_MAX_ALTERNATIVES + 1;
+	p = ask(&g);
+	assert_int_equal(p->status, HYLO_PLAN_T_STATUS_BAD_REQUEST);
+	assert_non_null(strstr(p->reason, "alternatives"));
+	assert_int_equal(n_alts, 0);
 }
 
 /* Encodes goal g into a fresh buffer; returns its length. */
@@ -692,8 +763,10 @@ static int setup(void **state)
 		return -1;
 	plan_sub = hylo_plan_t_subscribe(lcm, "HYLO_PLAN", on_plan, NULL);
 	status_sub = hylo_node_status_t_subscribe(lcm, "HYLO_STATUS", on_status, NULL);
-	if (!plan_sub || !status_sub)
+	alt_sub = hylo_plan_alternative_t_subscribe(lcm, "HYLO_PLAN_ALTERNATIVE", on_alternative, NULL);
+	if (!plan_sub || !status_sub || !alt_sub)
 		return -1;
+	hylo_plan_alternative_t_subscription_set_queue_capacity(alt_sub, 0);
 	hylo_plan_t_subscription_set_queue_capacity(plan_sub, 0);
 	tu_river(&river);
 	return 0;
@@ -706,6 +779,7 @@ static int teardown(void **state)
 	tu_map_free(&river);
 	hylo_plan_t_unsubscribe(lcm, plan_sub);
 	hylo_node_status_t_unsubscribe(lcm, status_sub);
+	hylo_plan_alternative_t_unsubscribe(lcm, alt_sub);
 	hylo_node_destroy(&node);
 	lcm_destroy(lcm);
 	free(planner);
@@ -721,6 +795,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_bad_requests),   /* first: it starts without a map */
 		cmocka_unit_test(test_end_to_end),
+		cmocka_unit_test(test_alternatives),
 		cmocka_unit_test(test_bad_messages),
 		cmocka_unit_test(test_queue_policy),
 		cmocka_unit_test(test_validation),

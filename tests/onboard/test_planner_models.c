@@ -8,6 +8,10 @@
  *  - anytime: a budget too small for the proof returns a complete plan whose
  *    every step is an edge of the graph, with the not-proven outcome and a
  *    lower bound below its cost; a time budget of 0 means no limit;
+ *  - alternatives: with goal.alternatives = K the plan lists the best paths
+ *    of up to K distinct mode-switch counts, cheapest first, each costing
+ *    what an exhaustive search over (node, switches so far) finds for its
+ *    count, each walkable, the first equal to the one-plan answer's cost;
  *  - sizing: a workspace of hylo_planner_size() bytes takes the models; one
  *    byte less is refused with a reason naming the largest model.
  */
@@ -364,6 +368,196 @@ static void test_anytime(void **state)
 	assert_int_equal(hylo_planner_init(planner, planner_bytes, &cfg), HYLO_OK);
 }
 
+/* ---- alternatives -------------------------------------------------------- */
+
+/* The graph's edges, every cost computed once: heads and costs of node u
+ * at [first[u], first[u + 1]). */
+typedef struct {
+	uint32_t n;
+	size_t *first;
+	uint32_t *head;
+	double *cost;
+} edge_list;
+
+static edge_list all_edges(hylo_planner *pl)
+{
+	const hylo_roadmap *rm = hylo_planner_roadmap(pl);
+	uint32_t *heads = malloc(HYLO_MAX_SUCCESSORS * sizeof *heads), u, m;
+	double *costs = malloc(HYLO_MAX_SUCCESSORS * sizeof *costs);
+	edge_list e;
+	size_t cap = 1 << 16, used = 0;
+
+	e.n = rm->n_nodes + 2;
+	e.first = malloc((e.n + 1) * sizeof *e.first);
+	e.head = malloc(cap * sizeof *e.head);
+	e.cost = malloc(cap * sizeof *e.cost);
+	assert_true(heads && costs && e.first && e.head && e.cost);
+	for (u = 0; u < e.n; u++) {
+		e.first[u] = used;
+		assert_int_equal(hylo_planner_successors(pl, u, heads, &m), HYLO_OK);
+		assert_int_equal(hylo_planner_edge_costs(pl, u, heads, m, costs), HYLO_OK);
+		while (used + m > cap) {
+			cap *= 2;
+			e.head = realloc(e.head, cap * sizeof *e.head);
+			e.cost = realloc(e.cost, cap * sizeof *e.cost);
+			assert_true(e.head && e.cost);
+		}
+		memcpy(e.head + used, heads, m * sizeof *heads);
+		memcpy(e.cost + used, costs, m * sizeof *costs);
+		used += m;
+	}
+	e.first[e.n] = used;
+	free(heads);
+	free(costs);
+	return e;
+}
+
+/* Exhaustive Dijkstra over (node, changes of travel mode so far, capped at
+ * layers - 1; travel modes first, other, first, ...): best[l] is the least
+ * cost of a path to the goal with l changes (l < layers - 1) or at least l
+ * (the last). O((V L)^2): small graphs only. */
+static void exhaustive_layers(hylo_planner *pl, const edge_list *e, uint32_t layers, uint8_t first,
+			      uint8_t other, double *best)
+{
+	const hylo_roadmap *rm = hylo_planner_roadmap(pl);
+	uint32_t n = e->n * layers, u, k, l;
+	double *d = malloc(n * sizeof *d);
+	char *done = calloc(n, 1);
+
+	assert_true(d && done);
+	for (u = 0; u < n; u++)
+		d[u] = INFINITY;
+	d[rm->n_nodes] = 0;
+	for (;;) {
+		double b = INFINITY;
+		size_t a;
+
+		u = n;
+		for (k = 0; k < n; k++)
+			if (!done[k] && d[k] < b) {
+				b = d[k];
+				u = k;
+			}
+		if (u == n)
+			break;
+		done[u] = 1;
+		l = u / e->n;
+		for (a = e->first[u % e->n]; a < e->first[u % e->n + 1]; a++) {
+			uint32_t v = e->head[a], lv = l;
+
+			uint8_t mu = rm->pos[rm->node_pos[u % e->n]].mode, travel = l % 2 ? other : first;
+
+			/* A move in another mode than the layer's starts a stretch. */
+			if (rm->pos[rm->node_pos[v]].mode == mu && mu != travel && lv + 1 < layers)
+				lv++;
+			if (isfinite(e->cost[a]) && d[u] + e->cost[a] < d[lv * e->n + v])
+				d[lv * e->n + v] = d[u] + e->cost[a];
+		}
+	}
+	for (l = 0; l < layers; l++)
+		best[l] = d[l * e->n + rm->n_nodes + 1];
+	free(d);
+	free(done);
+}
+
+static uint8_t other_mode(int mode)
+{
+	const hylo_robot *r = planner->robot;
+
+	return (uint8_t)(r->n_modes == 2 && (int)r->modes[0].mode == mode ? r->modes[1].mode : r->modes[0].mode);
+}
+
+/* Changes of mode between the stretches a plan travels. */
+static uint32_t travel_changes(const hylo_plan *p)
+{
+	uint32_t n = 0, w;
+	int last = -1;
+
+	for (w = 1; w < p->n_waypoints; w++)
+		if (p->mode[w] == p->mode[w - 1]) {
+			n += last >= 0 && p->mode[w] != last;
+			last = p->mode[w];
+		}
+	return n;
+}
+
+static void check_alternatives(const tu_map *m, hylo_goal g, uint32_t k_wanted, hylo_real within)
+{
+	hylo_plan *alt = malloc(sizeof *alt);
+	double best[HYLO_MAX_SWITCH_LAYERS], one, last = 0;
+	uint32_t k, l, layers, cheaper;
+	edge_list e;
+
+	assert_non_null(alt);
+	set_map(m);
+	hylo_planner_plan(planner, &g, plan);
+	assert_int_equal(plan->outcome, HYLO_FOUND);
+	assert_int_equal(plan->n_alternatives, 1);
+	assert_int_equal(hylo_planner_alternative(planner, 1, alt), HYLO_E_BAD_VALUE);
+	one = plan->total_cost;
+	g.alternatives = k_wanted;
+	g.alternatives_within = within;
+	hylo_planner_plan(planner, &g, plan);
+	assert_int_equal(plan->status, HYLO_OK);
+	assert_int_equal(plan->outcome, HYLO_FOUND);
+	assert_true(fabs(plan->total_cost - one) <= 1e-9 * one);
+	layers = plan->max_switches + 1;
+	assert_true(layers >= 2 && layers <= HYLO_MAX_SWITCH_LAYERS);
+	e = all_edges(planner);
+	exhaustive_layers(planner, &e, layers, (uint8_t)g.start_mode, other_mode(g.start_mode), best);
+	assert_true(plan->n_alternatives >= 1);
+	if (within == 0)
+		within = HYLO_ALTERNATIVES_WITHIN;
+	for (k = 0; k < plan->n_alternatives; k++) {
+		uint32_t sw = plan->alternative_switches[k], cls = sw < layers - 1 ? sw : layers - 1;
+		double c = plan->alternative_cost[k];
+
+		assert_int_equal(hylo_planner_alternative(planner, k, alt), HYLO_OK);
+		assert_walkable(planner, alt, &g);
+		assert_true(alt->total_cost == c);
+		assert_int_equal(travel_changes(alt), sw);
+		if (!(fabs(c - best[cls]) <= 1e-9 * best[cls]))
+			fail_msg("%s alternative %u (%u switches): %.12g, exhaustive %.12g", m->robot,
+				 (unsigned)k, (unsigned)sw, c, best[cls]);
+		assert_true(c >= last);
+		assert_true(c <= within * plan->total_cost);
+		last = c;
+		for (l = 0; l < k; l++) {
+			uint32_t s2 = plan->alternative_switches[l];
+
+			assert_true((s2 < layers - 1 ? s2 : layers - 1) != cls);
+		}
+	}
+	/* No class left out is cheaper than the last one listed. */
+	for (l = 0, cheaper = 0; l < layers; l++)
+		cheaper += best[l] < last * (1 - 1e-12);
+	assert_true(cheaper < plan->n_alternatives);
+	/* Fewer than asked: every class within reach is listed. */
+	if (plan->n_alternatives < k_wanted)
+		for (l = 0; l < layers; l++)
+			if (best[l] <= within * plan->total_cost)
+				assert_true(best[l] <= last);
+	free(e.first);
+	free(e.head);
+	free(e.cost);
+	free(alt);
+}
+
+static void test_alternatives(void **state)
+{
+	tu_map m;
+
+	(void)state;
+	tm_small_chasm(&m);
+	check_alternatives(&m, tm_chasm_goal(), 3, INFINITY);
+	check_alternatives(&m, tm_chasm_goal(), 3, 0);
+	tu_map_free(&m);
+	tm_small_river(&m);
+	check_alternatives(&m, tm_river_goal(), 3, INFINITY);
+	check_alternatives(&m, tm_river_goal(), 4, 1.5);
+	tu_map_free(&m);
+}
+
 /* ---- sizing ------------------------------------------------------------- */
 
 static void test_sizing(void **state)
@@ -413,6 +607,7 @@ int main(void)
 		cmocka_unit_test(test_optimal_every_robot),
 		cmocka_unit_test(test_bounds_match_envelope),
 		cmocka_unit_test(test_anytime),
+		cmocka_unit_test(test_alternatives),
 		cmocka_unit_test(test_sizing),
 	};
 

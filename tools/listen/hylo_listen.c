@@ -1,6 +1,7 @@
 /*
- * hylo-listen: prints the plans (<prefix>HYLO_PLAN) and trajectories
- * (<prefix>HYLO_TRAJ) seen on the bus, as text or as JSON lines. See --help.
+ * hylo-listen: prints the plans (<prefix>HYLO_PLAN, and their alternatives on
+ * <prefix>HYLO_PLAN_ALTERNATIVE) and trajectories (<prefix>HYLO_TRAJ) seen
+ * on the bus, as text or as JSON lines. See --help.
  * Exit codes: 0 after --count messages or a signal or the end of a file://
  * log, 1 when --timeout passes with nothing received or LCM fails, 2 usage.
  */
@@ -14,6 +15,7 @@
 #include <lcm/lcm.h>
 
 #include "hylo_node_status_t.h"
+#include "hylo_plan_alternative_t.h"
 #include "hylo_plan_t.h"
 #include "hylo_traj_t.h"
 
@@ -68,7 +70,8 @@ static void jstr(const char *s)
 	putchar('"');
 }
 
-static void print_plan_json(const hylo_plan_t *p)
+/* A plan as one JSON object (no newline). */
+static void plan_json(const hylo_plan_t *p)
 {
 	int k, j;
 
@@ -105,7 +108,13 @@ static void print_plan_json(const hylo_plan_t *p)
 	       p->n_nodes, (long long)p->n_edges, (long long)p->n_edges_evaluated,
 	       (long long)p->n_edges_cached, (long long)p->n_expansions, (long long)p->n_clamped);
 	jnum(p->plan_ms);
-	printf("}\n");
+	putchar('}');
+}
+
+static void print_plan_json(const hylo_plan_t *p)
+{
+	plan_json(p);
+	putchar('\n');
 }
 
 static void print_plan_text(const hylo_plan_t *p)
@@ -198,6 +207,33 @@ static void print_traj(const hylo_traj_t *t)
 
 static long received;
 
+/* An alternative of a plan (goal_t.alternatives >= 2), after its plan. */
+static void on_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
+			   const hylo_plan_alternative_t *a, void *u)
+{
+	int k;
+
+	(void)rbuf;
+	(void)ch;
+	(void)u;
+	if (json) {
+		printf("{\"type\":\"alternative\",\"request_id\":%lld,\"index\":%d,\"count\":%d,"
+		       "\"mode_changes\":%d,\"plan\":",
+		       (long long)a->request_id, a->index, a->count, a->mode_changes);
+		plan_json(&a->plan);
+		printf("}\n");
+	} else {
+		printf("  alternative %d of %d for plan %lld: %.6g J, %d waypoints, %d mode change%s, modes ",
+		       a->index + 1, a->count, (long long)a->request_id, a->plan.total_cost_j,
+		       a->plan.n_waypoints, a->mode_changes, a->mode_changes == 1 ? "" : "s");
+		for (k = 0; k < a->plan.n_modes; k++)
+			printf("%s%s", k ? " > " : "", mode_str(a->plan.mode_sequence[k]));
+		putchar('\n');
+	}
+	fflush(stdout);
+	received++;
+}
+
 static void on_plan(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_plan_t *msg, void *u)
 {
 	(void)rbuf;
@@ -266,7 +302,8 @@ static void usage(FILE *f)
 {
 	fprintf(f,
 		"usage: hylo-listen [options]\n"
-		"Prints every plan (<prefix>HYLO_PLAN) and smoothed trajectory (<prefix>HYLO_TRAJ).\n"
+		"Prints every plan (<prefix>HYLO_PLAN), its alternatives when the goal asked for\n"
+		"them (<prefix>HYLO_PLAN_ALTERNATIVE) and smoothed trajectory (<prefix>HYLO_TRAJ).\n"
 		"\n"
 		"  --lcm-url URL        LCM provider (default: $LCM_DEFAULT_URL, else LCM's default)\n"
 		"  --channel-prefix P   prefix of the channel names (default: none)\n"
@@ -285,7 +322,7 @@ int main(int argc, char **argv)
 {
 	const char *url = NULL, *prefix = "";
 	double timeout_s = 0;
-	char ch_plan[160], ch_traj[160], ch_status[160];
+	char ch_plan[160], ch_alternative[160], ch_traj[160], ch_status[160];
 	struct sigaction sa;
 	struct timespec last, now;
 	lcm_t *lcm;
@@ -330,6 +367,7 @@ int main(int argc, char **argv)
 		return 2;
 	}
 	snprintf(ch_plan, sizeof ch_plan, "%sHYLO_PLAN", prefix);
+	snprintf(ch_alternative, sizeof ch_alternative, "%sHYLO_PLAN_ALTERNATIVE", prefix);
 	snprintf(ch_traj, sizeof ch_traj, "%sHYLO_TRAJ", prefix);
 	snprintf(ch_status, sizeof ch_status, "%sHYLO_STATUS", prefix);
 	lcm = lcm_create(url);
@@ -341,6 +379,7 @@ int main(int argc, char **argv)
 		hylo_node_status_t_subscribe(lcm, ch_status, on_status, NULL);
 	} else {
 		hylo_plan_t_subscribe(lcm, ch_plan, on_plan, NULL);
+		hylo_plan_alternative_t_subscribe(lcm, ch_alternative, on_alternative, NULL);
 		hylo_traj_t_subscribe(lcm, ch_traj, on_traj, NULL);
 	}
 	memset(&sa, 0, sizeof sa);

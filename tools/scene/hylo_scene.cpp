@@ -27,6 +27,8 @@ void usage(FILE *f)
 		"  --start MODE:x,...     override the goal's start (e.g. ground:2,16,0,0)\n"
 		"  --goal-state MODE:x,.. override the goal's goal state\n"
 		"  --request-id N         request id of the goal (default: 1)\n"
+		"  --alternatives K       also ask for the best paths of K distinct mode sequences\n"
+		"                         (0-8; published on <prefix>HYLO_PLAN_ALTERNATIVE)\n"
 		"  --seed N               override the sampling seed\n"
 		"  --lcm-url URL          LCM provider (default: $LCM_DEFAULT_URL, else LCM's default)\n"
 		"  --channel-prefix P     prefix of the channel names (default: none)\n"
@@ -90,6 +92,8 @@ hylo::goal_t goal_message(const Scene &sc, int64_t request_id)
 	m.time_budget_ms = g.time_budget_ms;
 	m.suboptimality = g.suboptimality;
 	m.max_expansions = g.max_expansions;
+	m.alternatives = static_cast<int8_t>(g.alternatives);
+	m.alternatives_within = g.alternatives_within;
 	return m;
 }
 
@@ -116,6 +120,7 @@ int run(int argc, char **argv)
 	std::string path, url, prefix, start, goal_state;
 	bool with_goal = false, check = false, print_camera = false;
 	int64_t request_id = 1, seed = -1;
+	int alternatives = -1;
 	for (int i = 1; i < argc; i++) {
 		std::string a = argv[i];
 		auto value = [&](const char *name) -> std::string {
@@ -140,6 +145,11 @@ int run(int argc, char **argv)
 			url = value("--lcm-url");
 		} else if (a == "--channel-prefix") {
 			prefix = value("--channel-prefix");
+		} else if (a == "--alternatives") {
+			std::string v = value("--alternatives");
+			if (v.size() != 1 || v[0] < '0' || v[0] > '8')
+				throw std::invalid_argument("--alternatives needs a number from 0 to 8, not '" + v + "'");
+			alternatives = v[0] - '0';
 		} else if (a == "--request-id" || a == "--seed") {
 			std::string v = value(a.c_str());
 			size_t used = 0;
@@ -172,6 +182,8 @@ int run(int argc, char **argv)
 		sc.goal.goal = hylo::scene::parse_state(goal_state, "--goal-state");
 	if (seed >= 0)
 		sc.goal.seed = seed;
+	if (alternatives >= 0)
+		sc.goal.alternatives = alternatives;
 	if (check) {
 		summary(sc);
 		return 0;

@@ -171,7 +171,7 @@ Goal goal(const Ctx &c, const YAML::Node &n)
 	c.keys(n, "goal", {"start", "goal", "algorithm", "seed", "spacing_m", "air_spacing_m",
 			   "guard_spacing_m", "connect_radius_m", "air_connect_radius_m",
 			   "speeds_mps", "headings_rad", "air_speeds_mps", "time_budget_ms", "suboptimality",
-			   "max_expansions"});
+			   "max_expansions", "alternatives", "alternatives_within"});
 	Goal g;
 	g.start = state(c, c.need(n, "start", "goal"), "start");
 	g.goal = state(c, c.need(n, "goal", "goal"), "goal");
@@ -206,6 +206,13 @@ Goal goal(const Ctx &c, const YAML::Node &n)
 	if (n["max_expansions"])
 		g.max_expansions = static_cast<int32_t>(
 			c.integer(n["max_expansions"], "max_expansions", 0, INT32_MAX));
+	if (n["alternatives"])
+		g.alternatives = static_cast<int>(c.integer(n["alternatives"], "alternatives", 0, 8));
+	if (n["alternatives_within"]) {
+		g.alternatives_within = c.non_negative(n["alternatives_within"], "alternatives_within");
+		if (g.alternatives_within != 0 && g.alternatives_within < 1)
+			c.fail(n["alternatives_within"], "alternatives_within must be 0 (the default) or >= 1");
+	}
 	return g;
 }
 

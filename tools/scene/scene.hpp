@@ -32,6 +32,8 @@ struct Goal {
 	double time_budget_ms = 0;
 	double suboptimality = 0;        // w >= 1, 0: the optimum
 	int32_t max_expansions = 0;
+	int alternatives = 0;            // K: also the best paths of K distinct mode sequences
+	double alternatives_within = 0;  // >= 1, 0: the planner's default
 };
 
 struct Scene {

@@ -67,6 +67,24 @@
 #define HYLO_MAX_CACHED_COSTS 262144
 #endif
 
+/* Alternatives (hylo_goal.alternatives): the best paths of up to this many
+ * distinct mode sequences per plan. They come from one search over copies of
+ * the graph, one per number of mode switches so far (0, 1, ..., then "this
+ * many or more" in the last), at most HYLO_MAX_SWITCH_LAYERS copies and
+ * together at most HYLO_MAX_NODES nodes; the search's goals are the goal's
+ * copies. */
+#ifndef HYLO_MAX_ALTERNATIVES
+#define HYLO_MAX_ALTERNATIVES 8
+#endif
+#ifndef HYLO_MAX_SWITCH_LAYERS
+#define HYLO_MAX_SWITCH_LAYERS 12
+#endif
+#define HYLO_MAX_SEARCH_GOALS HYLO_MAX_SWITCH_LAYERS
+/* The default of hylo_goal.alternatives_within: alternatives predicted
+ * more than 25% dearer than the best are left out (the graph's costs are
+ * 6-23% above the smoothed ones on the paper's scenes, docs/planner.md). */
+#define HYLO_ALTERNATIVES_WITHIN 1.25
+
 /* Waypoints of one plan. */
 #ifndef HYLO_MAX_WAYPOINTS
 #define HYLO_MAX_WAYPOINTS 4096
@@ -105,6 +123,7 @@ typedef char hylo_check_nodes_cover_positions[(HYLO_MAX_NODES >= HYLO_MAX_POSITI
 typedef char hylo_check_combos_cover_grid[(HYLO_MAX_COMBOS >= HYLO_MAX_GRID) ? 1 : -1];
 typedef char hylo_check_successors_cover_combos[(HYLO_MAX_SUCCESSORS >= HYLO_MAX_COMBOS) ? 1 : -1];
 typedef char hylo_check_grid_fits_u8[(HYLO_MAX_GRID <= 256) ? 1 : -1];
+typedef char hylo_check_layers_cover_alternatives[(HYLO_MAX_SWITCH_LAYERS >= HYLO_MAX_ALTERNATIVES) ? 1 : -1];
 typedef char hylo_check_positions_fit_u32[(HYLO_MAX_NODES < 0x7fffffffL) ? 1 : -1];
 
 #endif

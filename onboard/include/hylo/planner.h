@@ -61,6 +61,11 @@ typedef struct {
 	uint64_t max_expansions;        /* 0: no limit */
 	hylo_real suboptimality;        /* w >= 1: a plan costing at most w times the
 	                                 * optimum will do (weighted A*); 0 or 1: the optimum */
+	uint32_t alternatives;          /* K <= HYLO_MAX_ALTERNATIVES: also the best paths of the
+	                                 * next cheapest distinct mode sequences, up to K in all
+	                                 * (hylo_planner_alternative); 0 or 1: the best plan only */
+	hylo_real alternatives_within;  /* only those costing at most this times the best
+	                                 * (>= 1; 0: HYLO_ALTERNATIVES_WITHIN) */
 } hylo_goal;
 
 /* The answer to one goal. status says whether the request was valid;
@@ -85,6 +90,17 @@ typedef struct {
 	uint8_t guard[HYLO_MAX_WAYPOINTS];    /* 1: a mode switch happens here */
 	uint32_t n_modes;
 	uint8_t mode_sequence[HYLO_MAX_WAYPOINTS];
+	/* The best path of each of the n_alternatives cheapest distinct mode
+	 * sequences, cheapest first; the first is this plan (n_alternatives is 1
+	 * when the goal asked for one). A sequence is the modes of the stretches
+	 * the path travels (switching to and fro at one guard travels nothing),
+	 * known by its number of changes; those with max_switches or more count
+	 * as one (HYLO_MAX_SWITCH_LAYERS and HYLO_MAX_NODES bound it).
+	 * Waypoints: hylo_planner_alternative(). */
+	uint32_t n_alternatives;
+	hylo_real alternative_cost[HYLO_MAX_ALTERNATIVES];       /* predicted [J] */
+	uint32_t alternative_switches[HYLO_MAX_ALTERNATIVES];    /* changes of travel mode on it */
+	uint32_t max_switches;
 	/* statistics */
 	uint32_t n_nodes;
 	uint64_t n_edges;
@@ -139,6 +155,7 @@ typedef struct {
 	 * while the roadmap and the goal stay (planner_heuristic.c) */
 	hylo_real h_node[HYLO_MAX_NODES];
 	hylo_real h_radius;             /* exact up to here, this beyond */
+	hylo_real h_reach;              /* h_radius >= h_reach * the start's distance */
 	int h_valid;
 	uint8_t h_goal_mode;
 	hylo_real h_goal_xs[HYLO_XS_DIM];
@@ -170,6 +187,13 @@ typedef struct {
 	hylo_real walk_costs[HYLO_MAX_SUCCESSORS];
 	/* scratch of one group's evaluation */
 	uint32_t eval_idx[HYLO_MAX_COMBOS];
+	/* alternatives: the search runs over `layers` copies of the graph of
+	 * layer_stride nodes each (1 copy: the graph itself); the goal copies it
+	 * closed, cheapest first, stay until the next goal or map */
+	uint32_t layers, layer_stride;
+	uint8_t layer_mode[2];          /* travel mode of even and odd layers */
+	uint32_t n_found;
+	uint32_t found[HYLO_MAX_ALTERNATIVES];
 } hylo_planner;
 
 /**
@@ -205,6 +229,15 @@ hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map);
  * HYLO_E_OUTSIDE_DOMAIN, HYLO_E_CAP_*, HYLO_E_BAD_COST. No allocation.
  */
 hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan *plan);
+
+/**
+ * Alternative k (0: the plan itself) of the last hylo_planner_plan, cheapest
+ * first, into plan's path fields (total_cost, waypoints, modes, mode
+ * sequence); its other fields are left as they are. Valid until the next
+ * plan or map. Errors: HYLO_E_NULL, HYLO_E_BAD_VALUE (k >= the last plan's
+ * n_alternatives). No allocation.
+ */
+hylo_status hylo_planner_alternative(hylo_planner *pl, uint32_t k, hylo_plan *plan);
 
 /**
  * Checks the fields of goal g that need no map: algorithm and mode numbers,

@@ -93,6 +93,11 @@ struct hylo_search {
 	uint32_t defer_group[HYLO_MAX_DEFERRED];
 	hylo_real defer_key[HYLO_MAX_DEFERRED];
 	hylo_real weight;                    /* of the current run */
+	uint32_t goals[HYLO_MAX_SEARCH_GOALS];  /* of the current run */
+	uint32_t n_goals, want;
+	hylo_real within;                    /* later goals: at most within * the first's cost */
+	uint32_t found[HYLO_MAX_SEARCH_GOALS];  /* goals closed, in order of cost */
+	uint32_t n_found;
 	uint32_t heads[HYLO_MAX_SUCCESSORS]; /* scratch for expand */
 	hylo_real costs[HYLO_MAX_SUCCESSORS];
 };
@@ -108,6 +113,27 @@ struct hylo_search {
 hylo_status hylo_search_run(hylo_search *s, const hylo_graph *g, uint32_t start,
                             uint32_t goal, const hylo_budget *budget,
                             hylo_outcome *outcome, hylo_reason *r);
+
+/**
+ * The same search towards several goals (goals[0 .. n_goals), at most
+ * HYLO_MAX_SEARCH_GOALS): it goes on after the first goal is closed until
+ * want of them are (1 <= want <= n_goals), or nothing is left to expand,
+ * or nothing left could reach a goal at most within (>= 1, +inf: any) times
+ * the first one's cost.
+ * Each closed goal's cost is optimal (A*: the heuristic must be consistent
+ * towards every goal). *outcome is HYLO_FOUND when at least one goal was
+ * closed (hylo_search_n_found, hylo_search_found), else HYLO_NO_PATH or
+ * HYLO_BUDGET_EXHAUSTED. Errors as hylo_search_run. No allocation.
+ */
+hylo_status hylo_search_run_goals(hylo_search *s, const hylo_graph *g, uint32_t start,
+                                  const uint32_t *goals, uint32_t n_goals, uint32_t want,
+                                  hylo_real within, const hylo_budget *budget, hylo_outcome *outcome,
+                                  hylo_reason *r);
+
+/** Goals closed by the last run, and the k-th of them in the order they were
+ * closed, i.e. of their costs (HYLO_NO_NODE beyond). */
+uint32_t hylo_search_n_found(const hylo_search *s);
+uint32_t hylo_search_found(const hylo_search *s, uint32_t k);
 
 /**
  * For expand of node u: defers a group of u's successors (group: the caller's
