@@ -73,9 +73,11 @@ void usage(FILE *f)
 		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required; installed:\n"
 		"                    PREFIX/share/hylo/params/R.yaml; $HYLO_PARAMS_DIR/R.yaml first)\n"
-		"  --stage S         gen, repair, fit, export or all (gen, fit, export; default:\n"
-		"                    all); export reads the header fit wrote into --out and adds\n"
-		"                    the envelope (minutes). repair: each of the dataset's first\n"
+		"  --stage S         gen, repair, fit, export, region or all (gen, fit, export;\n"
+		"                    default: all); export reads the header fit wrote into --out and\n"
+		"                    adds the envelope (minutes). region: writes the trained region\n"
+		"                    into the header in --models-dir from the dataset in --out it\n"
+		"                    was fitted on, changing nothing else. repair: each of the dataset's first\n"
 		"                    N rows is solved again and from the solutions of its\n"
 		"                    --neighbours nearest rows (kept in <out>/<mode>.solutions.csv,\n"
 		"                    resumable); a label is only ever lowered; the dataset is\n"
@@ -365,8 +367,9 @@ int run(int argc, char **argv)
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;
 	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(mode);
-	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all")
-		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, all)");
+	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&
+	    stage != "region")
+		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, region, all)");
 	return run_pipeline(robot, po, stage);
 }
 

@@ -1,0 +1,12 @@
+# The trained region on the committed scenes (tests/scenes/), and the models'
+# accuracy on the edges the planner asks for (tools/accuracy/).
+
+# Test: no edge the planner evaluates on a committed scene lies outside its
+# model's trained region.
+TRAINED_REGION_TEST := $(BUILD)/test/scenes/test_trained_region
+$(TRAINED_REGION_TEST): tests/scenes/test_trained_region.cpp tools/scene/planner_view.hpp \
+		$(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
+ALL_TARGETS += $(TRAINED_REGION_TEST)
+TESTS += $(TRAINED_REGION_TEST)
