@@ -10,3 +10,14 @@ $(TRAINED_REGION_TEST): tests/scenes/test_trained_region.cpp tools/scene/planner
 	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
 ALL_TARGETS += $(TRAINED_REGION_TEST)
 TESTS += $(TRAINED_REGION_TEST)
+
+# Benchmark: the models' errors on the edges the planner evaluates and the
+# edges of its plans, against the trainer's exact solves
+# (tools/bench/bench_accuracy.cpp; tools/accuracy/plot_accuracy.py draws
+# docs/accuracy/).
+BENCH_ACCURACY := $(BUILD)/bench/bin/bench_accuracy
+$(BENCH_ACCURACY): tools/bench/bench_accuracy.cpp tools/scene/planner_view.hpp $(BUILD)/obj/tools/scene/scene.o \
+		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
+BENCH_TARGETS += $(BENCH_ACCURACY)
