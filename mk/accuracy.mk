@@ -21,3 +21,11 @@ $(BENCH_ACCURACY): tools/bench/bench_accuracy.cpp tools/scene/planner_view.hpp $
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
 BENCH_TARGETS += $(BENCH_ACCURACY)
+
+# The picture in docs/accuracy/ from the last make bench's edges (or
+# ACCURACY_EDGES=path), recorded in docs/provenance.json.
+ACCURACY_EDGES ?= $(BUILD)/bench/work/accuracy_edges.csv
+accuracy-picture: venv-report
+	.venv/bin/python tools/accuracy/plot_accuracy.py $(ACCURACY_EDGES) docs/accuracy/planner_edges.png
+	tools/provenance record docs/accuracy/planner_edges.png
+.PHONY: accuracy-picture

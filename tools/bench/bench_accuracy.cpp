@@ -17,7 +17,8 @@
 // reference, reference_value, ratio} to RESULTS.json (ratio = reference /
 // value: above 1, the planner's edges are predicted better than held-out
 // rows) and one CSV line per edge (default: RESULTS.json with
-// _edges.csv for .json) for tools/accuracy/plot_accuracy.py.
+// _edges.csv for .json: length, climb, speeds, costs, error and both
+// states) for tools/accuracy/plot_accuracy.py.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -249,7 +250,11 @@ void write_json(const std::string &path, const std::vector<Row> &rows)
 void write_csv(const std::string &path, const std::vector<std::pair<std::string, Edge>> &edges)
 {
 	std::ofstream out(path);
-	out << "model,mode,source,scene,length_m,climb_deg,speed1_mps,speed2_mps,predicted_j,exact_j,rel_error\n";
+	out << "model,mode,source,scene,length_m,climb_deg,speed1_mps,speed2_mps,predicted_j,exact_j,rel_error";
+	for (const char *end : {"x1_", "x2_"})
+		for (int k = 0; k < HYLO_XS_DIM; k++)
+			out << "," << end << k;
+	out << "\n";
 	for (const auto &[name, e] : edges) {
 		double len = hylo_edge_distance(e.mode, e.a, e.b), dz = e.mode == HYLO_MODE_FLIGHT ? e.b[2] - e.a[2] : 0;
 		double climb = e.mode == HYLO_MODE_FLIGHT ? std::atan2(dz, std::hypot(e.b[0] - e.a[0], e.b[1] - e.a[1])) * 180 / M_PI : 0;
@@ -258,7 +263,13 @@ void write_csv(const std::string &path, const std::vector<std::pair<std::string,
 			      hylo_mode_str(e.mode), kSources[e.source], e.scene.c_str(), len, climb,
 			      hylo_state_speed(e.mode, e.a), hylo_state_speed(e.mode, e.b), e.predicted, e.exact,
 			      std::isfinite(e.exact) ? (e.predicted - e.exact) / e.exact : NAN);
-		out << buf;
+		out << std::string(buf, std::strlen(buf) - 1);   // the states, to solve an edge again
+		for (const double *x : {e.a, e.b})
+			for (int k = 0; k < HYLO_XS_DIM; k++) {
+				std::snprintf(buf, sizeof buf, ",%.17g", x[k]);
+				out << buf;
+			}
+		out << "\n";
 	}
 	if (!out)
 		throw std::runtime_error("cannot write " + path);
