@@ -30,6 +30,7 @@ include mk/export.mk
 include mk/fuzz.mk
 include mk/cross.mk
 include mk/casestudies.mk
+include mk/accuracy.mk
 include mk/install.mk
 include mk/docs.mk
 

@@ -17,7 +17,7 @@ $(BUILD)/obj/trainer/%.o: trainer/%.cpp
 
 # The trainer computes features, and the envelope's costs, with the onboard
 # code itself.
-TRAINER_ONBOARD_OBJS := $(addprefix $(BUILD)/obj/onboard/src/,features.o svr.o envelope.o status.o)
+TRAINER_ONBOARD_OBJS := $(addprefix $(BUILD)/obj/onboard/src/,features.o svr.o envelope.o status.o region.o types.o)
 $(TRAINER_LIB): $(TRAINER_OBJS) $(TRAINER_ONBOARD_OBJS)
 	@mkdir -p $(@D)
 	rm -f $@ && $(AR) rcs $@ $^

@@ -382,6 +382,32 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 	}
 }
 
+TrainedRegion trained_region(const ModeParams &p)
+{
+	const Sampling &s = p.sampling;
+	const std::string &m = p.mode;
+	TrainedRegion r;
+	auto bound = [&](unsigned k, double lo, double hi) {
+		r.bounded |= 1u << k;
+		r.min[k] = lo;
+		r.max[k] = hi;
+	};
+	if (m == "ground" || m == "marine") {
+		bound(2, s.speed_min_mps, s.speed_max_mps);
+	} else if (m == "flight") {
+		bound(3, -s.speed_max_mps, s.speed_max_mps);
+		bound(4, -s.speed_max_mps, s.speed_max_mps);
+		bound(5, 0, 0);   // level_speed: vz = 0
+	} else {
+		if (m == "di_pos")
+			bound(0, 0, 1);
+		else
+			bound(0, -1, 0);
+		bound(1, s.speed_min_mps, s.speed_max_mps);
+	}
+	return r;
+}
+
 std::vector<std::string> csv_columns(const std::string &mode)
 {
 	std::vector<std::string> c = {"index"};

@@ -9,6 +9,7 @@
 #ifndef HYLO_TRAINER_DATASET_HPP
 #define HYLO_TRAINER_DATASET_HPP
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -72,6 +73,20 @@ std::vector<std::vector<double>> feature_symmetries(const std::string &mode);
 
 // Sample i's pair: x1s, x2s (sampled_dim(mode) each).
 void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s);
+
+// The sampled coordinates draw_pair bounds, beyond the displacement
+// (max_distance_m) and the speed range: bit k of bounded set means
+// coordinate k of both states of every pair lies in [min[k], max[k]]
+// (hylo_svr_model's state_bounded, state_min, state_max). Ground and
+// marine: vx; flight: vx, vy within the top speed, vz = 0 (level
+// velocities); double integrator: p in the mode's half of [-1, 1], v.
+// Positions and headings are not bounded (the features do not see where a
+// pair is, and every heading and turn is drawn).
+struct TrainedRegion {
+	uint32_t bounded = 0;
+	std::array<double, 6> min{}, max{};
+};
+TrainedRegion trained_region(const ModeParams &p);
 
 // The CSV column names, in order.
 std::vector<std::string> csv_columns(const std::string &mode);

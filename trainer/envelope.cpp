@@ -119,6 +119,11 @@ hylo_svr_model model_view(const SvrExport &m)
 	v.max_distance_m = m.max_distance_m;
 	v.speed_min_mps = m.speed_min_mps;
 	v.speed_max_mps = m.speed_max_mps;
+	v.state_bounded = m.state_bounded;
+	for (size_t k = 0; k < m.state_min.size(); k++) {
+		v.state_min[k] = m.state_min[k];
+		v.state_max[k] = m.state_max[k];
+	}
 	return v;
 }
 

@@ -73,14 +73,17 @@ void usage(FILE *f)
 		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required; installed:\n"
 		"                    PREFIX/share/hylo/params/R.yaml; $HYLO_PARAMS_DIR/R.yaml first)\n"
-		"  --stage S         gen, repair, fit, export, all (gen, fit, export) or gather\n"
-		"                    (default: all; gen with --shard); export reads the header fit\n"
-		"                    wrote into --out and adds the envelope (minutes). repair: each\n"
-		"                    of the dataset's first N rows is solved again and from the\n"
-		"                    solutions of its --neighbours nearest rows (kept in\n"
-		"                    <out>/<mode>.solutions.csv, resumable); a label is only ever\n"
-		"                    lowered; the dataset is replaced atomically when every row is\n"
-		"                    done (resumable, its .meta records the repair; docs/decisions.md)\n"
+		"  --stage S         gen, repair, fit, export, region, all (gen, fit, export) or\n"
+		"                    gather (default: all; gen with --shard); export reads the\n"
+		"                    header fit wrote into --out and adds the envelope (minutes).\n"
+		"                    region: writes the trained region into the header in\n"
+		"                    --models-dir from the dataset in --out it was fitted on,\n"
+		"                    changing nothing else. repair: each of the dataset's first\n"
+		"                    N rows is solved again and from the solutions of its\n"
+		"                    --neighbours nearest rows (kept in <out>/<mode>.solutions.csv,\n"
+		"                    resumable); a label is only ever lowered; the dataset is\n"
+		"                    replaced atomically when every row is done (resumable, its\n"
+		"                    .meta records the repair; docs/decisions.md)\n"
 		"  --samples N       training pairs: gen extends the dataset to N rows, repair\n"
 		"                    and fit use its first N (default: 11520; flight 17016; di 2000)\n"
 		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
@@ -376,8 +379,8 @@ int run(int argc, char **argv)
 	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
 		stage = po.gen.shards > 1 ? "gen" : "all";
 	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&
-	    stage != "gather")
-		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, all, gather)");
+	    stage != "gather" && stage != "region")
+		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, region, all, gather)");
 	if (stage == "gather") {
 		if (gather_shards == 0 || po.gen.shards > 1)
 			throw Usage("--stage gather needs --shards N (the N of the tasks' --shard K/N), not --shard");

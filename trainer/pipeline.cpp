@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "hylo/region.h"
 #include "trainer/collocation.hpp"
 #include "trainer/envelope.hpp"
 #include "trainer/gather.hpp"
@@ -22,6 +23,7 @@ namespace {
 
 struct Rows {
 	std::vector<double> x_conv, cost, x_all;
+	std::vector<double> states;   // per row: x1 then x2, sampled_dim(mode) each
 	std::vector<bool> feasible;
 	size_t n = 0;
 	std::string sha256;   // of the bytes read: the header line and the n rows
@@ -58,6 +60,7 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 	for (const auto &c : cols)
 		nr += c.size() > 1 && c[0] == 'f' && std::isdigit(static_cast<unsigned char>(c[1]));
 	const size_t i_cost = csv_column(mode, "cost_j"), i_conv = csv_column(mode, "converged");
+	const size_t i_x1 = csv_column(mode, "x1_0"), dim = static_cast<size_t>(sampled_dim(mode));
 	Rows r;
 	for (size_t lineno = 2; r.n < max_rows && std::getline(in, line); lineno++) {
 		std::vector<std::string> f = csv_fields(line);
@@ -73,6 +76,14 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 				throw std::invalid_argument(path + ":" + std::to_string(lineno) + ": bad number '" +
 							    f[1 + k] + "'");
 		}
+		for (size_t k = 0; k < 2 * dim; k++) {
+			char *e = nullptr;
+			double x = std::strtod(f[i_x1 + k].c_str(), &e);
+			if (*e || !std::isfinite(x))
+				throw std::invalid_argument(path + ":" + std::to_string(lineno) + ": bad number '" +
+							    f[i_x1 + k] + "'");
+			r.states.push_back(x);
+		}
 		std::vector<double> feat = features_of_relative(mode, rel);
 		bool conv = f[i_conv] == "1";
 		double cost = std::strtod(f[i_cost].c_str(), nullptr);
@@ -87,6 +98,48 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 	std::streamoff end = in.tellg();
 	r.sha256 = sha256_hex(end < 0 ? text : text.substr(0, static_cast<size_t>(end)));
 	return r;
+}
+
+// The draw's trained region (trained_region), checked against the rows:
+// every state of every row must lie in it, and every displacement within
+// the draw's max_distance_m where the draw bounds it (not the double
+// integrator's, whose positions are bounded instead). Throws naming the
+// first row and coordinate outside.
+TrainedRegion checked_region(const ModeParams &p, const Rows &rows, const std::string &path)
+{
+	const TrainedRegion region = trained_region(p);
+	const hylo_mode mode = static_cast<hylo_mode>(mode_number(p.mode));
+	const size_t dim = static_cast<size_t>(sampled_dim(p.mode));
+	hylo_svr_model m{};
+	m.max_distance_m = p.mode == "di_neg" || p.mode == "di_pos" ? 0 : p.sampling.max_distance_m;
+	m.speed_min_mps = p.sampling.speed_min_mps;
+	m.speed_max_mps = p.sampling.speed_max_mps;
+	m.state_bounded = region.bounded;
+	for (size_t k = 0; k < region.min.size(); k++) {
+		m.state_min[k] = region.min[k];
+		m.state_max[k] = region.max[k];
+	}
+	for (size_t i = 0; i < rows.n; i++) {
+		double a[HYLO_XS_DIM] = {0}, b[HYLO_XS_DIM] = {0};
+		std::copy_n(&rows.states[2 * dim * i], dim, a);
+		std::copy_n(&rows.states[2 * dim * i + dim], dim, b);
+		hylo_region_miss miss;
+		if (!hylo_region_edge(&m, mode, a, b, &miss)) {
+			char what[200];
+			hylo_region_describe(mode, &miss, what, sizeof what);
+			throw std::invalid_argument(path + ": row " + std::to_string(i) + " (" +
+						    (miss.end ? "x2" : "x1") + "): " + what +
+						    " of the draw (trained_region, trainer/dataset.cpp)");
+		}
+	}
+	return region;
+}
+
+void set_region(SvrExport &m, const TrainedRegion &r)
+{
+	m.state_bounded = r.bounded;
+	m.state_min = r.min;
+	m.state_max = r.max;
 }
 
 double floor_per_m(const std::string &mode, const ModeParams &p)
@@ -146,6 +199,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	m.max_distance_m = p.sampling.max_distance_m;
 	m.speed_min_mps = p.sampling.speed_min_mps;
 	m.speed_max_mps = p.sampling.speed_max_mps;
+	set_region(m, checked_region(p, rows, path));
 	std::ostringstream acc;
 	ClassifierReport crep;
 	bool have_classifier = false;
@@ -242,6 +296,43 @@ int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 	return 0;
 }
 
+// The value of provenance line `key: value` of a header's leading comment.
+std::string provenance_value(const std::string &text, const std::string &key, const std::string &path)
+{
+	const std::string tag = "\n * " + key + ": ";
+	size_t at = text.find(tag);
+	if (at == std::string::npos)
+		throw std::invalid_argument(path + " has no provenance line '" + key + "'");
+	at += tag.size();
+	return text.substr(at, text.find('\n', at) - at);
+}
+
+// Writes the trained region into the committed header models_dir/<robot>_<mode>.h
+// (in this trainer's format) from the dataset rows it was fitted on and the
+// draw's definition; nothing else changes: no refit, no new envelope.
+int region_stage(const RobotParams &robot, const PipelineOptions &opt)
+{
+	const std::string &mode = opt.gen.mode;
+	const std::string header = opt.models_dir + "/" + robot.robot + "_" + mode + ".h";
+	const std::string text = slurp(header);
+	GenOptions g = opt.gen;
+	g.shard = g.shards = 1;
+	const std::string path = dataset_path(g);
+	const uint64_t n = std::stoull(provenance_value(text, "samples", header));
+	Rows rows = read_dataset(path, mode, n);
+	const std::string sha = provenance_value(text, "dataset sha256", header);
+	if (rows.n != n || rows.sha256 != sha)
+		throw std::invalid_argument(path + ": its first " + std::to_string(n) + " rows are not those " +
+					    header + " was fitted on (dataset sha256 " + sha + ")");
+	if (provenance_value(text, "robot file sha256", header) != sha256_file(robot.path))
+		throw std::invalid_argument(header + " was fitted from another robot file than " + robot.path);
+	const TrainedRegion r = checked_region(robot.mode(mode), rows, path);
+	write_text(header, header_with_region(text, r.bounded, r.min, r.max));
+	std::printf("region %s %s: %zu rows inside; written into %s\n", robot.robot.c_str(), mode.c_str(),
+		    rows.n, header.c_str());
+	return 0;
+}
+
 }  // namespace
 
 uint64_t default_samples(const std::string &mode)
@@ -310,6 +401,8 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 		fit_stage(robot, opt);
 	if (stage == "export" || stage == "all")
 		export_stage(robot, opt);
+	if (stage == "region")
+		region_stage(robot, opt);
 	return 0;
 }
 

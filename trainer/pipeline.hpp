@@ -32,7 +32,10 @@ uint64_t default_samples(const std::string &mode);
 // "fit" writes <out>/<robot>_<mode>.h (the fitted model) and
 // <out>/<mode>.fit.json; "export" reads that header, adds the envelope
 // (ground, marine, flight; trainer/envelope.hpp) and writes the result into
-// models_dir. Nothing is written on bad data.
+// models_dir. "region" writes the trained region (trained_region,
+// trainer/dataset.hpp), checked against the dataset rows the model was
+// fitted on, into the header in models_dir, changing nothing else.
+// Nothing is written on bad data.
 int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage);
 
 }  // namespace hylo::trainer

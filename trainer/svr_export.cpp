@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "hylo/features.h"
+#include "hylo/types.h"
 #include "hylo/svr.h"
 
 namespace hylo::trainer {
@@ -143,6 +144,15 @@ void check(const SvrExport &m)
 	require_finite(m.max_distance_m, "max_distance_m");
 	require_finite(m.speed_min_mps, "speed_min_mps");
 	require_finite(m.speed_max_mps, "speed_max_mps");
+	if (m.state_bounded >> HYLO_XS_DIM)
+		throw std::invalid_argument("svr export: state_bounded names a coordinate beyond x^s");
+	for (unsigned k = 0; k < HYLO_XS_DIM; k++) {
+		require_finite(m.state_min[k], "state_min");
+		require_finite(m.state_max[k], "state_max");
+		if ((m.state_bounded >> k & 1u) && !(m.state_min[k] <= m.state_max[k]))
+			throw std::invalid_argument("svr export: state_min > state_max for coordinate " +
+						    std::to_string(k));
+	}
 	if (!(m.gamma > 0) || !(m.label_scale > 0) || m.cost_floor_per_m < 0 || m.cost_floor_j < 0 ||
 	    m.max_distance_m < 0 || m.speed_min_mps > m.speed_max_mps)
 		throw std::invalid_argument("svr export: gamma and label_scale must be > 0, "
@@ -181,6 +191,15 @@ void check(const SvrExport &m)
 						    "' is not an upper-case C identifier");
 		require_finite(c.value, c.key.c_str());
 	}
+}
+
+// A fixed-size field's initializer, "{a, b, ...}".
+std::string brace_list(const std::array<double, 6> &v)
+{
+	std::string out = "{";
+	for (size_t k = 0; k < v.size(); k++)
+		out += (k ? ", " : "") + format_double(v[k]);
+	return out + "}";
 }
 
 void array(std::string &out, const std::string &type_name, const std::string &size,
@@ -316,6 +335,9 @@ std::string svr_header_text(const SvrExport &m)
 	out += "\t.max_distance_m = " + format_double(m.max_distance_m) + ",\n";
 	out += "\t.speed_min_mps = " + format_double(m.speed_min_mps) + ",\n";
 	out += "\t.speed_max_mps = " + format_double(m.speed_max_mps) + ",\n";
+	out += "\t.state_bounded = " + std::to_string(m.state_bounded) + ",\n";
+	out += "\t.state_min = " + brace_list(m.state_min) + ",\n";
+	out += "\t.state_max = " + brace_list(m.state_max) + ",\n";
 	out += "\t.provenance = " + c_string(prov) + ",\n";
 	// Every field is written, so that C++ (-Wextra: missing initializers)
 	// includes the header as cleanly as C.
@@ -347,6 +369,8 @@ std::string svr_header_text(const SvrExport &m)
 		out += "\t.label_offset = 0,\n\t.label_scale = 1,\n\t.label_log = 0,\n";
 		out += "\t.cost_floor_per_m = 0,\n\t.cost_floor_j = 0,\n\t.max_distance_m = 0,\n";
 		out += "\t.speed_min_mps = 0,\n\t.speed_max_mps = 0,\n";
+		out += "\t.state_bounded = 0,\n\t.state_min = " + brace_list({}) + ",\n\t.state_max = " +
+		       brace_list({}) + ",\n";
 		out += "\t.provenance = " + c_string(prov) + ",\n";
 		out += "\t.envelope = NULL,\n";
 		out += "};\n\n";
@@ -454,6 +478,29 @@ std::vector<double> numbers(const HeaderParts &h, const std::string &name)
 	return v;
 }
 
+// The numbers of a brace_list text.
+std::array<double, 6> brace_numbers(const std::string &t)
+{
+	std::array<double, 6> v{};
+	if (t.size() < 2 || t.front() != '{' || t.back() != '}')
+		throw std::invalid_argument("svr header: '" + t + "' is not a {...} list");
+	size_t k = 0, pos = 1;
+	while (pos < t.size() - 1) {
+		size_t end = t.find(',', pos);
+		if (end == std::string::npos)
+			end = t.size() - 1;
+		if (k == v.size())
+			throw std::invalid_argument("svr header: more than 6 numbers in '" + t + "'");
+		v[k++] = number(t.substr(pos, end - pos));
+		pos = end + 1;
+		while (pos < t.size() && t[pos] == ' ')
+			pos++;
+	}
+	if (k != v.size())
+		throw std::invalid_argument("svr header: '" + t + "' does not hold 6 numbers");
+	return v;
+}
+
 const std::map<std::string, std::string> &fields(const HeaderParts &h, const std::string &name)
 {
 	auto it = h.structs.find(name);
@@ -520,6 +567,9 @@ SvrExport parse_svr_header(const std::string &text)
 	m.max_distance_m = number(field(f, "max_distance_m"));
 	m.speed_min_mps = number(field(f, "speed_min_mps"));
 	m.speed_max_mps = number(field(f, "speed_max_mps"));
+	m.state_bounded = static_cast<uint32_t>(number(field(f, "state_bounded")));
+	m.state_min = brace_numbers(field(f, "state_min"));
+	m.state_max = brace_numbers(field(f, "state_max"));
 	m.provenance = h.provenance;
 	const std::string mac = "HYLO_MODEL_" + upper(name) + "_";
 	for (const auto &d : h.defines) {
@@ -581,6 +631,43 @@ SvrExport parse_svr_header(const std::string &text)
 					    "differs from line " + std::to_string(line) + " on)");
 	}
 	return m;
+}
+
+std::string header_with_region(const std::string &text, uint32_t bounded, const std::array<double, 6> &min,
+			       const std::array<double, 6> &max)
+{
+	const std::string version = std::to_string(HYLO_MODEL_FORMAT_VERSION);
+	std::string out;
+	int structs = 0;
+	for (size_t pos = 0; pos < text.size();) {
+		size_t end = text.find('\n', pos);
+		if (end == std::string::npos)
+			throw std::invalid_argument("svr header: the text does not end with a newline");
+		std::string line = text.substr(pos, end - pos);
+		pos = end + 1;
+		if (starts_with(line, "\t.state_bounded = ") || starts_with(line, "\t.state_min = ") ||
+		    starts_with(line, "\t.state_max = "))
+			continue;
+		size_t at;
+		if (starts_with(line, "#define ") && (at = line.rfind("_FORMAT_VERSION ")) != std::string::npos)
+			line = line.substr(0, at + 16) + version;
+		else if (starts_with(line, "#error \"") && (at = line.find(" is model format ")) != std::string::npos &&
+			 line.find(';', at) != std::string::npos)
+			line = line.substr(0, at + 17) + version + line.substr(line.find(';', at));
+		structs += starts_with(line, "static const hylo_svr_model ");
+		out += line + "\n";
+		if (starts_with(line, "\t.speed_max_mps = ")) {
+			// The cost model's region; the classifier (the second struct) has none.
+			const bool cost_model = structs == 1;
+			out += "\t.state_bounded = " + std::to_string(cost_model ? bounded : 0) + ",\n";
+			out += "\t.state_min = " + brace_list(cost_model ? min : std::array<double, 6>{}) + ",\n";
+			out += "\t.state_max = " + brace_list(cost_model ? max : std::array<double, 6>{}) + ",\n";
+		}
+	}
+	SvrExport m = parse_svr_header(out);   // throws unless it is exactly what export writes
+	if (m.state_bounded != bounded)
+		throw std::invalid_argument("svr header: the region did not land in the cost model");
+	return out;
 }
 
 void write_svr_header(const SvrExport &m, const std::string &path)

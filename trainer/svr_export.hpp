@@ -4,6 +4,7 @@
 #ifndef HYLO_TRAINER_SVR_EXPORT_HPP
 #define HYLO_TRAINER_SVR_EXPORT_HPP
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -52,6 +53,10 @@ struct SvrExport {
 	bool label_log = false;
 	double cost_floor_per_m = 0, cost_floor_j = 0, max_distance_m = 0;
 	double speed_min_mps = 0, speed_max_mps = 0;   // both 0: any speed
+	// The other coordinates the training draw bounded (hylo_svr_model's
+	// state_bounded, state_min, state_max; trained_region, dataset.hpp).
+	uint32_t state_bounded = 0;
+	std::array<double, 6> state_min{}, state_max{};
 	// Provenance lines "key: value", in the order given (sample count, seed,
 	// hashes, errors, version). Written into a comment and a string.
 	std::vector<std::pair<std::string, std::string>> provenance;
@@ -70,6 +75,14 @@ std::string svr_header_text(const SvrExport &m);
 // header: it checks that svr_header_text of the result gives text back byte
 // for byte, so nothing is lost or changed on the way.
 SvrExport parse_svr_header(const std::string &text);
+
+// text, a header this trainer writes (or one of the format before the
+// trained region's fields, which it moves to this format), with the cost
+// model's state_bounded, state_min and state_max set as given; every other
+// byte as it was. Throws std::invalid_argument when the result is not a
+// header svr_header_text writes (parse_svr_header's check).
+std::string header_with_region(const std::string &text, uint32_t bounded, const std::array<double, 6> &min,
+			       const std::array<double, 6> &max);
 
 // Writes svr_header_text(m) to path atomically (temporary file + rename);
 // nothing is written when the model is invalid. Throws std::runtime_error

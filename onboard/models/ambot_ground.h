@@ -19,9 +19,9 @@
 
 #include "hylo/svr.h"
 
-#define HYLO_MODEL_AMBOT_GROUND_FORMAT_VERSION 1
+#define HYLO_MODEL_AMBOT_GROUND_FORMAT_VERSION 2
 #if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_AMBOT_GROUND_FORMAT_VERSION
-#error "ambot_ground.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#error "ambot_ground.h is model format 2; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
 #endif
 #define HYLO_MODEL_AMBOT_GROUND_MODE HYLO_MODE_GROUND
 #define HYLO_MODEL_AMBOT_GROUND_N_SV 4394
@@ -15141,6 +15141,9 @@ static const hylo_svr_model hylo_model_ambot_ground = {
 	.max_distance_m = 4.5,
 	.speed_min_mps = 0,
 	.speed_max_mps = 1.2,
+	.state_bounded = 4,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 1.2, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: 22a8e5204a2ace60ab121f2a2cd71d49b8a4e41bf44b6d89a0878c673744e6d8\nsamples: 11520 (11245 converged)\nseed: 1\nheld-out errors: median 0.0057, p95 0.0713, max 0.4027 relative; MAE 1.447 J\nsvr: C 3, gamma 0.10000000000000001, epsilon 0.02, 4394 support vectors\nfeasibility accuracy: 0.97178819444444442\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_ambot_ground_envelope,
 };
@@ -15929,6 +15932,9 @@ static const hylo_svr_model hylo_model_ambot_ground_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
+	.state_bounded = 0,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: 22a8e5204a2ace60ab121f2a2cd71d49b8a4e41bf44b6d89a0878c673744e6d8\nsamples: 11520 (11245 converged)\nseed: 1\nheld-out errors: median 0.0057, p95 0.0713, max 0.4027 relative; MAE 1.447 J\nsvr: C 3, gamma 0.10000000000000001, epsilon 0.02, 4394 support vectors\nfeasibility accuracy: 0.97178819444444442\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };

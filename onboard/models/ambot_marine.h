@@ -19,9 +19,9 @@
 
 #include "hylo/svr.h"
 
-#define HYLO_MODEL_AMBOT_MARINE_FORMAT_VERSION 1
+#define HYLO_MODEL_AMBOT_MARINE_FORMAT_VERSION 2
 #if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_AMBOT_MARINE_FORMAT_VERSION
-#error "ambot_marine.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#error "ambot_marine.h is model format 2; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
 #endif
 #define HYLO_MODEL_AMBOT_MARINE_MODE HYLO_MODE_MARINE
 #define HYLO_MODEL_AMBOT_MARINE_N_SV 3542
@@ -12604,6 +12604,9 @@ static const hylo_svr_model hylo_model_ambot_marine = {
 	.max_distance_m = 4.5,
 	.speed_min_mps = 0,
 	.speed_max_mps = 1,
+	.state_bounded = 4,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 1, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: e46cecd0f909f8576d739ad215f86974254d43f33a8fa2010d1b4afdf41ddc88\nsamples: 11520 (10971 converged)\nseed: 1\nheld-out errors: median 0.0071, p95 0.0533, max 0.4017 relative; MAE 7.08 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3542 support vectors\nfeasibility accuracy: 0.96180555555555558\nenvelope: 46 x 16 x 11 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_ambot_marine_envelope,
 };
@@ -13761,6 +13764,9 @@ static const hylo_svr_model hylo_model_ambot_marine_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
+	.state_bounded = 0,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: e46cecd0f909f8576d739ad215f86974254d43f33a8fa2010d1b4afdf41ddc88\nsamples: 11520 (10971 converged)\nseed: 1\nheld-out errors: median 0.0071, p95 0.0533, max 0.4017 relative; MAE 7.08 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3542 support vectors\nfeasibility accuracy: 0.96180555555555558\nenvelope: 46 x 16 x 11 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };

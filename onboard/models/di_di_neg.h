@@ -18,9 +18,9 @@
 
 #include "hylo/svr.h"
 
-#define HYLO_MODEL_DI_DI_NEG_FORMAT_VERSION 1
+#define HYLO_MODEL_DI_DI_NEG_FORMAT_VERSION 2
 #if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_DI_DI_NEG_FORMAT_VERSION
-#error "di_di_neg.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#error "di_di_neg.h is model format 2; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
 #endif
 #define HYLO_MODEL_DI_DI_NEG_MODE HYLO_MODE_DI_NEG
 #define HYLO_MODEL_DI_DI_NEG_N_SV 828
@@ -1093,6 +1093,9 @@ static const hylo_svr_model hylo_model_di_di_neg = {
 	.max_distance_m = 2,
 	.speed_min_mps = -1,
 	.speed_max_mps = 1,
+	.state_bounded = 3,
+	.state_min = {-1, -1, 0, 0, 0, 0},
+	.state_max = {0, 1, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
@@ -1697,6 +1700,9 @@ static const hylo_svr_model hylo_model_di_di_neg_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
+	.state_bounded = 0,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };

@@ -18,9 +18,9 @@
 
 #include "hylo/svr.h"
 
-#define HYLO_MODEL_DI_DI_POS_FORMAT_VERSION 1
+#define HYLO_MODEL_DI_DI_POS_FORMAT_VERSION 2
 #if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_DI_DI_POS_FORMAT_VERSION
-#error "di_di_pos.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#error "di_di_pos.h is model format 2; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
 #endif
 #define HYLO_MODEL_DI_DI_POS_MODE HYLO_MODE_DI_POS
 #define HYLO_MODEL_DI_DI_POS_N_SV 708
@@ -943,6 +943,9 @@ static const hylo_svr_model hylo_model_di_di_pos = {
 	.max_distance_m = 2,
 	.speed_min_mps = -1,
 	.speed_max_mps = 1,
+	.state_bounded = 3,
+	.state_min = {0, -1, 0, 0, 0, 0},
+	.state_max = {1, 1, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };
@@ -1321,6 +1324,9 @@ static const hylo_svr_model hylo_model_di_di_pos_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
+	.state_bounded = 0,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };

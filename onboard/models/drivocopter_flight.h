@@ -20,9 +20,9 @@
 
 #include "hylo/svr.h"
 
-#define HYLO_MODEL_DRIVOCOPTER_FLIGHT_FORMAT_VERSION 1
+#define HYLO_MODEL_DRIVOCOPTER_FLIGHT_FORMAT_VERSION 2
 #if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_DRIVOCOPTER_FLIGHT_FORMAT_VERSION
-#error "drivocopter_flight.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#error "drivocopter_flight.h is model format 2; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
 #endif
 #define HYLO_MODEL_DRIVOCOPTER_FLIGHT_MODE HYLO_MODE_FLIGHT
 #define HYLO_MODEL_DRIVOCOPTER_FLIGHT_N_SV 8852
@@ -35457,6 +35457,9 @@ static const hylo_svr_model hylo_model_drivocopter_flight = {
 	.max_distance_m = 9,
 	.speed_min_mps = 0,
 	.speed_max_mps = 8,
+	.state_bounded = 56,
+	.state_min = {0, 0, 0, -8, -8, 0},
+	.state_max = {0, 0, 0, 8, 8, 0},
 	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 8c50db2e63b9f1bd2cd064d93fe2b3c4c51638cb454b5f0775d22bc0f0c61eac\nsamples: 17016 (16971 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0420, max 0.9292 relative; MAE 10.54 J\nsvr: C 3, gamma 0.29999999999999999, epsilon 0.02, 8852 support vectors\nfeasibility accuracy: 0.99647369967675581\nmirror images: 1 per training pair (feature_symmetries, trainer/dataset.cpp)\nenvelope: 37 x 73 x 9 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_drivocopter_flight_envelope,
 };
@@ -35694,6 +35697,9 @@ static const hylo_svr_model hylo_model_drivocopter_flight_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
+	.state_bounded = 0,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 8c50db2e63b9f1bd2cd064d93fe2b3c4c51638cb454b5f0775d22bc0f0c61eac\nsamples: 17016 (16971 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0420, max 0.9292 relative; MAE 10.54 J\nsvr: C 3, gamma 0.29999999999999999, epsilon 0.02, 8852 support vectors\nfeasibility accuracy: 0.99647369967675581\nmirror images: 1 per training pair (feature_symmetries, trainer/dataset.cpp)\nenvelope: 37 x 73 x 9 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };

@@ -19,9 +19,9 @@
 
 #include "hylo/svr.h"
 
-#define HYLO_MODEL_DRIVOCOPTER_GROUND_FORMAT_VERSION 1
+#define HYLO_MODEL_DRIVOCOPTER_GROUND_FORMAT_VERSION 2
 #if HYLO_MODEL_FORMAT_VERSION != HYLO_MODEL_DRIVOCOPTER_GROUND_FORMAT_VERSION
-#error "drivocopter_ground.h is model format 1; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
+#error "drivocopter_ground.h is model format 2; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or regenerate the model"
 #endif
 #define HYLO_MODEL_DRIVOCOPTER_GROUND_MODE HYLO_MODE_GROUND
 #define HYLO_MODEL_DRIVOCOPTER_GROUND_N_SV 3482
@@ -14001,6 +14001,9 @@ static const hylo_svr_model hylo_model_drivocopter_ground = {
 	.max_distance_m = 4.5,
 	.speed_min_mps = 0,
 	.speed_max_mps = 3,
+	.state_bounded = 4,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 3, 0, 0, 0},
 	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_drivocopter_ground_envelope,
 };
@@ -14815,6 +14818,9 @@ static const hylo_svr_model hylo_model_drivocopter_ground_feasibility = {
 	.max_distance_m = 0,
 	.speed_min_mps = 0,
 	.speed_max_mps = 0,
+	.state_bounded = 0,
+	.state_min = {0, 0, 0, 0, 0, 0},
+	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
 };

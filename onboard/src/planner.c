@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "hylo/region.h"
 #include "planner_internal.h"
 
 /*
@@ -310,7 +311,7 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 {
 	const char *other;
 	const hylo_svr_model *model;
-	hylo_real speed;
+	hylo_region_miss miss;
 	int idx = hylo_robot_mode_index(pl->robot, (hylo_mode)mode);
 
 	if (!hylo_mode_valid(mode) || idx < 0)
@@ -318,14 +319,21 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 				 "%s mode %d (%s) is not a mode of robot %s", what, mode,
 				 hylo_mode_str((hylo_mode)mode), pl->robot->name);
 	/* Every coordinate is finite (hylo_goal_check). */
-	/* The model's costs from a speed it never saw are extrapolations. */
+	/* The model's costs from a state it never saw (a speed, a vertical
+	 * velocity, ...) are extrapolations. */
 	model = pl->robot->modes[idx].model;
-	speed = hylo_state_speed((hylo_mode)mode, xs);
-	if (model && !hylo_svr_speed_trained(model, speed))
+	if (model && !hylo_region_state(model, (hylo_mode)mode, xs, &miss)) {
+		if (miss.part == HYLO_REGION_SPEED)
+			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
+					 "%s speed %g m/s is outside the %s model's training range [%g, %g] m/s",
+					 what, miss.value, hylo_mode_str((hylo_mode)mode), miss.lo, miss.hi);
 		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
-				 "%s speed %g m/s is outside the %s model's training range [%g, %g] m/s",
-				 what, speed, hylo_mode_str((hylo_mode)mode), model->speed_min_mps,
-				 model->speed_max_mps);
+				 "%s %s = %g %s is outside the %s model's training range [%g, %g] %s",
+				 what, hylo_coord_name((hylo_mode)mode, miss.coord), miss.value,
+				 hylo_coord_unit((hylo_mode)mode, miss.coord),
+				 hylo_mode_str((hylo_mode)mode), miss.lo, miss.hi,
+				 hylo_coord_unit((hylo_mode)mode, miss.coord));
+	}
 	*p = state_point(&pl->map, (hylo_mode)mode, xs);
 	if (hylo_domain_contains(&pl->map, (hylo_mode)mode, *p))
 		return HYLO_OK;
@@ -644,6 +652,7 @@ static void plan_begin(const hylo_planner *pl, const hylo_goal *g, hylo_plan *pl
 	plan->n_clamped = 0;
 	plan->n_negative = 0;
 	plan->n_infeasible = 0;
+	plan->n_untrained = 0;
 	plan->roadmap_reused = 0;
 	plan->plan_ms = 0;
 }
@@ -743,6 +752,7 @@ static void reset_counts(hylo_planner *pl)
 	pl->n_clamped = 0;
 	pl->n_negative = 0;
 	pl->n_infeasible = 0;
+	pl->n_untrained = 0;
 	pl->n_evaluated = 0;
 	pl->n_cached = 0;
 	pl->walk_len = 0;
@@ -760,6 +770,7 @@ static void report_counts(const hylo_planner *pl, hylo_plan *plan)
 	plan->n_clamped = pl->n_clamped;
 	plan->n_negative = pl->n_negative;
 	plan->n_infeasible = pl->n_infeasible;
+	plan->n_untrained = pl->n_untrained;
 }
 
 /* Copies of the graph for k alternatives: one per number of mode switches

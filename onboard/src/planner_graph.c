@@ -3,6 +3,7 @@
 
 #include "hylo/envelope.h"
 #include "hylo/features.h"
+#include "hylo/region.h"
 #include "planner_internal.h"
 
 /*
@@ -356,6 +357,11 @@ static hylo_status evaluate(hylo_planner *pl, uint32_t i, uint32_t c, const hylo
 		for (m = 0; m < n; m++)
 			hylo_features(mode, tail, pl->head_xs[m], &pl->features[m * nf]);
 	if (mm->model) {
+		/* Counted, not expected: start, goal and grids are checked against
+		 * the trained region, and the connection radius against its reach. */
+		for (m = 0; m < n; m++)
+			if (!hylo_region_edge(mm->model, mode, tail, pl->head_xs[m], NULL))
+				pl->n_untrained++;
 		st = hylo_svr_predict_batch(mm->model, &pl->svr_cache[k], pl->features, n, costs);
 		if (st != HYLO_OK)
 			return hylo_fail(&pl->reason, st, "SVR evaluation failed: %s",

@@ -210,6 +210,17 @@ hylo_status hylo_svr_check(const hylo_svr_model *m, hylo_reason *r)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "svr model %s: speed range [%g, %g] m/s is not an interval",
 				 name, m->speed_min_mps, m->speed_max_mps);
+	if (m->state_bounded >> HYLO_XS_DIM)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: state_bounded 0x%x names a coordinate beyond %d", name,
+				 (unsigned)m->state_bounded, HYLO_XS_DIM);
+	for (k = 0; k < HYLO_XS_DIM; k++)
+		if ((m->state_bounded >> k & 1u) &&
+		    !(isfinite(m->state_min[k]) && isfinite(m->state_max[k]) &&
+		      m->state_min[k] <= m->state_max[k]))
+			return hylo_fail(r, HYLO_E_BAD_VALUE,
+					 "svr model %s: trained range [%g, %g] of coordinate %u is not an interval",
+					 name, m->state_min[k], m->state_max[k], (unsigned)k);
 	for (k = 0; k < m->n_features; k++)
 		if (!isfinite(m->feature_offset[k]) || !(m->feature_scale[k] > 0) ||
 		    !isfinite(m->feature_scale[k]))

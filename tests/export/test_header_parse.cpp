@@ -82,7 +82,8 @@ bool same(const SvrExport &a, const SvrExport &b)
 		  a.label_scale == b.label_scale && a.label_log == b.label_log &&
 		  a.cost_floor_per_m == b.cost_floor_per_m && a.cost_floor_j == b.cost_floor_j &&
 		  a.max_distance_m == b.max_distance_m && a.speed_min_mps == b.speed_min_mps &&
-		  a.speed_max_mps == b.speed_max_mps && a.provenance == b.provenance &&
+		  a.speed_max_mps == b.speed_max_mps && a.state_bounded == b.state_bounded &&
+		  a.state_min == b.state_min && a.state_max == b.state_max && a.provenance == b.provenance &&
 		  a.constants.size() == b.constants.size() && a.feasibility.has_value() == b.feasibility.has_value() &&
 		  a.envelope.has_value() == b.envelope.has_value();
 	for (size_t i = 0; ok && i < a.constants.size(); i++)
@@ -138,6 +139,10 @@ int main()
 			    {"LANDING_J", 385.6, "hover 1 m above -> ground rest [J]"}};
 	flight.envelope = table(2, 3, 3);
 	round_trip(flight, "a flight model with constants and climb cells");
+	flight.state_bounded = 7u << 3;
+	flight.state_min = {0, 0, 0, -8, -8, -0.25};
+	flight.state_max = {0, 0, 0, 8, 8, 1e-300};
+	round_trip(flight, "with its trained region (vx, vy, vz bounded)");
 	SvrExport di = small("di_neg", 4);
 	di.robot = "di";
 	round_trip(di, "a double-integrator model (whose name repeats its mode's prefix)");
@@ -159,6 +164,50 @@ int main()
 	}
 	check(headers >= 6 && parsed == headers, "every committed header parses and is written again unchanged",
 	      std::to_string(parsed) + " of " + std::to_string(headers));
+
+	// The region stage's edit: the region set, nothing else changed; a
+	// header of the format before the region's fields (no such lines,
+	// format one less) comes out as this trainer writes it.
+	{
+		SvrExport plain = flight;
+		ClassifierExport fc = c;   // the classifier's struct gets no region
+		fc.sv = flight.sv;
+		fc.feature_offset = flight.feature_offset;
+		fc.feature_scale = flight.feature_scale;
+		plain.feasibility = fc;
+		plain.state_bounded = 0;
+		plain.state_min = plain.state_max = {};
+		const std::string before = svr_header_text(plain), after = svr_header_text([&] {
+			SvrExport m = plain;
+			m.state_bounded = 1u << 5;
+			m.state_max[5] = 0.5;
+			return m;
+		}());
+		std::array<double, 6> lo{}, hi{};
+		hi[5] = 0.5;
+		check(header_with_region(before, 1u << 5, lo, hi) == after,
+		      "header_with_region sets the cost model's region and changes nothing else");
+		std::string old_format;
+		const std::string v = std::to_string(HYLO_MODEL_FORMAT_VERSION), v0 = std::to_string(HYLO_MODEL_FORMAT_VERSION - 1);
+		std::istringstream lines(before);
+		for (std::string l; std::getline(lines, l);) {
+			if (l.rfind("\t.state_", 0) == 0)
+				continue;
+			if (l.rfind("#define HYLO_MODEL_TESTBOT_FLIGHT_FORMAT_VERSION ", 0) == 0)
+				l = "#define HYLO_MODEL_TESTBOT_FLIGHT_FORMAT_VERSION " + v0;
+			else if (l.find("is model format " + v + ";") != std::string::npos)
+				l.replace(l.find("is model format " + v + ";"), 17 + v.size(), "is model format " + v0 + ";");
+			old_format += l + "\n";
+		}
+		check(old_format != before && header_with_region(old_format, 1u << 5, lo, hi) == after,
+		      "header_with_region moves a header of the format before the region to this one");
+		check_throws([&] { header_with_region(before.substr(0, before.size() - 1), 0, lo, hi); }, "newline",
+			     "header_with_region refuses what is not a header");
+		std::array<double, 6> inverted = hi;
+		inverted[5] = -1;
+		check_throws([&] { header_with_region(before, 1u << 5, lo, inverted); }, "state_min > state_max",
+			     "header_with_region refuses an empty range");
+	}
 
 	std::string text = svr_header_text(flight);
 	std::string edited = text;

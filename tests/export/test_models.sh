@@ -53,6 +53,48 @@ if [[ $out == *'"beyond_training_range":false'* && $far == *"X2's speed 12 m/s i
    "$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,0,0,0 3,0,0,12,0,0 | grep -q '"beyond_training_range":true'; then
   tap_ok "hylo-cost flags a speed outside the flight model's training range"; else
   tap_not_ok "hylo-cost flags a speed outside the flight model's training range" "$out $far"; fi
+# The rest of the trained region (hylo/region.h): flight velocities were
+# level, so vz is bounded to [0, 0]; the region stage writes into each
+# header exactly what it holds, from the rows it was fitted on; hylo-cost
+# names a vertical velocity.
+grep -q '^	.state_min = {0, 0, 0, -8, -8, 0},$' onboard/models/drivocopter_flight.h &&
+  grep -q '^	.state_max = {0, 0, 0, 8, 8, 0},$' onboard/models/drivocopter_flight.h &&
+  grep -q '^	.state_bounded = 56,$' onboard/models/drivocopter_flight.h &&
+  grep -q '^	.state_bounded = 4,$' onboard/models/ambot_ground.h &&
+  grep -q '^	.state_min = {-1, -1, 0, 0, 0, 0},$' onboard/models/di_di_neg.h &&
+  tap_ok "the headers carry their trained regions (flight: vz in [0, 0])" ||
+  tap_not_ok "the headers carry their trained regions (flight: vz in [0, 0])"
+mkdir -p "$T/region"
+cp onboard/models/*_*.h "$T/region/"
+again=0
+for h in "$T"/region/*_*.h; do
+  base=$(basename "$h" .h)
+  case "$base" in
+    *_di_neg|*_di_pos) mode=di_${base##*_di_}; robot=${base%_di_*} ;;
+    *) mode=${base##*_}; robot=${base%_*} ;;
+  esac
+  "$B/bin/trainer" --robot "$robot" --mode "$mode" --stage region --out "trainer/datasets/$robot" \
+    --models-dir "$T/region" --quiet > "$T/region.out" 2>&1 && cmp -s "$h" "onboard/models/$base.h" &&
+    again=$((again + 1))
+done
+[ "$again" -eq "$n" ] && tap_ok "the region stage writes every committed header's region again unchanged" ||
+  tap_not_ok "the region stage writes every committed header's region again unchanged" "$again of $n; $(tail -2 "$T/region.out")"
+sed -i 's/^	.state_max = {0, 0, 0, 8, 8, 0},$/	.state_max = {0, 0, 0, 8, 8, 1},/' "$T/region/drivocopter_flight.h"
+"$B/bin/trainer" --robot drivocopter --mode flight --stage region --out trainer/datasets/drivocopter \
+  --models-dir "$T/region" --quiet > "$T/region.out" 2>&1
+if cmp -s "$T/region/drivocopter_flight.h" onboard/models/drivocopter_flight.h; then
+  tap_ok "the region stage corrects a region edited by hand"; else
+  tap_not_ok "the region stage corrects a region edited by hand" "$(tail -2 "$T/region.out")"; fi
+head -n 200 trainer/datasets/drivocopter/flight.csv > "$T/flight.csv"
+cp trainer/datasets/drivocopter/flight.csv.meta "$T/"
+if ! "$B/bin/trainer" --robot drivocopter --mode flight --stage region --out "$T" --models-dir "$T/region" \
+     --quiet > "$T/region.out" 2>&1 && grep -q "are not those" "$T/region.out"; then
+  tap_ok "the region stage refuses a dataset other than the one the model was fitted on"; else
+  tap_not_ok "the region stage refuses a dataset other than the one the model was fitted on" "$(tail -2 "$T/region.out")"; fi
+out=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,0,0,-2.7 4,0,-3,0,0,0 2>&1)
+if [[ $out == *'"beyond_training_range":true,"outside_region":["X1'"'"'s vz = -2.7 m/s is outside the training range [0, 0] m/s"]'* ]]; then
+  tap_ok "hylo-cost names a descending start velocity outside the flight model's trained region"; else
+  tap_not_ok "hylo-cost names a descending start velocity outside the flight model's trained region" "$out"; fi
 # hylo-cost prints the edge's envelope bound next to its cost, below it.
 out=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,4,0,0 5,1,-1,0,8,0 2>&1)
 env=$(echo "$out" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')

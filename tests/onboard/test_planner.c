@@ -734,6 +734,65 @@ static void test_speed_range(void **state)
 	tu_map_free(&chasm);
 }
 
+/* The rest of a trained region (hylo/region.h): a flight start or goal
+ * whose velocity is not level, like the training pairs', is refused naming
+ * vz; level, it plans, and no edge the search evaluates lies outside the
+ * region (plan->n_untrained); a region narrower than the roadmap's grid
+ * shows in that count. */
+static void test_trained_region(void **state)
+{
+	static const double zeros[HYLO_FEATURES_FLIGHT] = { 0 };
+	static const double ones[HYLO_FEATURES_FLIGHT] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+	hylo_svr_model flight = {
+		.name = "const_flight", .n_features = HYLO_FEATURES_FLIGHT, .gamma = 1.0,
+		.rho = -2.302585092994046, .feature_offset = zeros, .feature_scale = ones,
+		.label_scale = 1, .label_log = 1, .speed_min_mps = 0, .speed_max_mps = 8.0,
+		.state_bounded = 7u << 3,
+		.state_min = { 0, 0, 0, -8, -8, 0 },
+		.state_max = { 0, 0, 0, 8, 8, 0 },
+	};
+	tu_map chasm;
+	hylo_goal g;
+
+	(void)state;
+	robots[1].modes[1].model = &flight;
+	init_planner(planner);
+	tu_chasm(&chasm);
+	set_scene(planner, &chasm);
+	g = tu_goal_chasm();
+	g.start_mode = HYLO_MODE_FLIGHT;   /* above the chasm, descending at 2.7 m/s */
+	g.start[0] = 30;
+	g.start[2] = 5;
+	g.start[5] = -2.7;
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	assert_non_null(strstr(plan->reason.text,
+			       "start vz = -2.7 m/s is outside the flight model's training range [0, 0] m/s"));
+	g = tu_goal_chasm();
+	g.goal_mode = HYLO_MODE_FLIGHT;
+	g.goal[0] = 30;
+	g.goal[2] = 5;
+	g.goal[3] = 1;
+	g.goal[5] = 0.5;   /* |v| = 1.1 m/s: the speed is trained, its direction is not */
+	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
+	assert_non_null(strstr(plan->reason.text, "goal vz = 0.5 m/s is outside"));
+	g.goal[5] = 0;
+	plan_ok(planner, &g, plan);
+	assert_true(plan->n_edges_evaluated > 0);
+	assert_true(plan->n_untrained == 0);
+	/* A region that leaves out the air speed 4 of the grid (the speed
+	 * range alone admits it): the search's edges there are counted. */
+	flight.state_min[3] = flight.state_min[4] = -1;
+	flight.state_max[3] = flight.state_max[4] = 1;
+	init_planner(planner);
+	set_scene(planner, &chasm);
+	plan_ok(planner, &g, plan);
+	assert_true(plan->n_untrained > 0);
+	assert_true(plan->n_untrained <= plan->n_edges_evaluated);
+	robots[1].modes[1].model = NULL;
+	init_planner(planner);
+	tu_map_free(&chasm);
+}
+
 /* After any bad request the planner still answers a good one correctly. */
 static void still_serves(tu_map *m, const hylo_goal *g, double want)
 {
@@ -933,6 +992,7 @@ int main(void)
 		cmocka_unit_test(test_negative_costs_clamped),
 		cmocka_unit_test(test_feasibility_classifier),
 		cmocka_unit_test(test_speed_range),
+		cmocka_unit_test(test_trained_region),
 		cmocka_unit_test(test_bad_input),
 		cmocka_unit_test(test_msg_status),
 	};

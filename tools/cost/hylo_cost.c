@@ -11,6 +11,7 @@
 
 #include "hylo/envelope.h"
 #include "hylo/features.h"
+#include "hylo/region.h"
 #include "node/registry.h"
 
 static void usage(FILE *f)
@@ -24,8 +25,10 @@ static void usage(FILE *f)
 		"the lower bound of its cost over every heading that the planner's search may\n"
 		"use for an edge of this distance, these speeds and (ground, marine) this turn,\n"
 		"the least total heading change of a path to X2 (JSON envelope_j, null when\n"
-		"there is none; envelope_turn_rad, null for flight). Notes when the displacement or a speed lies outside the\n"
-		"model's training range (JSON: beyond_training_range).\n"
+		"there is none; envelope_turn_rad, null for flight). Notes when the displacement,\n"
+		"a speed or another coordinate (e.g. a flight vz: the training velocities are\n"
+		"level) lies outside the model's trained region, naming it (JSON:\n"
+		"beyond_training_range, outside_region: one text per finding, or []).\n"
 		"\n"
 		"  --robot R    robot (ambot, drivocopter, di, ...; see hylo-planner --list-robots)\n"
 		"  --mode M     ground, marine, flight, di_neg or di_pos\n"
@@ -52,6 +55,30 @@ static int parse_state(const char *text, unsigned dim, double *x, const char *wh
 	return 0;
 }
 
+/* What of the edge x1 -> x2 lies outside m's trained region (hylo/region.h),
+ * one text each into notes: the displacement, then what of X1, then of X2.
+ * Returns their number. */
+static int trained_region_notes(const hylo_svr_model *m, hylo_mode mode, const double *x1,
+				const double *x2, double dist, char notes[3][200])
+{
+	const double *x[2];
+	hylo_region_miss miss;
+	char what[160];
+	int n = 0, k;
+
+	x[0] = x1;
+	x[1] = x2;
+	if (m->max_distance_m > 0 && dist > m->max_distance_m)
+		snprintf(notes[n++], 200, "displacement %.3g m is beyond the training range %.3g m", dist,
+			 m->max_distance_m);
+	for (k = 0; k < 2; k++)
+		if (!hylo_region_state(m, mode, x[k], &miss)) {
+			hylo_region_describe(mode, &miss, what, sizeof what);
+			snprintf(notes[n++], 200, "X%d's %s", k + 1, what);
+		}
+	return n;
+}
+
 int main(int argc, char **argv)
 {
 	static hylo_robot robots[HYLO_MAX_ROBOTS];
@@ -61,9 +88,10 @@ int main(int argc, char **argv)
 	uint32_t n, k;
 	hylo_reason reason;
 	const hylo_mode_model *mm = NULL;
-	double cost, floor_cost, dist, feas = NAN, speeds[2], envelope, args[4];
+	double cost, floor_cost, dist, feas = NAN, envelope, args[4];
 	int planar;
-	int far, slow_or_fast[2];
+	char outside[3][200];
+	int n_outside;
 
 	for (i = 1; i < argc; i++) {
 		if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -119,16 +147,9 @@ int main(int argc, char **argv)
 	envelope = hylo_envelope_of_edge(mm->model, (hylo_mode)mode, x1, x2);
 	planar = (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) &&
 		 hylo_envelope_args((hylo_mode)mode, x1, x2, args);
-	dist = mode == HYLO_MODE_FLIGHT
-		       ? sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]) +
-			      (x2[2] - x1[2]) * (x2[2] - x1[2]))
-		       : sqrt((x2[0] - x1[0]) * (x2[0] - x1[0]) + (x2[1] - x1[1]) * (x2[1] - x1[1]));
+	dist = hylo_edge_distance((hylo_mode)mode, x1, x2);
 	floor_cost = hylo_svr_cost_floor(mm->model, dist);
-	far = mm->model->max_distance_m > 0 && dist > mm->model->max_distance_m;
-	speeds[0] = hylo_state_speed((hylo_mode)mode, x1);
-	speeds[1] = hylo_state_speed((hylo_mode)mode, x2);
-	for (i = 0; i < 2; i++)
-		slow_or_fast[i] = !hylo_svr_speed_trained(mm->model, speeds[i]);
+	n_outside = trained_region_notes(mm->model, (hylo_mode)mode, x1, x2, dist, outside);
 	if (mm->feasibility)
 		feas = hylo_svr_predict(mm->feasibility, f);
 	if (json) {
@@ -149,8 +170,11 @@ int main(int argc, char **argv)
 			printf("{\"decision\":%.17g,\"feasible\":%s}", feas, feas >= 0 ? "true" : "false");
 		else
 			printf("null");
-		printf(",\"beyond_training_range\":%s}\n",
-		       far || slow_or_fast[0] || slow_or_fast[1] ? "true" : "false");
+		printf(",\"beyond_training_range\":%s,\"outside_region\":[",
+		       n_outside > 0 ? "true" : "false");
+		for (i = 0; i < n_outside; i++)
+			printf("%s\"%s\"", i ? "," : "", outside[i]);
+		printf("]}\n");
 		return 0;
 	}
 	printf("%s %s: predicted cost %.6g J", robot, mode_name, cost);
@@ -169,12 +193,7 @@ int main(int argc, char **argv)
 		printf("feasibility: %s (decision %.4g)\n", feas >= 0 ? "feasible" : "infeasible", feas);
 	else
 		printf("feasibility: no classifier in this model\n");
-	if (far)
-		printf("note: displacement %.3g m is beyond the training range %.3g m\n", dist,
-		       mm->model->max_distance_m);
-	for (i = 0; i < 2; i++)
-		if (slow_or_fast[i])
-			printf("note: X%d's speed %.3g m/s is outside the training range [%.3g, %.3g] m/s\n",
-			       i + 1, speeds[i], mm->model->speed_min_mps, mm->model->speed_max_mps);
+	for (i = 0; i < n_outside; i++)
+		printf("note: %s\n", outside[i]);
 	return 0;
 }

@@ -110,6 +110,8 @@ typedef struct {
 	uint64_t n_clamped;             /* costs raised to the floor (negative ones included) */
 	uint64_t n_negative;            /* of those, predictions below 0 */
 	uint64_t n_infeasible;          /* edges dropped by a feasibility classifier */
+	uint64_t n_untrained;           /* edges evaluated outside their model's trained region
+	                                 * (hylo/region.h): 0, as start, goal and grids are checked */
 	int roadmap_reused;             /* 1: the roadmap of the previous goal was reused */
 	double plan_ms;                 /* 0 without a clock */
 } hylo_plan;
@@ -175,7 +177,7 @@ typedef struct {
 	hylo_real features[HYLO_MAX_COMBOS * HYLO_MAX_FEATURES];
 	uint32_t path[HYLO_MAX_WAYPOINTS];
 	hylo_real path_cost[HYLO_MAX_WAYPOINTS];
-	uint64_t n_clamped, n_negative, n_infeasible, n_evaluated, n_cached;
+	uint64_t n_clamped, n_negative, n_infeasible, n_untrained, n_evaluated, n_cached;
 	int heuristic_pass;             /* 1 while computing h_pos */
 	int use_heuristic;
 	/* A*'s upper bound (a greedy walk's path cost) and its path */

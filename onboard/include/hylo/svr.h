@@ -30,7 +30,7 @@
  * any change to hylo_svr_model, hylo_svr_envelope or the header's layout
  * that makes an older header mean something else, and regenerate the models.
  */
-#define HYLO_MODEL_FORMAT_VERSION 1
+#define HYLO_MODEL_FORMAT_VERSION 2
 
 #ifdef __cplusplus
 extern "C" {
@@ -85,6 +85,14 @@ typedef struct {
 	double max_distance_m;         /* training displacements reach this far [m]; 0 = any */
 	double speed_min_mps;          /* training speeds span [speed_min_mps, speed_max_mps] */
 	double speed_max_mps;          /* (hylo_state_speed); both 0 = any */
+	/* The rest of the trained region (hylo/region.h): bit k set: sampled
+	 * coordinate k of both states of every training pair lay in
+	 * [state_min[k], state_max[k]] (e.g. flight vz in [0, 0]: level
+	 * velocities only); clear: that coordinate was not restricted (or the
+	 * features do not see it: positions). 0: no such bounds. */
+	uint32_t state_bounded;
+	double state_min[HYLO_XS_DIM];
+	double state_max[HYLO_XS_DIM];
 	const char *provenance;        /* samples, seed, hashes, errors, version; may be NULL */
 	const hylo_svr_envelope *envelope;  /* NULL: none (the double integrator, classifiers) */
 } hylo_svr_model;

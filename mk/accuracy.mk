@@ -1,0 +1,31 @@
+# The trained region on the committed scenes (tests/scenes/), and the models'
+# accuracy on the edges the planner asks for (tools/accuracy/).
+
+# Test: no edge the planner evaluates on a committed scene lies outside its
+# model's trained region.
+TRAINED_REGION_TEST := $(BUILD)/test/scenes/test_trained_region
+$(TRAINED_REGION_TEST): tests/scenes/test_trained_region.cpp tools/scene/planner_view.hpp \
+		$(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
+ALL_TARGETS += $(TRAINED_REGION_TEST)
+TESTS += $(TRAINED_REGION_TEST)
+
+# Benchmark: the models' errors on the edges the planner evaluates and the
+# edges of its plans, against the trainer's exact solves
+# (tools/bench/bench_accuracy.cpp; tools/accuracy/plot_accuracy.py draws
+# docs/accuracy/).
+BENCH_ACCURACY := $(BUILD)/bench/bin/bench_accuracy
+$(BENCH_ACCURACY): tools/bench/bench_accuracy.cpp tools/scene/planner_view.hpp $(BUILD)/obj/tools/scene/scene.o \
+		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
+BENCH_TARGETS += $(BENCH_ACCURACY)
+
+# The picture in docs/accuracy/ from the last make bench's edges (or
+# ACCURACY_EDGES=path), recorded in docs/provenance.json.
+ACCURACY_EDGES ?= $(BUILD)/bench/work/accuracy_edges.csv
+accuracy-picture: venv-report
+	.venv/bin/python tools/accuracy/plot_accuracy.py $(ACCURACY_EDGES) docs/accuracy/planner_edges.png
+	tools/provenance record docs/accuracy/planner_edges.png
+.PHONY: accuracy-picture

@@ -1,0 +1,79 @@
+// Every committed scene (scenes/*.yaml), planned with the committed models
+// there and back (start and goal swapped): the planner evaluates no edge
+// outside its model's trained region (hylo_plan.n_untrained, hylo/region.h).
+// And a start whose velocity the flight model never saw is refused.
+// TAP; run from the repository's root (scene files as arguments instead).
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hylo/planner.h"
+#include "node/registry.h"
+#include "tests/tap.hpp"
+#include "tools/scene/planner_view.hpp"
+
+int main(int argc, char **argv)
+{
+	hylo_robot robots[HYLO_MAX_ROBOTS];
+	hylo_reason r;
+	hylo_planner_config cfg{};
+	cfg.robots = robots;
+	cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &r);
+	const size_t size = hylo_planner_size(&cfg);
+	std::vector<double> mem(size / sizeof(double) + 1);
+	auto *pl = reinterpret_cast<hylo_planner *>(mem.data());
+	std::unique_ptr<hylo_plan> plan(new hylo_plan);
+	check(hylo_planner_init(pl, size, &cfg) == HYLO_OK, "a planner with every committed model",
+	      hylo_planner_reason(pl));
+	std::vector<std::string> scenes(argv + 1, argv + argc);
+	if (scenes.empty())
+		for (const auto &e : std::filesystem::directory_iterator("scenes"))
+			if (e.path().extension() == ".yaml")
+				scenes.push_back(e.path().string());
+	std::sort(scenes.begin(), scenes.end());
+	check(scenes.size() >= 8, "the committed scenes", std::to_string(scenes.size()) + " scene files");
+	for (const std::string &path : scenes) {
+		const hylo::scene::Scene sc = hylo::scene::load(path);
+		const hylo_map_view v = hylo::scene::map_view(sc);
+		hylo_goal there = hylo::scene::goal_of(sc), back = there;
+		std::swap(back.start_mode, back.goal_mode);
+		std::swap_ranges(back.start, back.start + HYLO_XS_DIM, back.goal);
+		for (const hylo_goal *g : {&there, &back}) {
+			const std::string name = sc.name + (g == &there ? "" : " (back)");
+			hylo_planner_set_map(pl, &v);
+			hylo_planner_plan(pl, g, plan.get());
+			const bool planned = plan->status == HYLO_OK && plan->outcome == HYLO_FOUND &&
+					     plan->n_edges_evaluated > 0;
+			check(planned, name + ": planned", plan->reason.text);
+			check(planned && plan->n_untrained == 0,
+			      name + ": every evaluated edge inside its model's trained region",
+			      std::to_string(plan->n_untrained) + " of " + std::to_string(plan->n_edges_evaluated) +
+				      " outside");
+		}
+	}
+	// A flight start descending at 2.7 m/s (the training velocities are
+	// level) above a chasm scene's start: refused, naming vz; level, planned.
+	const hylo::scene::Scene sc = hylo::scene::load("scenes/chasm_050.yaml");
+	const hylo_map_view v = hylo::scene::map_view(sc);
+	hylo_goal g = hylo::scene::goal_of(sc);
+	const int ix = static_cast<int>((g.start[0] - sc.origin_x_m) / sc.resolution_m),
+		  iy = static_cast<int>((g.start[1] - sc.origin_y_m) / sc.resolution_m);
+	g.start_mode = HYLO_MODE_FLIGHT;
+	g.start[2] = sc.height_m[static_cast<size_t>(iy * sc.nx + ix)] + 3;
+	g.start[3] = 2;
+	g.start[5] = -2.7;
+	hylo_planner_set_map(pl, &v);
+	hylo_planner_plan(pl, &g, plan.get());
+	const std::string why = plan->reason.text;
+	check(plan->status == HYLO_E_BAD_VALUE &&
+		      why.find("start vz = -2.7 m/s is outside the flight model's training range [0, 0] m/s") !=
+			      std::string::npos,
+	      "chasm_050: a flight start descending at 2.7 m/s is a bad request naming vz", why);
+	g.start[5] = 0;
+	hylo_planner_plan(pl, &g, plan.get());
+	check(plan->status == HYLO_OK && plan->outcome == HYLO_FOUND && plan->n_untrained == 0,
+	      "chasm_050: the same start flying level is planned", plan->reason.text);
+	return tap_finish();
+}

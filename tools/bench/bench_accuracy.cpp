@@ -1,0 +1,421 @@
+// Accuracy of the committed cost models where the planner asks (issue #43):
+// every committed scene is planned there and back with the committed
+// models; from the edges the search evaluated (the edge cache's finite
+// costs: start and goal links are not cached) and the edges of the plans,
+// a seeded sample per model and source is solved exactly with the
+// trainer's collocation (training_solve_options: the solver that labelled
+// the training rows), and the model's relative error (prediction - exact)
+// / exact is summarized: median and p95 of |error|, the worst |error| and
+// the bias (signed mean), next to the held-out errors on rows drawn like
+// the training rows (each model's provenance string). Edges whose exact
+// solve does not converge are counted, not scored.
+//
+// usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J]
+//                       [--csv EDGES.csv] [SCENE.yaml ...]
+// N edges per model and source (default 100); every committed scene by
+// default. Writes a table to stdout, JSON rows {name, value, unit,
+// reference, reference_value, ratio} to RESULTS.json (ratio = reference /
+// value: above 1, the planner's edges are predicted better than held-out
+// rows) and one CSV line per edge (default: RESULTS.json with
+// _edges.csv for .json: length, climb, speeds, costs, error and both
+// states) for tools/accuracy/plot_accuracy.py.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hylo/features.h"
+#include "hylo/planner.h"
+#include "hylo/region.h"
+#include "node/registry.h"
+#include "tools/scene/planner_view.hpp"
+#include "trainer/collocation.hpp"
+#include "trainer/dataset.hpp"
+#include "trainer/params.hpp"
+#include "trainer/processes.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+
+const char *const kSources[2] = {"evaluated", "plan"};
+
+struct Edge {
+	std::string scene;
+	int source = 0;            // index into kSources
+	hylo_mode mode = HYLO_MODE_NONE;
+	double a[HYLO_XS_DIM] = {0}, b[HYLO_XS_DIM] = {0};
+	double predicted = 0;      // hylo_svr_predict, before the planner's floor
+	double exact = NAN;        // the trainer's optimum; NaN: did not converge
+};
+
+// Edges of one model: [source] -> edges, and what it needs to be solved.
+struct ModelEdges {
+	std::string robot;         // the parameter file's name
+	const hylo_svr_model *model = nullptr;
+	std::vector<Edge> pool[2];
+};
+
+Edge edge_of(const std::string &scene, int source, hylo_mode mode, const hylo_svr_model *m, const double *a,
+	     const double *b)
+{
+	Edge e;
+	e.scene = scene;
+	e.source = source;
+	e.mode = mode;
+	std::copy_n(a, HYLO_XS_DIM, e.a);
+	std::copy_n(b, HYLO_XS_DIM, e.b);
+	double f[HYLO_MAX_FEATURES];
+	hylo_features(mode, a, b, f);
+	e.predicted = hylo_svr_predict(m, f);
+	return e;
+}
+
+const hylo_mode_model *mode_model(const hylo_planner *pl, int mode)
+{
+	int k = hylo_robot_mode_index(pl->robot, static_cast<hylo_mode>(mode));
+	return k < 0 ? nullptr : &pl->robot->modes[k];
+}
+
+// The edges the last search evaluated on roadmap nodes (the cache keeps
+// every finite cost it computed; +inf marks a classifier's drop).
+void evaluated_edges(hylo_planner *pl, const std::string &scene, std::map<std::string, ModelEdges> &out)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	for (uint32_t u = 0; u < rm->n_nodes; u++) {
+		const uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
+		const hylo_position &p = rm->pos[i];
+		const hylo_mode_model *mm = mode_model(pl, p.mode);
+		if (!mm || !mm->model)
+			continue;
+		double a[HYLO_XS_DIM] = {0}, b[HYLO_XS_DIM] = {0};
+		hylo_roadmap_state(rm, i, c, a);
+		for (uint32_t k = 0; k < p.adj_end - p.adj_begin; k++) {
+			const uint32_t j = rm->adjacency[p.adj_begin + k];
+			const hylo_real *costs = hylo_edge_cache_group(&pl->cache, rm, u, k, 0);
+			if (!costs || rm->pos[j].mode != p.mode)
+				continue;
+			for (uint32_t c2 = 0; c2 < rm->pos[j].n_combos; c2++)
+				if (std::isfinite(costs[c2])) {
+					hylo_roadmap_state(rm, j, c2, b);
+					out[mm->model->name].pool[0].push_back(
+						edge_of(scene, 0, static_cast<hylo_mode>(p.mode), mm->model, a, b));
+				}
+		}
+	}
+}
+
+// The plan's edges within one mode (switches are constants, not models).
+void plan_edges(const hylo_planner *pl, const hylo_plan &plan, const std::string &scene,
+		std::map<std::string, ModelEdges> &out)
+{
+	for (uint32_t k = 0; k + 1 < plan.n_waypoints; k++) {
+		const hylo_mode_model *mm = mode_model(pl, plan.mode[k]);
+		if (plan.mode[k] != plan.mode[k + 1] || !mm || !mm->model ||
+		    std::equal(plan.state[k], plan.state[k] + HYLO_XS_DIM, plan.state[k + 1]))
+			continue;
+		out[mm->model->name].pool[1].push_back(edge_of(scene, 1, static_cast<hylo_mode>(plan.mode[k]),
+							       mm->model, plan.state[k], plan.state[k + 1]));
+	}
+}
+
+// n edges of pool drawn without replacement (all of them when fewer), in
+// pool order, by a seeded Fisher-Yates.
+std::vector<Edge> sample(const std::vector<Edge> &pool, size_t n, uint64_t seed)
+{
+	std::vector<size_t> idx(pool.size());
+	for (size_t i = 0; i < idx.size(); i++)
+		idx[i] = i;
+	std::mt19937_64 rng(seed);
+	n = std::min(n, idx.size());
+	for (size_t i = 0; i < n; i++)
+		std::swap(idx[i], idx[i + rng() % (idx.size() - i)]);
+	idx.resize(n);
+	std::sort(idx.begin(), idx.end());
+	std::vector<Edge> out;
+	for (size_t i : idx)
+		out.push_back(pool[i]);
+	return out;
+}
+
+// Solves every edge (one forked process each: trainer/processes.hpp).
+void solve_all(std::vector<Edge> &edges, const std::map<std::string, RobotParams> &robots,
+	       const std::vector<std::string> &robot_of, int jobs)
+{
+	std::vector<std::string> res = fork_each(edges.size(), jobs, [&](size_t i) {
+		const Edge &e = edges[i];
+		const std::string mode = hylo_mode_str(e.mode);
+		Solution s = solve_bvp(mode, robots.at(robot_of[i]), e.a, e.b, training_solve_options());
+		char buf[64];
+		std::snprintf(buf, sizeof buf, "%d %.17g", s.converged ? 1 : 0, s.cost);
+		return std::string(buf);
+	});
+	for (size_t i = 0; i < edges.size(); i++) {
+		int conv = 0;
+		double cost = NAN;
+		if (std::sscanf(res[i].c_str(), "%d %lf", &conv, &cost) == 2 && conv && cost > 0)
+			edges[i].exact = cost;
+	}
+}
+
+struct Summary {
+	size_t n = 0, unsolved = 0;
+	double median = NAN, p95 = NAN, worst = NAN, bias = NAN;   // worst: signed
+};
+
+double quantile(std::vector<double> v, double q)
+{
+	std::sort(v.begin(), v.end());
+	if (v.empty())
+		return NAN;
+	double x = q * (v.size() - 1);
+	size_t lo = static_cast<size_t>(x);
+	return lo + 1 < v.size() ? v[lo] + (x - lo) * (v[lo + 1] - v[lo]) : v[lo];
+}
+
+Summary summarize(const std::vector<Edge> &edges, int source)
+{
+	Summary s;
+	std::vector<double> abs_err;
+	double sum = 0;
+	for (const Edge &e : edges) {
+		if (source >= 0 && e.source != source)
+			continue;
+		if (!std::isfinite(e.exact)) {
+			s.unsolved++;
+			continue;
+		}
+		double r = (e.predicted - e.exact) / e.exact;
+		abs_err.push_back(std::fabs(r));
+		sum += r;
+		if (!(std::fabs(r) <= std::fabs(s.worst)))
+			s.worst = r;
+		s.n++;
+	}
+	if (s.n) {
+		s.median = quantile(abs_err, 0.5);
+		s.p95 = quantile(abs_err, 0.95);
+		s.bias = sum / s.n;
+	}
+	return s;
+}
+
+// The held-out errors of a model's provenance: median, p95, max.
+bool held_out(const hylo_svr_model *m, double out[3])
+{
+	const char *p = m->provenance ? std::strstr(m->provenance, "held-out errors: ") : nullptr;
+	return p && std::sscanf(p, "held-out errors: median %lf, p95 %lf, max %lf", &out[0], &out[1], &out[2]) == 3;
+}
+
+struct Row {
+	std::string name, unit, reference;
+	double value, reference_value;
+};
+
+void write_json(const std::string &path, const std::vector<Row> &rows)
+{
+	std::ofstream out(path);
+	out << "[\n";
+	for (size_t i = 0; i < rows.size(); i++) {
+		const Row &r = rows[i];
+		char buf[700];
+		if (!r.reference.empty() && std::isfinite(r.reference_value))
+			std::snprintf(buf, sizeof buf,
+				      "  {\"name\": \"%s\", \"value\": %.6g, \"unit\": \"%s\", \"reference\": \"%s\", "
+				      "\"reference_value\": %.6g, \"ratio\": %.6g}",
+				      r.name.c_str(), r.value, r.unit.c_str(), r.reference.c_str(), r.reference_value,
+				      r.value > 0 ? r.reference_value / r.value : 0.0);
+		else
+			std::snprintf(buf, sizeof buf,
+				      "  {\"name\": \"%s\", \"value\": %.6g, \"unit\": \"%s\", \"reference\": null, "
+				      "\"reference_value\": null, \"ratio\": null}",
+				      r.name.c_str(), std::isfinite(r.value) ? r.value : 0.0, r.unit.c_str());
+		out << buf << (i + 1 < rows.size() ? ",\n" : "\n");
+	}
+	out << "]\n";
+	if (!out)
+		throw std::runtime_error("cannot write " + path);
+}
+
+// Edge length and climb angle (flight: of the displacement) for the CSV.
+void write_csv(const std::string &path, const std::vector<std::pair<std::string, Edge>> &edges)
+{
+	std::ofstream out(path);
+	out << "model,mode,source,scene,length_m,climb_deg,speed1_mps,speed2_mps,predicted_j,exact_j,rel_error";
+	for (const char *end : {"x1_", "x2_"})
+		for (int k = 0; k < HYLO_XS_DIM; k++)
+			out << "," << end << k;
+	out << "\n";
+	for (const auto &[name, e] : edges) {
+		double len = hylo_edge_distance(e.mode, e.a, e.b), dz = e.mode == HYLO_MODE_FLIGHT ? e.b[2] - e.a[2] : 0;
+		double climb = e.mode == HYLO_MODE_FLIGHT ? std::atan2(dz, std::hypot(e.b[0] - e.a[0], e.b[1] - e.a[1])) * 180 / M_PI : 0;
+		char buf[400];
+		std::snprintf(buf, sizeof buf, "%s,%s,%s,%s,%.6g,%.6g,%.6g,%.6g,%.10g,%.10g,%.6g\n", name.c_str(),
+			      hylo_mode_str(e.mode), kSources[e.source], e.scene.c_str(), len, climb,
+			      hylo_state_speed(e.mode, e.a), hylo_state_speed(e.mode, e.b), e.predicted, e.exact,
+			      std::isfinite(e.exact) ? (e.predicted - e.exact) / e.exact : NAN);
+		out << std::string(buf, std::strlen(buf) - 1);   // the states, to solve an edge again
+		for (const double *x : {e.a, e.b})
+			for (int k = 0; k < HYLO_XS_DIM; k++) {
+				std::snprintf(buf, sizeof buf, ",%.17g", x[k]);
+				out << buf;
+			}
+		out << "\n";
+	}
+	if (!out)
+		throw std::runtime_error("cannot write " + path);
+}
+
+int run(int argc, char **argv)
+{
+	if (argc < 2 || argv[1][0] == '-') {
+		std::fprintf(stderr, "usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J] "
+				     "[--csv EDGES.csv] [SCENE.yaml ...]\n");
+		return 2;
+	}
+	const std::string json = argv[1];
+	std::string csv = json.size() > 5 && json.compare(json.size() - 5, 5, ".json") == 0
+				  ? json.substr(0, json.size() - 5) + "_edges.csv"
+				  : json + "_edges.csv";
+	size_t per_source = 100;
+	uint64_t seed = 1;
+	int jobs = 2;
+	std::vector<std::string> scenes;
+	for (int i = 2; i < argc; i++) {
+		std::string a = argv[i];
+		auto val = [&]() -> std::string {
+			if (i + 1 >= argc)
+				throw std::invalid_argument(a + " needs a value");
+			return argv[++i];
+		};
+		if (a == "--edges")
+			per_source = std::stoul(val());
+		else if (a == "--seed")
+			seed = std::stoull(val());
+		else if (a == "--jobs")
+			jobs = std::stoi(val());
+		else if (a == "--csv")
+			csv = val();
+		else if (!a.empty() && a[0] == '-')
+			throw std::invalid_argument("unknown option " + a);
+		else
+			scenes.push_back(a);
+	}
+	if (scenes.empty()) {
+		for (const auto &e : std::filesystem::directory_iterator("scenes"))
+			if (e.path().extension() == ".yaml")
+				scenes.push_back(e.path().string());
+		std::sort(scenes.begin(), scenes.end());
+	}
+
+	hylo_robot robots[HYLO_MAX_ROBOTS];
+	hylo_reason reason;
+	hylo_planner_config cfg{};
+	cfg.robots = robots;
+	cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &reason);
+	const size_t size = hylo_planner_size(&cfg);
+	std::vector<double> mem(size / sizeof(double) + 1);
+	auto *pl = reinterpret_cast<hylo_planner *>(mem.data());
+	if (hylo_planner_init(pl, size, &cfg) != HYLO_OK)
+		throw std::runtime_error(std::string("planner: ") + hylo_planner_reason(pl));
+	std::unique_ptr<hylo_plan> plan(new hylo_plan);
+	std::map<std::string, ModelEdges> models;
+	for (const std::string &path : scenes) {
+		const hylo::scene::Scene sc = hylo::scene::load(path);
+		const hylo_map_view v = hylo::scene::map_view(sc);
+		hylo_goal there = hylo::scene::goal_of(sc), back = there;
+		std::swap(back.start_mode, back.goal_mode);
+		std::swap_ranges(back.start, back.start + HYLO_XS_DIM, back.goal);
+		for (const hylo_goal *g : {&there, &back}) {
+			hylo_planner_set_map(pl, &v);   // a fresh cache: this goal's edges alone
+			hylo_planner_plan(pl, g, plan.get());
+			if (plan->status != HYLO_OK || plan->outcome != HYLO_FOUND)
+				throw std::runtime_error(path + ": no plan: " + plan->reason.text);
+			evaluated_edges(pl, sc.name, models);
+			plan_edges(pl, *plan, sc.name, models);
+		}
+		for (auto &[name, me] : models)
+			if (me.robot.empty()) {
+				me.robot = sc.robot;
+				for (uint32_t k = 0; k < pl->robot->n_modes; k++)
+					if (pl->robot->modes[k].model && name == pl->robot->modes[k].model->name)
+						me.model = pl->robot->modes[k].model;
+			}
+	}
+
+	std::map<std::string, RobotParams> params;
+	std::vector<Edge> todo;
+	std::vector<std::string> todo_model, todo_robot;
+	uint64_t stream = 0;
+	for (const auto &[name, me] : models) {
+		std::printf("%-20s %7zu edges evaluated, %4zu on plans (%zu scenes, there and back)\n", name.c_str(),
+			    me.pool[0].size(), me.pool[1].size(), scenes.size());
+		if (!params.count(me.robot))
+			params[me.robot] = load_robot(robot_file(me.robot));
+		for (int s = 0; s < 2; s++)
+			for (const Edge &e : sample(me.pool[s], per_source, seed * 1000003 + stream++)) {
+				todo.push_back(e);
+				todo_model.push_back(name);
+				todo_robot.push_back(me.robot);
+			}
+	}
+	std::printf("solving %zu edges exactly (%zu per model and source at most, seed %llu, %d jobs)\n", todo.size(),
+		    per_source, static_cast<unsigned long long>(seed), jobs);
+	std::fflush(stdout);
+	solve_all(todo, params, todo_robot, jobs);
+
+	std::vector<Row> rows;
+	std::vector<std::pair<std::string, Edge>> all;
+	for (size_t i = 0; i < todo.size(); i++)
+		all.emplace_back(todo_model[i], todo[i]);
+	std::printf("%-20s %-9s %7s %6s %8s %8s %9s %8s | held-out %6s %6s %6s\n", "model", "source", "edges", "unsolv",
+		    "median", "p95", "worst", "bias", "median", "p95", "max");
+	for (const auto &[name, me] : models) {
+		std::vector<Edge> mine;
+		for (size_t i = 0; i < todo.size(); i++)
+			if (todo_model[i] == name)
+				mine.push_back(todo[i]);
+		double ho[3] = {NAN, NAN, NAN};
+		held_out(me.model, ho);
+		for (int s = -1; s < 2; s++) {
+			const Summary sm = summarize(mine, s);
+			const std::string src = s < 0 ? "all" : kSources[s];
+			std::printf("%-20s %-9s %7zu %6zu %7.2f%% %7.2f%% %+8.2f%% %+7.2f%% | %5.2f%% %5.2f%% %5.1f%%\n",
+				    name.c_str(), src.c_str(), sm.n, sm.unsolved, 100 * sm.median, 100 * sm.p95,
+				    100 * sm.worst, 100 * sm.bias, 100 * ho[0], 100 * ho[1], 100 * ho[2]);
+			const std::string base = "accuracy_" + name + "_" + src + "_";
+			const std::string ref = "held-out rows drawn like the training rows (model provenance)";
+			rows.push_back({base + "median_rel_error", "relative", ref, sm.median, ho[0]});
+			rows.push_back({base + "p95_rel_error", "relative", ref, sm.p95, ho[1]});
+			rows.push_back({base + "worst_rel_error", "relative", ref, std::fabs(sm.worst), ho[2]});
+			rows.push_back({base + "bias", "relative", "", sm.bias, NAN});
+			rows.push_back({base + "edges", "edges", "", static_cast<double>(sm.n), NAN});
+			rows.push_back({base + "unsolved", "edges", "", static_cast<double>(sm.unsolved), NAN});
+		}
+	}
+	write_json(json, rows);
+	write_csv(csv, all);
+	std::printf("%zu rows -> %s; edges -> %s\n", rows.size(), json.c_str(), csv.c_str());
+	return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+	try {
+		return run(argc, argv);
+	} catch (const std::exception &e) {
+		std::fprintf(stderr, "bench_accuracy: %s\n", e.what());
+		return 1;
+	}
+}

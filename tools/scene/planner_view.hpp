@@ -1,0 +1,62 @@
+// A scene (scene.hpp) as the onboard planner's inputs: its map as a
+// hylo_map_view and its goal as a hylo_goal. Both point into the scene,
+// which must outlive them.
+#ifndef HYLO_TOOLS_PLANNER_VIEW_HPP
+#define HYLO_TOOLS_PLANNER_VIEW_HPP
+
+#include "hylo/planner.h"
+#include "tools/scene/scene.hpp"
+
+namespace hylo::scene {
+
+inline hylo_map_view map_view(const Scene &sc)
+{
+	hylo_map_view v{};
+	v.map_id = sc.map_id;
+	v.robot = sc.robot.c_str();
+	v.nx = sc.nx;
+	v.ny = sc.ny;
+	v.resolution = sc.resolution_m;
+	v.origin_x = sc.origin_x_m;
+	v.origin_y = sc.origin_y_m;
+	v.ceiling = sc.ceiling_m;
+	v.max_step = sc.max_step_m;
+	v.n_cells = sc.nx * sc.ny;
+	v.terrain = sc.terrain.data();
+	v.height = sc.height_m.data();
+	return v;
+}
+
+inline hylo_goal goal_of(const Scene &sc)
+{
+	const Goal &g = sc.goal;
+	hylo_goal q{};
+	q.request_id = 1;
+	q.algorithm = g.algorithm;
+	q.start_mode = g.start.mode;
+	q.goal_mode = g.goal.mode;
+	for (int k = 0; k < HYLO_XS_DIM; k++) {
+		q.start[k] = g.start.x[static_cast<size_t>(k)];
+		q.goal[k] = g.goal.x[static_cast<size_t>(k)];
+	}
+	q.seed = static_cast<uint64_t>(g.seed);
+	q.spacing = g.spacing_m;
+	q.air_spacing = g.air_spacing_m;
+	q.guard_spacing = g.guard_spacing_m;
+	q.connect_radius = g.connect_radius_m;
+	q.air_connect_radius = g.air_connect_radius_m;
+	q.n_speeds = static_cast<uint32_t>(g.speeds_mps.size());
+	q.speeds = g.speeds_mps.data();
+	q.n_headings = static_cast<uint32_t>(g.headings_rad.size());
+	q.headings = g.headings_rad.data();
+	q.n_air_speeds = static_cast<uint32_t>(g.air_speeds_mps.size());
+	q.air_speeds = g.air_speeds_mps.data();
+	q.time_budget_ms = g.time_budget_ms;
+	q.max_expansions = static_cast<uint64_t>(g.max_expansions);
+	q.suboptimality = g.suboptimality;
+	return q;
+}
+
+}  // namespace hylo::scene
+
+#endif
