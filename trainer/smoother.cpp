@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -354,23 +355,48 @@ std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan)
 	return out;
 }
 
+namespace {
+
+// The smoother's solver options: smoothing_solve_options() with opt's Ipopt
+// options, and with the full optimization's own ones if full.
+SolveOptions solver_options(const SmoothOptions &opt, bool full)
+{
+	SolveOptions so = smoothing_solve_options();
+	so.ipopt_options = opt.ipopt_options;
+	if (full)
+		so.ipopt_options.insert(so.ipopt_options.end(), opt.full_ipopt_options.begin(),
+					opt.full_ipopt_options.end());
+	so.debug = std::getenv("HYLO_TRAINER_DEBUG") != nullptr;
+	return so;
+}
+
+}  // namespace
+
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales)
+			       const std::vector<double> &T_scales, bool *from_straightened)
 {
 	MultiPhaseSolution s;
-	double seconds = 0;
+	double seconds = 0, rejected = std::numeric_limits<double>::infinity();
+	std::string why;
 	for (int attempt = 0; attempt < 2; attempt++) {
 		MultiPhaseProblem prob = smoothing_problem(robot, attempt ? straightened(plan) : plan, map, costs, opt);
 		if (!T_scales.empty())
 			prob.T_scales = T_scales;
-		SolveOptions so = smoothing_solve_options();
-		so.ipopt_options = opt.ipopt_options;
-		s = solve_multiphase(robot, prob, so);
+		s = solve_multiphase(robot, prob, solver_options(opt, true));
 		seconds += s.solve_seconds;
 		s.solve_seconds = seconds;
+		rejected = std::min(rejected, s.rejected_cost);
+		if (from_straightened)
+			*from_straightened = attempt == 1;
 		if (s.converged)
 			break;
+		why += attempt ? "; straightened: " + s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")")
+			       : s.rejection;
+	}
+	if (!s.converged) {
+		s.rejection = why;
+		s.rejected_cost = rejected;
 	}
 	return s;
 }
@@ -420,18 +446,195 @@ std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
 
 MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales)
+			       const std::vector<double> &T_scales, bool *from_straightened)
 {
-	MultiPhaseSolution best = smooth_plan(robot, plan, map, costs, opt, T_scales);
-	double seconds = best.solve_seconds;
+	bool straight = false;
+	MultiPhaseSolution best = smooth_plan(robot, plan, map, costs, opt, T_scales, &straight);
+	double seconds = best.solve_seconds, rejected = best.rejected_cost;
 	for (const std::vector<Waypoint> &alt : flown_over(plan)) {
-		MultiPhaseSolution s = smooth_plan(robot, alt, map, costs, opt, T_scales);
+		bool alt_straight = false;
+		MultiPhaseSolution s = smooth_plan(robot, alt, map, costs, opt, T_scales, &alt_straight);
 		seconds += s.solve_seconds;
-		if (s.converged && (!best.converged || s.cost < best.cost))
+		rejected = std::min(rejected, s.rejected_cost);
+		if (s.converged && (!best.converged || s.cost < best.cost)) {
 			best = std::move(s);
+			straight = alt_straight;
+		} else if (!s.converged && !best.converged) {
+			best.rejection += "; flown over: " + s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")");
+		}
 	}
 	best.solve_seconds = seconds;
+	best.rejected_cost = rejected;
+	if (from_straightened)
+		*from_straightened = best.converged && straight;
 	return best;
+}
+
+const char *method_name(SmoothMethod m)
+{
+	switch (m) {
+	case SmoothMethod::Full: return "full";
+	case SmoothMethod::Straightened: return "straightened";
+	case SmoothMethod::FinerMesh: return "finer mesh";
+	case SmoothMethod::PhaseByPhase: return "phase by phase";
+	case SmoothMethod::GraphPath: return "graph path";
+	}
+	return "?";
+}
+
+namespace {
+
+// Appends phase solution ph (mode m) to a joined trajectory.
+void append_phase(MultiPhaseSolution &out, const std::string &m, Solution ph)
+{
+	out.modes.push_back(m);
+	out.cost += ph.cost;
+	out.T += ph.T;
+	out.replay_cost += ph.replay_cost;
+	out.replay_error = std::max(out.replay_error, ph.replay_error);
+	out.phases.push_back(std::move(ph));
+}
+
+std::string why_not(const MultiPhaseSolution &s)
+{
+	return s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")");
+}
+
+// Every component of a knot's bounds [lo, hi] not fixed yet, fixed to x.
+void fix_free(std::vector<double> &lo, std::vector<double> &hi, const std::vector<double> &x)
+{
+	for (size_t c = 0; c < lo.size() && c < x.size(); c++)
+		if (lo[c] != hi[c])
+			lo[c] = hi[c] = std::min(std::max(x[c], lo[c]), hi[c]);
+}
+
+// The phase-by-phase step: the plan's problem with its switch points pinned
+// to the plan's guard points, every phase then solved alone from the switch
+// states the plan has there (what the joins leave free of a switch knot is
+// fixed to the plan's state, so consecutive phases still meet).
+MultiPhaseSolution phase_by_phase(const RobotParams &robot, const std::vector<Waypoint> &plan,
+				  const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
+{
+	SmoothOptions pinned = opt;
+	pinned.guard_half_length_m = 0;
+	MultiPhaseProblem p = smoothing_problem(robot, plan, map, costs, pinned);
+	const SolveOptions so = solver_options(opt, false);
+	MultiPhaseSolution out;
+	out.converged = true;
+	for (size_t k = 0; k < p.phases.size(); k++) {
+		PhaseSpec s = p.phases[k];
+		auto b = state_bounds(s.mode, robot);
+		if (s.first_lo.empty()) s.first_lo = b.first, s.first_hi = b.second;
+		if (s.last_lo.empty()) s.last_lo = b.first, s.last_hi = b.second;
+		if (k > 0)
+			fix_free(s.first_lo, s.first_hi, s.guess.front());
+		if (k + 1 < p.phases.size())
+			fix_free(s.last_lo, s.last_hi, s.guess.back());
+		MultiPhaseProblem q;
+		q.phases = {s};
+		q.T_scales = p.T_scales;
+		MultiPhaseSolution r = solve_multiphase(robot, q, so);
+		out.solve_seconds += r.solve_seconds;
+		if (!r.converged) {
+			out.converged = false;
+			out.status_text = "phase " + std::to_string(k) + " (" + s.mode + ") alone: " + r.status_text;
+			out.rejection = r.rejection;
+			return out;
+		}
+		append_phase(out, s.mode, std::move(r.phases[0]));
+	}
+	out.cost += p.switch_cost;
+	out.replay_cost += p.switch_cost;
+	return out;
+}
+
+}  // namespace
+
+MultiPhaseSolution graph_path_trajectory(const RobotParams &robot, const std::vector<Waypoint> &plan,
+					 const TakeoffLanding &costs, const SolveOptions &opt)
+{
+	SolveOptions edge_opt = opt;
+	edge_opt.strategy_starts = true;
+	MultiPhaseSolution out;
+	out.converged = true;
+	for (size_t i = 1; i < plan.size(); i++) {
+		const Waypoint &a = plan[i - 1], &b = plan[i];
+		std::string ma = mode_name(a.mode), mb = mode_name(b.mode);
+		if (ma != mb) {   // a guard pair: the switch itself
+			double c = ma == "ground" && mb == "flight" ? costs.takeoff_j
+				 : ma == "flight" && mb == "ground" ? costs.landing_j : 0;
+			out.cost += c;
+			out.replay_cost += c;
+			continue;
+		}
+		std::vector<double> xa = sampled(a), xb = sampled(b);
+		Solution s = solve_bvp(ma, robot, xa.data(), xb.data(), edge_opt);
+		out.solve_seconds += s.solve_seconds;
+		if (!s.converged) {
+			out.converged = false;
+			out.status_text = "edge " + std::to_string(i - 1) + " -> " + std::to_string(i) + " (" + ma +
+					  "): " + s.status_text;
+			if (s.replayed && !s.replay_ok)
+				out.rejection = replay_verdict(s);
+			return out;
+		}
+		append_phase(out, ma, std::move(s));
+	}
+	if (out.phases.empty()) {
+		out.converged = false;
+		out.status_text = "the plan has no edge to follow";
+	}
+	return out;
+}
+
+SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<Waypoint> &plan,
+				   const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
+{
+	SmoothResult r;
+	auto take = [&](SmoothMethod m, MultiPhaseSolution s) {
+		r.seconds += s.solve_seconds;
+		r.lowest_cost = std::min(r.lowest_cost, s.converged ? s.cost : s.rejected_cost);
+		if (!s.converged) {
+			r.rejections.push_back(std::string(method_name(m)) + ": " + why_not(s));
+			return false;
+		}
+		r.ok = true;
+		r.method = m;
+		r.solution = std::move(s);
+		return true;
+	};
+	auto step = [&](SmoothMethod m, auto &&solve) {
+		try {
+			return take(m, solve());
+		} catch (const std::invalid_argument &e) {   // the step cannot pose its problem
+			r.rejections.push_back(std::string(method_name(m)) + ": " + e.what());
+			return false;
+		}
+	};
+	bool straight = false;
+	if (step(SmoothMethod::Full, [&] { return smooth_best(robot, plan, map, costs, opt, {}, &straight); })) {
+		if (straight)
+			r.method = SmoothMethod::Straightened;
+		return r;
+	}
+	if (step(SmoothMethod::FinerMesh, [&] {
+		    SmoothOptions fine = opt;
+		    fine.segments_per_edge *= 2;
+		    fine.min_segments *= 2;
+		    fine.max_segments *= 2;
+		    MultiPhaseProblem prob = smoothing_problem(robot, plan, map, costs, fine);
+		    SolveOptions so = solver_options(opt, true);
+		    so.refinements = 4;
+		    return solve_multiphase(robot, prob, so);
+	    }))
+		return r;
+	if (step(SmoothMethod::PhaseByPhase, [&] { return phase_by_phase(robot, plan, map, costs, opt); }))
+		return r;
+	if (step(SmoothMethod::GraphPath,
+		 [&] { return graph_path_trajectory(robot, plan, costs, solver_options(opt, false)); }))
+		return r;
+	r.failure = r.rejections.back().substr(std::string(method_name(SmoothMethod::GraphPath)).size() + 2);
+	return r;
 }
 
 SolveOptions smoothing_solve_options()

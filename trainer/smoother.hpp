@@ -16,6 +16,7 @@
 #define HYLO_TRAINER_SMOOTHER_HPP
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,10 @@ struct SmoothOptions {
 	int min_segments = 10, max_segments = 48;
 	double guard_half_length_m = 6; // how far a switch point may slide each way (per axis on platforms)
 	std::vector<IpoptOption> ipopt_options;  // added to smoothing_solve_options() (hylo-smooth --ipopt-option)
+	// Added after ipopt_options to the multi-phase optimization's solves only
+	// (fallback steps full, straightened and finer mesh; hylo-smooth
+	// --full-ipopt-option): max_iter=1 forces the fallbacks, as a test does.
+	std::vector<IpoptOption> full_ipopt_options;
 };
 
 // The multi-phase problem of a plan. Throws std::invalid_argument for a plan
@@ -67,9 +72,10 @@ std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan);
 // Smooths a plan: the multi-phase problem from the plan itself, and if that
 // fails, from its straightened copy (a roadmap's sideways S-curves can stall
 // Ipopt; docs/decisions.md, "Smoothing long plans").
+// from_straightened (if given) says whether the straightened copy's solve was kept.
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales = {});
+			       const std::vector<double> &T_scales = {}, bool *from_straightened = nullptr);
 
 // The plan's neighbours in mode sequence: for each ground run between two
 // flights, the plan with that run flown over instead (the landing, the drive
@@ -83,7 +89,44 @@ std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
 // flown_over() neighbour; the plan's own when none converges.
 MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales = {});
+			       const std::vector<double> &T_scales = {}, bool *from_straightened = nullptr);
+
+// The steps of the fallback chain, numbered as traj_t METHOD_* (docs/smoothing.md).
+enum class SmoothMethod { Full = 0, Straightened = 1, FinerMesh = 2, PhaseByPhase = 3, GraphPath = 4 };
+const char *method_name(SmoothMethod m);   // "full", "straightened", "finer mesh", ...
+
+struct SmoothResult {
+	bool ok = false;
+	SmoothMethod method = SmoothMethod::Full;
+	MultiPhaseSolution solution;           // ok: the trajectory (its phases in time order)
+	std::vector<std::string> rejections;   // every step that failed, and why ("full: ...")
+	std::string failure;                   // !ok: the phase or edge that cannot be followed, and why
+	double lowest_cost = std::numeric_limits<double>::infinity();  // cheapest solution a step reached, rejected or not [J]
+	double seconds = 0;
+};
+
+// A trajectory for the plan, from the first step of the chain that gives
+// one whose every phase replays:
+//   full / straightened  smooth_best (the plan, its straightened copy, its
+//                        flown-over neighbours)
+//   finer mesh           the plan with twice the segments per edge and four
+//                        mesh refinements of the phases whose replay disagrees
+//   phase by phase       each phase solved on its own, the switch states
+//                        fixed at the plan's guard points (switch points
+//                        pinned, the states the plan has there)
+//   graph path           every plan edge solved on its own (the trainer's
+//                        single-mode BVP, strategy starts), joined in time
+// Not ok only when an edge of the plan itself cannot be solved: failure
+// names the edge, its mode and why.
+SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<Waypoint> &plan,
+				   const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt);
+
+// The graph path step alone: every edge of the plan solved on its own and
+// the solutions joined in time (switches as in smoothing_problem: a guard
+// pair adds its switching cost, no phase). Not converged when an edge fails;
+// rejection then names it.
+MultiPhaseSolution graph_path_trajectory(const RobotParams &robot, const std::vector<Waypoint> &plan,
+					 const TakeoffLanding &costs, const SolveOptions &opt);
 
 // Solver options of the smoother, for plans of tens of metres: a phase's
 // replayed end state within 0.05 (scaled; training: 0.02), flight segments
