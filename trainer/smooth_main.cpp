@@ -227,9 +227,12 @@ private:
 					   ? "smoothed"
 					   : std::string("fallback ") + method_name(res.method) + " (" + tried + ")";
 			if (!o_.quiet) {
-				std::string seq;
+				std::string seq, last;
 				for (const std::string &md : s.modes)
-					seq += (seq.empty() ? "" : " -> ") + md;
+					if (md != last || res.method != SmoothMethod::GraphPath) {   // the graph path: a phase per edge
+						seq += (seq.empty() ? "" : " -> ") + md;
+						last = md;
+					}
 				std::printf("request %lld: %s; predicted %.6g J, smoothed %.6g J (replay %.6g J, error %.2g), "
 					    "T %.4g s, %.2f s to solve, method %s, gap %.4g J\n",
 					    static_cast<long long>(p.request_id), seq.c_str(), p.total_cost_j, s.cost,

@@ -91,6 +91,24 @@ MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypo
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
 			       const std::vector<double> &T_scales = {}, bool *from_straightened = nullptr);
 
+// How far a trajectory leaves its map's domain: for every knot and
+// midpoint, a ground (marine) state's distance from the nearest ground
+// (water) cell, a flight's depth below the terrain under it; the worst over
+// the trajectory. Off the map counts as infinitely far. Modes without a
+// terrain class (the double integrator's) are not checked.
+struct DomainCheck {
+	double worst_m = 0;       // 0: inside everywhere
+	int phase = -1;           // where it is worst
+	std::string mode;
+	double t_s = 0, x_m = 0, y_m = 0;
+	std::string text() const;   // "phase 1 (marine) at t = 3.2 s, (4.1, 7.0) m: 0.9 m from water"
+};
+DomainCheck domain_check(const MultiPhaseSolution &s, const TerrainGrid &map);
+
+// A trajectory may leave its domain by this much and still be accepted:
+// one cell (the switch points sit on cell edges, the map is a raster).
+double domain_tolerance_m(const TerrainGrid &map);
+
 // The steps of the fallback chain, numbered as traj_t METHOD_* (docs/smoothing.md).
 enum class SmoothMethod { Full = 0, Straightened = 1, FinerMesh = 2, PhaseByPhase = 3, GraphPath = 4 };
 const char *method_name(SmoothMethod m);   // "full", "straightened", "finer mesh", ...
@@ -116,6 +134,8 @@ struct SmoothResult {
 //                        pinned, the states the plan has there)
 //   graph path           every plan edge solved on its own (the trainer's
 //                        single-mode BVP, strategy starts), joined in time
+// A step's trajectory is taken if every phase replays (replay_verdict) and it
+// stays within domain_tolerance_m of its map's domain (domain_check).
 // Not ok only when an edge of the plan itself cannot be solved: failure
 // names the edge, its mode and why.
 SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<Waypoint> &plan,
