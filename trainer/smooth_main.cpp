@@ -4,6 +4,7 @@
 // it with CVODE and publishes <prefix>HYLO_TRAJ. Works on a live bus or, with
 // file:// providers, on logs.
 #include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -221,8 +222,12 @@ private:
 			t.replay_energy_j = s.replay_cost;
 			t.replay_error = s.replay_error;
 			t.method = static_cast<int8_t>(res.method);
-			const double lowest = std::min(res.lowest_cost, p.total_cost_j);
-			t.gap_j = res.method == SmoothMethod::Full ? 0.0 : std::max(0.0, s.cost - lowest);
+			// How far above the optimum: below the cheapest solution of the full
+			// problem a step reached (one the replay or the domain check
+			// rejected); unknown (NaN) when no step reached one.
+			t.gap_j = res.method == SmoothMethod::Full ? 0.0
+				  : std::isfinite(res.lowest_cost) ? std::max(0.0, s.cost - res.lowest_cost)
+								    : std::nan("");
 			t.reason = res.method == SmoothMethod::Full
 					   ? "smoothed"
 					   : std::string("fallback ") + method_name(res.method) + " (" + tried + ")";

@@ -645,7 +645,7 @@ DomainCheck domain_check(const MultiPhaseSolution &s, const TerrainGrid &map)
 						       : std::numeric_limits<double>::infinity();
 				}
 				if (out > d.worst_m) {
-					d = {out, static_cast<int>(k), mode, t0 + tr.t[i], x[0], x[1]};
+					d = {out, static_cast<int>(k), mode, t0 + tr.t[i], x[0], x[1], reach};
 				}
 			}
 		t0 += s.phases[k].T;
@@ -659,8 +659,12 @@ std::string DomainCheck::text() const
 		return "inside its domain";
 	char buf[200];
 	const char *what = mode == "ground" ? "m from ground" : mode == "marine" ? "m from water" : "m below the terrain";
-	std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: %.3g %s", phase, mode.c_str(), t_s,
-		      x_m, y_m, worst_m, what);
+	if (std::isfinite(worst_m))
+		std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: %.3g %s", phase, mode.c_str(),
+			      t_s, x_m, y_m, worst_m, what);
+	else   // off the map, or farther than domain_check looks
+		std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: off the map or over %.3g %s",
+			      phase, mode.c_str(), t_s, x_m, y_m, reach_m, what);
 	return buf;
 }
 
@@ -670,7 +674,9 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 	SmoothResult r;
 	auto take = [&](SmoothMethod m, MultiPhaseSolution s) {
 		r.seconds += s.solve_seconds;
-		r.lowest_cost = std::min(r.lowest_cost, s.converged ? s.cost : s.rejected_cost);
+		const bool full_problem = m == SmoothMethod::Full || m == SmoothMethod::FinerMesh;
+		if (full_problem)
+			r.lowest_cost = std::min(r.lowest_cost, s.rejected_cost);
 		if (!s.converged) {
 			r.rejections.push_back(std::string(method_name(m)) + ": " + why_not(s));
 			return false;
@@ -680,6 +686,8 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 			char tol[64];
 			std::snprintf(tol, sizeof tol, " > tolerance %.3g m", domain_tolerance_m(map));
 			r.rejections.push_back(std::string(method_name(m)) + ": domain: " + d.text() + tol);
+			if (full_problem)
+				r.lowest_cost = std::min(r.lowest_cost, s.cost);
 			return false;
 		}
 		r.ok = true;

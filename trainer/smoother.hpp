@@ -101,6 +101,7 @@ struct DomainCheck {
 	int phase = -1;           // where it is worst
 	std::string mode;
 	double t_s = 0, x_m = 0, y_m = 0;
+	double reach_m = 0;       // how far it looks for a cell of the mode's class
 	std::string text() const;   // "phase 1 (marine) at t = 3.2 s, (4.1, 7.0) m: 0.9 m from water"
 };
 DomainCheck domain_check(const MultiPhaseSolution &s, const TerrainGrid &map);
@@ -119,7 +120,9 @@ struct SmoothResult {
 	MultiPhaseSolution solution;           // ok: the trajectory (its phases in time order)
 	std::vector<std::string> rejections;   // every step that failed, and why ("full: ...")
 	std::string failure;                   // !ok: the phase or edge that cannot be followed, and why
-	double lowest_cost = std::numeric_limits<double>::infinity();  // cheapest solution a step reached, rejected or not [J]
+	// Cheapest solution of the full problem a step reached that the replay
+	// or the domain check rejected [J] (infinity: none).
+	double lowest_cost = std::numeric_limits<double>::infinity();
 	double seconds = 0;
 };
 

@@ -2,7 +2,7 @@
 """Smoothing on generated scenes (tools/scene/gen_scenes.py), per robot.
 
     tools/bench/bench_smooth.py BUILD [--count N] [--robots ambot,drivocopter]
-                                [--seed S] [--timeout SECONDS] [--jobs J]
+                                [--seed S] [--timeout SECONDS] [--jobs J] [--json PATH]
 
 For each robot, N scenes (seeds S .. S + N - 1) are generated, planned by
 hylo-planner and smoothed by hylo-smooth through file:// logs. Prints a table
@@ -93,13 +93,14 @@ def main(argv):
     ap.add_argument("--seed", type=int, default=1, help="first seed (default 1)")
     ap.add_argument("--timeout", type=float, default=900, help="seconds per smoothing (default 900)")
     ap.add_argument("--jobs", type=int, default=1, help="scenes at a time (default 1)")
+    ap.add_argument("--json", help="where the rows go (default BUILD/bench/smooth_scenes.json)")
     a = ap.parse_args(argv)
     work = os.path.join(a.build, "bench", "work", "smooth")
     os.makedirs(work, exist_ok=True)
     here = os.path.dirname(os.path.abspath(__file__))
     rows = []
     for robot in a.robots.split(","):
-        scenes_dir = os.path.join(work, "scenes")
+        scenes_dir = os.path.join(work, "scenes", robot)
         out = run([sys.executable, os.path.join(here, "..", "scene", "gen_scenes.py"), "--robot", robot,
                    "--seed", str(a.seed), "--count", str(a.count), "--out", scenes_dir])
         if out.returncode:
@@ -137,7 +138,7 @@ def main(argv):
         for r in planned:
             if r.get("traj") != "ok":
                 print(f"  no trajectory: {r['scene']}: {r.get('traj')}: {r.get('reason', '')[:300]}")
-    path = os.path.join(a.build, "bench", "smooth_scenes.json")
+    path = a.json or os.path.join(a.build, "bench", "smooth_scenes.json")
     json.dump(rows, open(path, "w"), indent=1)
     print(f"{len(rows)} figures -> {path}")
 
