@@ -234,7 +234,7 @@ private:
 			if (!o_.quiet) {
 				std::string seq, last;
 				for (const std::string &md : s.modes)
-					if (md != last || res.method != SmoothMethod::GraphPath) {   // the graph path: a phase per edge
+					if (md != last) {   // a run cut at walls, via points or edges is one mode
 						seq += (seq.empty() ? "" : " -> ") + md;
 						last = md;
 					}

@@ -263,6 +263,7 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 	MultiPhaseProblem p;
 	std::vector<size_t> first_phase(R), last_phase(R);
 	std::vector<std::pair<size_t, WallGate>> gates;   // phase k and k + 1 meet at a wall
+	std::vector<std::pair<size_t, size_t>> vias;      // phase k and k + 1 meet at waypoint i
 	for (size_t k = 0; k < R; k++) {
 		if ((k == 0 && takeoff_first) || (k + 1 == R && landing_last))
 			continue;
@@ -282,6 +283,10 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 					gates.push_back({p.phases.size() + pieces.size() - 2, c.gate});
 				}
 			pieces.back().push_back(b);
+			if (plan[i].via && i < runs[k].second) {
+				pieces.push_back({b});
+				vias.push_back({p.phases.size() + pieces.size() - 2, i});
+			}
 		}
 		first_phase[k] = p.phases.size();
 		for (const auto &xs : pieces) {
@@ -313,6 +318,8 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 	p.switch_cost += (takeoff_first ? costs.takeoff_j : 0) + (landing_last ? costs.landing_j : 0);
 	for (const auto &g : gates)
 		join_gate(p, g.first, robot, g.second);
+	for (const auto &v : vias)
+		join_via(p, v.first, robot, plan[v.second].state);
 	for (size_t k = 0; k + 1 < R; k++) {
 		if ((k == 0 && takeoff_first) || (k + 2 == R && landing_last))
 			continue;
@@ -479,6 +486,7 @@ const char *method_name(SmoothMethod m)
 	case SmoothMethod::FinerMesh: return "finer mesh";
 	case SmoothMethod::PhaseByPhase: return "phase by phase";
 	case SmoothMethod::GraphPath: return "graph path";
+	case SmoothMethod::ViaPoints: return "via points";
 	}
 	return "?";
 }
@@ -548,6 +556,54 @@ MultiPhaseSolution phase_by_phase(const RobotParams &robot, const std::vector<Wa
 	out.cost += p.switch_cost;
 	out.replay_cost += p.switch_cost;
 	return out;
+}
+
+// The via points step: the full problem, made to pass through the plan's
+// inner waypoint nearest to where its trajectory leaves the domain, one more
+// per solve while it still does (up to kMaxVia). Not converged when a solve
+// fails or the waypoints run out.
+MultiPhaseSolution via_points(const RobotParams &robot, const std::vector<Waypoint> &plan, const TerrainGrid &map,
+			      const TakeoffLanding &costs, const SmoothOptions &opt)
+{
+	constexpr int kMaxVia = 8;
+	std::vector<Waypoint> p = plan;
+	const SolveOptions so = solver_options(opt, false);
+	double seconds = 0;
+	std::string added;
+	for (int n = 0;; n++) {
+		MultiPhaseSolution s = solve_multiphase(robot, smoothing_problem(robot, p, map, costs, opt), so);
+		seconds += s.solve_seconds;
+		s.solve_seconds = seconds;
+		if (!s.converged) {
+			s.status_text = "through" + (added.empty() ? std::string(" no waypoint") : added) + ": " + s.status_text;
+			return s;
+		}
+		DomainCheck d = domain_check(s, map);
+		if (d.worst_m <= domain_tolerance_m(map))
+			return s;
+		// The inner waypoint of a run of the offending mode nearest to the violation.
+		size_t best = 0;
+		double best_d = std::numeric_limits<double>::infinity();
+		for (size_t i = 1; i + 1 < p.size(); i++) {
+			if (p[i].via || p[i].guard || p[i].mode != p[i - 1].mode || p[i].mode != p[i + 1].mode ||
+			    mode_name(p[i].mode) != d.mode)
+				continue;
+			double di = std::hypot(p[i].state[0] - d.x_m, p[i].state[1] - d.y_m);
+			if (di < best_d) {
+				best_d = di;
+				best = i;
+			}
+		}
+		if (best == 0 || n == kMaxVia) {
+			s.converged = false;
+			s.status_text = "through" + added + " still leaves the domain";
+			s.rejection = "domain: " + d.text();
+			s.rejected_cost = std::numeric_limits<double>::infinity();
+			return s;
+		}
+		p[best].via = true;
+		added += " " + std::to_string(best);
+	}
 }
 
 }  // namespace
@@ -719,6 +775,8 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 		    so.refinements = 4;
 		    return solve_multiphase(robot, prob, so);
 	    }))
+		return r;
+	if (step(SmoothMethod::ViaPoints, [&] { return via_points(robot, plan, map, costs, opt); }))
 		return r;
 	if (step(SmoothMethod::PhaseByPhase, [&] { return phase_by_phase(robot, plan, map, costs, opt); }))
 		return r;

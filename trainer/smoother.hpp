@@ -43,6 +43,10 @@ struct Waypoint {
 	int mode = 0;                  // goal_t MODE_*
 	double state[6] = {};          // sampled coordinates (docs/models.md section 7)
 	bool guard = false;
+	// The smoothed trajectory must pass through this waypoint's position
+	// (smoothing_problem cuts its run into two phases there; the via points
+	// step of smooth_with_fallbacks sets it). Inner waypoints of a run only.
+	bool via = false;
 };
 
 struct SmoothOptions {
@@ -111,7 +115,7 @@ DomainCheck domain_check(const MultiPhaseSolution &s, const TerrainGrid &map);
 double domain_tolerance_m(const TerrainGrid &map);
 
 // The steps of the fallback chain, numbered as traj_t METHOD_* (docs/smoothing.md).
-enum class SmoothMethod { Full = 0, Straightened = 1, FinerMesh = 2, PhaseByPhase = 3, GraphPath = 4 };
+enum class SmoothMethod { Full = 0, Straightened = 1, FinerMesh = 2, PhaseByPhase = 3, GraphPath = 4, ViaPoints = 5 };
 const char *method_name(SmoothMethod m);   // "full", "straightened", "finer mesh", ...
 
 struct SmoothResult {
@@ -132,6 +136,10 @@ struct SmoothResult {
 //                        flown-over neighbours)
 //   finer mesh           the plan with twice the segments per edge and four
 //                        mesh refinements of the phases whose replay disagrees
+//   via points           the full problem again, made to pass through the
+//                        plan's waypoint nearest to where the trajectory
+//                        left its domain, one more waypoint per solve (up
+//                        to 8) while it still leaves it
 //   phase by phase       each phase solved on its own, the switch states
 //                        fixed at the plan's guard points (switch points
 //                        pinned, the states the plan has there)

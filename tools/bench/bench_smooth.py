@@ -23,7 +23,7 @@ import subprocess
 import sys
 import time
 
-METHODS = ["full", "straightened", "finer mesh", "phase by phase", "graph path"]
+METHODS = ["full", "straightened", "finer mesh", "via points", "phase by phase", "graph path"]
 
 
 def run(cmd, timeout=None):

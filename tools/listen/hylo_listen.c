@@ -162,6 +162,7 @@ static const char *method_str(int8_t m)
 	case HYLO_TRAJ_T_METHOD_FINER_MESH: return "finer mesh";
 	case HYLO_TRAJ_T_METHOD_PHASE_BY_PHASE: return "phase by phase";
 	case HYLO_TRAJ_T_METHOD_GRAPH_PATH: return "graph path";
+	case HYLO_TRAJ_T_METHOD_VIA_POINTS: return "via points";
 	default: return "unknown";
 	}
 }
