@@ -563,24 +563,27 @@ MultiPhaseSolution phase_by_phase(const RobotParams &robot, const std::vector<Wa
 // per solve while it still does (up to kMaxVia). Not converged when a solve
 // fails or the waypoints run out.
 MultiPhaseSolution via_points(const RobotParams &robot, const std::vector<Waypoint> &plan, const TerrainGrid &map,
-			      const TakeoffLanding &costs, const SmoothOptions &opt)
+			      const TakeoffLanding &costs, const SmoothOptions &opt, DomainCheck d)
 {
 	constexpr int kMaxVia = 8;
 	std::vector<Waypoint> p = plan;
 	const SolveOptions so = solver_options(opt, false);
 	double seconds = 0;
 	std::string added;
+	MultiPhaseSolution s;
 	for (int n = 0;; n++) {
-		MultiPhaseSolution s = solve_multiphase(robot, smoothing_problem(robot, p, map, costs, opt), so);
-		seconds += s.solve_seconds;
-		s.solve_seconds = seconds;
-		if (!s.converged) {
-			s.status_text = "through" + (added.empty() ? std::string(" no waypoint") : added) + ": " + s.status_text;
-			return s;
+		if (n > 0) {
+			s = solve_multiphase(robot, smoothing_problem(robot, p, map, costs, opt), so);
+			seconds += s.solve_seconds;
+			s.solve_seconds = seconds;
+			if (!s.converged) {
+				s.status_text = "through" + added + ": " + s.status_text;
+				return s;
+			}
+			d = domain_check(s, map);
+			if (d.worst_m <= domain_tolerance_m(map))
+				return s;
 		}
-		DomainCheck d = domain_check(s, map);
-		if (d.worst_m <= domain_tolerance_m(map))
-			return s;
 		// The inner waypoint of a run of the offending mode nearest to the violation.
 		size_t best = 0;
 		double best_d = std::numeric_limits<double>::infinity();
@@ -596,7 +599,8 @@ MultiPhaseSolution via_points(const RobotParams &robot, const std::vector<Waypoi
 		}
 		if (best == 0 || n == kMaxVia) {
 			s.converged = false;
-			s.status_text = "through" + added + " still leaves the domain";
+			s.status_text = added.empty() ? "no waypoint near where it leaves the domain"
+						      : "through" + added + " still leaves the domain";
 			s.rejection = "domain: " + d.text();
 			s.rejected_cost = std::numeric_limits<double>::infinity();
 			return s;
@@ -728,6 +732,7 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 				   const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
 {
 	SmoothResult r;
+	DomainCheck left;   // where the last full-problem solution left the domain (phase -1: none did)
 	auto take = [&](SmoothMethod m, MultiPhaseSolution s) {
 		r.seconds += s.solve_seconds;
 		const bool full_problem = m == SmoothMethod::Full || m == SmoothMethod::FinerMesh;
@@ -742,8 +747,10 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 			char tol[64];
 			std::snprintf(tol, sizeof tol, " > tolerance %.3g m", domain_tolerance_m(map));
 			r.rejections.push_back(std::string(method_name(m)) + ": domain: " + d.text() + tol);
-			if (full_problem)
+			if (full_problem) {
 				r.lowest_cost = std::min(r.lowest_cost, s.cost);
+				left = d;
+			}
 			return false;
 		}
 		r.ok = true;
@@ -765,7 +772,9 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 			r.method = SmoothMethod::Straightened;
 		return r;
 	}
-	if (step(SmoothMethod::FinerMesh, [&] {
+	// A full solution that replayed but left the domain gains nothing from a
+	// finer mesh: straight to the via points.
+	if (left.phase < 0 && step(SmoothMethod::FinerMesh, [&] {
 		    SmoothOptions fine = opt;
 		    fine.segments_per_edge *= 2;
 		    fine.min_segments *= 2;
@@ -776,7 +785,9 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 		    return solve_multiphase(robot, prob, so);
 	    }))
 		return r;
-	if (step(SmoothMethod::ViaPoints, [&] { return via_points(robot, plan, map, costs, opt); }))
+	// Via points start where a full solution left the domain; without one
+	// they would only repeat the full optimization.
+	if (left.phase >= 0 && step(SmoothMethod::ViaPoints, [&] { return via_points(robot, plan, map, costs, opt, left); }))
 		return r;
 	if (step(SmoothMethod::PhaseByPhase, [&] { return phase_by_phase(robot, plan, map, costs, opt); }))
 		return r;

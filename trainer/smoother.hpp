@@ -136,10 +136,12 @@ struct SmoothResult {
 //                        flown-over neighbours)
 //   finer mesh           the plan with twice the segments per edge and four
 //                        mesh refinements of the phases whose replay disagrees
-//   via points           the full problem again, made to pass through the
-//                        plan's waypoint nearest to where the trajectory
-//                        left its domain, one more waypoint per solve (up
-//                        to 8) while it still leaves it
+//                        (skipped when a full solution replayed but left the
+//                        domain)
+//   via points           when a full solution left the domain: the full
+//                        problem again, made to pass through the plan's
+//                        waypoint nearest to where it left, one more waypoint
+//                        per solve (up to 8) while it still leaves it
 //   phase by phase       each phase solved on its own, the switch states
 //                        fixed at the plan's guard points (switch points
 //                        pinned, the states the plan has there)
