@@ -43,13 +43,24 @@ smooth() {
 # domain SCENE OUT: every sample of a ground (marine) phase within one cell of
 # a ground (water) cell of the scene, painted here from its YAML as
 # scenes/README.md says (a cell takes the last shape holding its centre).
+# The scenes here write grid and shapes in flow style, one a line, default
+# terrain ground; that is all this reader knows.
 domain() {
   python3 - "$1" "$T/$2.json" <<'PY'
-import json, math, sys, yaml
-sc = yaml.safe_load(open(sys.argv[1])); t = json.loads(open(sys.argv[2]).readline())
-g = sc["grid"]; nx, ny, res = g["nx"], g["ny"], g["resolution_m"]; ox, oy = g.get("origin_m", [0, 0])
-cls = [[sc["terrain"].get("default", "ground")] * nx for _ in range(ny)]
-for s in sc["terrain"].get("shapes", []):
+import json, math, re, sys
+text = open(sys.argv[1]).read(); t = json.loads(open(sys.argv[2]).readline())
+def flow(line):   # {k: v, k: [a, b]} -> dict of numbers, lists and words
+    d = {}
+    for k, v in re.findall(r"(\w+): (\[[^\]]*\]|[^,}]+)", line):
+        v = v.strip()
+        d[k] = [float(x) for x in v[1:-1].split(",")] if v.startswith("[") else \
+               (float(v) if re.fullmatch(r"[-0-9.eE]+", v) else v)
+    return d
+assert "default: ground" in text or "default:" not in text, "this reader knows default ground only"
+g = flow(re.search(r"^grid: (\{.*\})$", text, re.M).group(1))
+nx, ny, res = int(g["nx"]), int(g["ny"]), g["resolution_m"]; ox, oy = g.get("origin_m", [0, 0])
+cls = [["ground"] * nx for _ in range(ny)]
+for s in (flow(l) for l in re.findall(r"^\s*- (\{type: .*\})$", text, re.M)):
     for iy in range(ny):
         for ix in range(nx):
             x, y = ox + (ix + 0.5) * res, oy + (iy + 0.5) * res
