@@ -545,6 +545,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
 		double cost = 0, T = 0;
 	};
+	std::string last_status = "no start";   // Ipopt's status of the last start that failed
 	auto coarse = [&](const Start &st, Coarse &c) {
 		const std::vector<double> &Ts = st.T;
 		Stacked &p = c.p;
@@ -574,8 +575,10 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 			else if (give_up)
 				break;
 		}
-		if (!succeeded(c.res.first))
+		if (!succeeded(c.res.first)) {
+			last_status = status_text(c.res.first);
 			return false;
+		}
 		best.converged_starts++;
 		c.cost = switch_cost;
 		for (size_t k = 0; k < p.setups.size(); k++) {
@@ -589,6 +592,8 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	// Mesh refinement until the replays agree: each finer mesh starts from
 	// the coarser solution (its knots and midpoints become knots). Keeps the
 	// result if it is the cheapest so far.
+	std::string rejection;   // why the last rejected solution was rejected
+	double rejected_cost = std::numeric_limits<double>::infinity();
 	auto refine = [&](Coarse &c) {
 		best.refined_starts++;
 		Stacked &p = c.p;
@@ -612,8 +617,13 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 				if (opt.replay) {
 					replay(p.modes[k], robot, ph, opt.replay_state_tol);
 					if (debug)
-						std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g\n",
-							     p.modes[k].c_str(), ph.replay_error, ph.replay_cost, ph.cost);
+						std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g: %s\n",
+							     p.modes[k].c_str(), ph.replay_error, ph.replay_cost, ph.cost,
+							     replay_verdict(ph).c_str());
+					if (!ph.replay_ok && all_ok)
+						rejection = "phase " + std::to_string(k) + " (" + p.modes[k] + ", " +
+							    std::to_string(p.setups[k].segments) + " segments): " +
+							    replay_verdict(ph);
 					all_ok = all_ok && ph.replay_ok;
 					failed[k] = !ph.replay_ok;
 				}
@@ -636,6 +646,7 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 				}
 				return;
 			}
+			rejected_cost = std::min(rejected_cost, s.cost + switch_cost);
 			if (refinement >= refinements)
 				return;
 			// Only the phases whose replay failed get the finer mesh.
@@ -645,8 +656,10 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 					p.setups[k].segments *= 2;
 			res = run(p, 1.0, fine, nlp, true, step_opt);
 			iterations += res.second;
-			if (!succeeded(res.first))
+			if (!succeeded(res.first)) {
+				rejection += "; then the finer mesh failed (" + std::string(status_text(res.first)) + ")";
 				return;
+			}
 		}
 	};
 	if (first_accepted || !std::isfinite(opt.refine_within)) {
@@ -688,6 +701,10 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	if (!best.converged) {
 		best.cost = 0;
 		best.status_text = best.converged_starts ? "replay rejected every solution" : "no start converged";
+		best.rejection = rejection;
+		best.rejected_cost = rejected_cost;
+		if (!best.converged_starts)
+			best.rejection = "Ipopt: " + last_status;
 	}
 	best.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	return best;

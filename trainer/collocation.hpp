@@ -88,9 +88,14 @@ struct Solution {
 	bool replay_ok = false;
 	double replay_cost = 0;           // CVODE replay of the control [J]
 	double replay_error = 0;          // largest scaled end-state error of the replay
+	ReplayCheck replay_check;         // the check the replay failed (empty: passed)
 	double solve_seconds = 0;
 	Trajectory traj;
 };
+
+// Why a replayed solution was rejected ("end state: replayed end state off by
+// 0.08 (scaled) > tolerance 0.05"), or "replay passed" / "not replayed".
+std::string replay_verdict(const Solution &s);
 
 // Mode names the trainer knows and their sampled dimension (docs/models.md section 7).
 bool known_mode(const std::string &mode);
@@ -201,6 +206,11 @@ struct MultiPhaseSolution {
 	double T = 0;                  // total duration [s]
 	double replay_cost = 0;        // sum of the phases' CVODE replay costs plus switch_cost [J]
 	double replay_error = 0;       // largest scaled end-state error over the phases
+	// Not converged: why the last rejected solution was rejected ("phase 2
+	// (ground): end state: ..."); empty when no start converged.
+	std::string rejection;
+	// The cheapest solution Ipopt reached whose replay failed [J] (infinity: none).
+	double rejected_cost = std::numeric_limits<double>::infinity();
 	std::vector<std::string> modes;
 	std::vector<Solution> phases;  // per phase: cost, T, trajectory (t from 0), replay
 	double solve_seconds = 0;

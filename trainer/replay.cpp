@@ -1,6 +1,8 @@
 #include "trainer/replay.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <vector>
 
@@ -91,7 +93,8 @@ void replay_model(const M &model, Solution &s, double state_tol)
 	double t = 0, err = 0;
 	auto sc = model.scale();
 	Bounds bd = model.bounds();
-	double worst_bound = 0;
+	double worst_bound = 0, worst_bound_t = 0;
+	int worst_bound_j = -1;
 	auto error_at = [&](int k) {   // scaled distance of y from knot k
 		const double *xk = &tr.x[static_cast<size_t>(2 * k) * M::NX];
 		for (int j = 0; j < M::NX; j++)
@@ -103,7 +106,11 @@ void replay_model(const M &model, Solution &s, double state_tol)
 		for (int j = 0; ok && j < M::NX; j++) {
 			double lo = bd.x_lo[static_cast<size_t>(j)], hi = bd.x_hi[static_cast<size_t>(j)];
 			double over = std::max(lo - yv[j], yv[j] - hi) / sc[static_cast<size_t>(j)];
-			worst_bound = std::max(worst_bound, over);
+			if (over > worst_bound) {
+				worst_bound = over;
+				worst_bound_j = j;
+				worst_bound_t = tk;
+			}
 		}
 		if (ok && M::kReplayFromKnots && k < N) {
 			error_at(k);
@@ -113,16 +120,25 @@ void replay_model(const M &model, Solution &s, double state_tol)
 		}
 	}
 	s.replayed = true;
+	s.replay_check = ReplayCheck{};
 	if (ok) {
 		error_at(N);
 		s.replay_error = err;
 		s.replay_cost = yv[M::NX];
-		s.replay_ok = err <= state_tol && worst_bound <= state_tol &&
-			      std::fabs(s.replay_cost - s.cost) <= kReplayCostTol * std::fabs(s.cost);
+		const double cost_dev = std::fabs(s.replay_cost - s.cost) / std::max(std::fabs(s.cost), 1e-300);
+		// The first check that fails, in this order: end state, state bounds, cost.
+		if (err > state_tol)
+			s.replay_check = {"end state", err, state_tol};
+		else if (worst_bound > state_tol)
+			s.replay_check = {"state bounds", worst_bound, state_tol, worst_bound_j, worst_bound_t};
+		else if (!(cost_dev <= kReplayCostTol))
+			s.replay_check = {"cost", cost_dev, kReplayCostTol};
+		s.replay_ok = s.replay_check.check.empty();
 	} else {
 		s.replay_error = INFINITY;
 		s.replay_cost = NAN;
 		s.replay_ok = false;
+		s.replay_check = {"integration", INFINITY, state_tol};
 	}
 	SUNLinSolFree(LS);
 	SUNMatDestroy(A);
@@ -131,6 +147,28 @@ void replay_model(const M &model, Solution &s, double state_tol)
 }
 
 }  // namespace
+
+std::string replay_verdict(const Solution &s)
+{
+	const ReplayCheck &c = s.replay_check;
+	if (!s.replayed)
+		return "not replayed";
+	if (c.check.empty())
+		return "replay passed";
+	char buf[160];
+	if (c.check == "end state")
+		std::snprintf(buf, sizeof buf, "replayed end state off by %.3g (scaled) > tolerance %.3g", c.value, c.tol);
+	else if (c.check == "state bounds")
+		std::snprintf(buf, sizeof buf,
+			      "replayed state %d leaves the mode's bounds by %.3g (scaled) at t = %.3g s > tolerance %.3g",
+			      c.component, c.value, c.t_s, c.tol);
+	else if (c.check == "cost")
+		std::snprintf(buf, sizeof buf, "replayed cost %.6g J differs from %.6g J by %.3g%% > tolerance %.3g%%",
+			      s.replay_cost, s.cost, 100 * c.value, 100 * c.tol);
+	else
+		std::snprintf(buf, sizeof buf, "CVODE could not integrate the control");
+	return c.check + ": " + buf;
+}
 
 void replay(const std::string &mode, const RobotParams &robot, Solution &s, double state_tol)
 {

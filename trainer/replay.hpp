@@ -4,6 +4,8 @@
 #ifndef HYLO_TRAINER_REPLAY_HPP
 #define HYLO_TRAINER_REPLAY_HPP
 
+#include <string>
+
 namespace hylo::trainer {
 
 // Tolerances a replay must meet (docs/models.md section 1): the end state within
@@ -11,6 +13,17 @@ namespace hylo::trainer {
 // magnitude, and the cost within kReplayCostTol relative.
 constexpr double kReplayStateTol = 2e-2;
 constexpr double kReplayCostTol = 1e-2;
+
+// The replay check a solution failed: "end state" (scaled end-state error),
+// "state bounds" (how far, scaled, the replayed states leave the mode's
+// bounds), "cost" (relative difference of the replayed cost), "integration"
+// (CVODE failed); empty when it passed. The measured value and its tolerance.
+struct ReplayCheck {
+	std::string check;
+	double value = 0, tol = 0;
+	int component = -1;   // "state bounds": the state component (docs/models.md order)
+	double t_s = 0;       // "state bounds": the knot time where it is worst [s]
+};
 
 }  // namespace hylo::trainer
 

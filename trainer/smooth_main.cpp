@@ -3,6 +3,8 @@
 // collocation problem over its mode sequence (trainer/smoother.hpp), replays
 // it with CVODE and publishes <prefix>HYLO_TRAJ. Works on a live bus or, with
 // file:// providers, on logs.
+#include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -38,8 +40,12 @@ void usage(FILE *out)
 		"(switch points free along their guards, switching costs included), checks it\n"
 		"with a CVODE replay and publishes <prefix>HYLO_TRAJ. A plan that drives\n"
 		"between two flights is also smoothed with that drive flown over, and the\n"
-		"cheaper trajectory is published. A failed plan or one whose map was not seen\n"
-		"gets a traj_t whose status says why.\n"
+		"cheaper trajectory is published. When that optimization fails or its replay\n"
+		"is rejected, a fallback chain gives the trajectory (finer mesh, via points,\n"
+		"phase by phase, the graph path; traj_t.method says which,\n"
+		"docs/smoothing.md); only a plan that cannot be followed at all fails. A\n"
+		"failed plan or one whose map was not seen gets a traj_t whose status says\n"
+		"why.\n"
 		"\n"
 		"  --lcm-url URL         LCM provider to listen on (default: $LCM_DEFAULT_URL,\n"
 		"                        else LCM's default udpm://239.255.76.67:7667?ttl=0)\n"
@@ -55,6 +61,10 @@ void usage(FILE *out)
 		"  --ipopt-option NAME=VALUE\n"
 		"                        set an Ipopt option on every solve, after hylo's own\n"
 		"                        settings (repeatable; default: none)\n"
+		"  --full-ipopt-option NAME=VALUE\n"
+		"                        the same, on the multi-phase optimization's solves\n"
+		"                        only (steps full, straightened, finer mesh), after\n"
+		"                        --ipopt-option's: max_iter=1 forces the fallbacks\n"
 		"  --quiet               no summary lines\n"
 		"  --help                this text\n"
 		"\n"
@@ -69,7 +79,7 @@ struct Options {
 	long long request_id = -1;
 	bool once = false, compare = false, quiet = false;
 	int segments_per_edge = 6;
-	std::vector<IpoptOption> ipopt_options;
+	std::vector<IpoptOption> ipopt_options, full_ipopt_options;
 };
 
 class Smoother {
@@ -180,9 +190,18 @@ private:
 			SmoothOptions so;
 			so.segments_per_edge = o_.segments_per_edge;
 			so.ipopt_options = o_.ipopt_options;
-			MultiPhaseSolution s = smooth_best(r, wps, m->second.grid, costs, so);
-			if (!s.converged)
-				return fail(t, hylo::plan_t::STATUS_NO_PATH, "the smoothing optimization failed: " + s.status_text);
+			so.full_ipopt_options = o_.full_ipopt_options;
+			SmoothResult res = smooth_with_fallbacks(r, wps, m->second.grid, costs, so);
+			std::string tried;
+			for (const std::string &why : res.rejections) {
+				std::fprintf(stderr, "hylo-smooth: request %lld: rejected %s\n",
+					     static_cast<long long>(p.request_id), why.c_str());
+				tried += (tried.empty() ? "" : "; ") + why;
+			}
+			if (!res.ok)
+				return fail(t, hylo::plan_t::STATUS_NO_PATH,
+					    "the plan cannot be followed: " + res.failure + " (tried " + tried + ")");
+			const MultiPhaseSolution &s = res.solution;
 			double t0 = 0;
 			for (size_t k = 0; k < s.phases.size(); k++) {
 				const Solution &ph = s.phases[k];
@@ -203,15 +222,27 @@ private:
 			t.energy_j = s.cost;
 			t.replay_energy_j = s.replay_cost;
 			t.replay_error = s.replay_error;
-			t.reason = "smoothed";
+			t.method = static_cast<int8_t>(res.method);
+			// How far above the optimum: below the cheapest solution of the full
+			// problem a step reached (one the replay or the domain check
+			// rejected); unknown (NaN) when no step reached one.
+			t.gap_j = res.method == SmoothMethod::Full ? 0.0
+				  : std::isfinite(res.lowest_cost) ? std::max(0.0, s.cost - res.lowest_cost)
+								    : std::nan("");
+			t.reason = res.method == SmoothMethod::Full
+					   ? "smoothed"
+					   : std::string("fallback ") + method_name(res.method) + " (" + tried + ")";
 			if (!o_.quiet) {
-				std::string seq;
+				std::string seq, last;
 				for (const std::string &md : s.modes)
-					seq += (seq.empty() ? "" : " -> ") + md;
+					if (md != last) {   // a run cut at walls, via points or edges is one mode
+						seq += (seq.empty() ? "" : " -> ") + md;
+						last = md;
+					}
 				std::printf("request %lld: %s; predicted %.6g J, smoothed %.6g J (replay %.6g J, error %.2g), "
-					    "T %.4g s, %.2f s to solve\n",
+					    "T %.4g s, %.2f s to solve, method %s, gap %.4g J\n",
 					    static_cast<long long>(p.request_id), seq.c_str(), p.total_cost_j, s.cost,
-					    s.replay_cost, s.replay_error, s.T, s.solve_seconds);
+					    s.replay_cost, s.replay_error, s.T, res.seconds, method_name(res.method), t.gap_j);
 				if (o_.compare)
 					std::printf("request %lld: graph path, every edge solved exactly: %.6g J\n",
 						    static_cast<long long>(p.request_id),
@@ -250,7 +281,8 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			(a == "--once" ? o.once : a == "--quiet" ? o.quiet : o.compare) = true;
 			continue;
 		}
-		bool text = a == "--lcm-url" || a == "--out-url" || a == "--channel-prefix" || a == "--ipopt-option";
+		bool text = a == "--lcm-url" || a == "--out-url" || a == "--channel-prefix" || a == "--ipopt-option" ||
+			    a == "--full-ipopt-option";
 		bool number = a == "--request-id" || a == "--segments-per-edge";
 		if (!text && !number) {
 			std::fprintf(stderr, "hylo-smooth: unknown option '%s' (see --help)\n", a.c_str());
@@ -261,11 +293,11 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			return false;
 		}
 		const char *v = argv[++i];
-		if (a == "--ipopt-option") {
+		if (a == "--ipopt-option" || a == "--full-ipopt-option") {
 			try {
-				o.ipopt_options.push_back(parse_ipopt_option(v));
+				(a == "--ipopt-option" ? o.ipopt_options : o.full_ipopt_options).push_back(parse_ipopt_option(v));
 			} catch (const std::invalid_argument &e) {
-				std::fprintf(stderr, "hylo-smooth: --ipopt-option: %s\n", e.what());
+				std::fprintf(stderr, "hylo-smooth: %s: %s\n", a.c_str(), e.what());
 				return false;
 			}
 			continue;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -261,6 +263,7 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 	MultiPhaseProblem p;
 	std::vector<size_t> first_phase(R), last_phase(R);
 	std::vector<std::pair<size_t, WallGate>> gates;   // phase k and k + 1 meet at a wall
+	std::vector<std::pair<size_t, size_t>> vias;      // phase k and k + 1 meet at waypoint i
 	for (size_t k = 0; k < R; k++) {
 		if ((k == 0 && takeoff_first) || (k + 1 == R && landing_last))
 			continue;
@@ -280,6 +283,10 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 					gates.push_back({p.phases.size() + pieces.size() - 2, c.gate});
 				}
 			pieces.back().push_back(b);
+			if (plan[i].via && i < runs[k].second) {
+				pieces.push_back({b});
+				vias.push_back({p.phases.size() + pieces.size() - 2, i});
+			}
 		}
 		first_phase[k] = p.phases.size();
 		for (const auto &xs : pieces) {
@@ -311,6 +318,8 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 	p.switch_cost += (takeoff_first ? costs.takeoff_j : 0) + (landing_last ? costs.landing_j : 0);
 	for (const auto &g : gates)
 		join_gate(p, g.first, robot, g.second);
+	for (const auto &v : vias)
+		join_via(p, v.first, robot, plan[v.second].state);
 	for (size_t k = 0; k + 1 < R; k++) {
 		if ((k == 0 && takeoff_first) || (k + 2 == R && landing_last))
 			continue;
@@ -354,23 +363,48 @@ std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan)
 	return out;
 }
 
+namespace {
+
+// The smoother's solver options: smoothing_solve_options() with opt's Ipopt
+// options, and with the full optimization's own ones if full.
+SolveOptions solver_options(const SmoothOptions &opt, bool full)
+{
+	SolveOptions so = smoothing_solve_options();
+	so.ipopt_options = opt.ipopt_options;
+	if (full)
+		so.ipopt_options.insert(so.ipopt_options.end(), opt.full_ipopt_options.begin(),
+					opt.full_ipopt_options.end());
+	so.debug = std::getenv("HYLO_TRAINER_DEBUG") != nullptr;
+	return so;
+}
+
+}  // namespace
+
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales)
+			       const std::vector<double> &T_scales, bool *from_straightened)
 {
 	MultiPhaseSolution s;
-	double seconds = 0;
+	double seconds = 0, rejected = std::numeric_limits<double>::infinity();
+	std::string why;
 	for (int attempt = 0; attempt < 2; attempt++) {
 		MultiPhaseProblem prob = smoothing_problem(robot, attempt ? straightened(plan) : plan, map, costs, opt);
 		if (!T_scales.empty())
 			prob.T_scales = T_scales;
-		SolveOptions so = smoothing_solve_options();
-		so.ipopt_options = opt.ipopt_options;
-		s = solve_multiphase(robot, prob, so);
+		s = solve_multiphase(robot, prob, solver_options(opt, true));
 		seconds += s.solve_seconds;
 		s.solve_seconds = seconds;
+		rejected = std::min(rejected, s.rejected_cost);
+		if (from_straightened)
+			*from_straightened = attempt == 1;
 		if (s.converged)
 			break;
+		why += attempt ? "; straightened: " + s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")")
+			       : s.rejection;
+	}
+	if (!s.converged) {
+		s.rejection = why;
+		s.rejected_cost = rejected;
 	}
 	return s;
 }
@@ -420,18 +454,348 @@ std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
 
 MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales)
+			       const std::vector<double> &T_scales, bool *from_straightened)
 {
-	MultiPhaseSolution best = smooth_plan(robot, plan, map, costs, opt, T_scales);
-	double seconds = best.solve_seconds;
+	bool straight = false;
+	MultiPhaseSolution best = smooth_plan(robot, plan, map, costs, opt, T_scales, &straight);
+	double seconds = best.solve_seconds, rejected = best.rejected_cost;
 	for (const std::vector<Waypoint> &alt : flown_over(plan)) {
-		MultiPhaseSolution s = smooth_plan(robot, alt, map, costs, opt, T_scales);
+		bool alt_straight = false;
+		MultiPhaseSolution s = smooth_plan(robot, alt, map, costs, opt, T_scales, &alt_straight);
 		seconds += s.solve_seconds;
-		if (s.converged && (!best.converged || s.cost < best.cost))
+		rejected = std::min(rejected, s.rejected_cost);
+		if (s.converged && (!best.converged || s.cost < best.cost)) {
 			best = std::move(s);
+			straight = alt_straight;
+		} else if (!s.converged && !best.converged) {
+			best.rejection += "; flown over: " + s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")");
+		}
 	}
 	best.solve_seconds = seconds;
+	best.rejected_cost = rejected;
+	if (from_straightened)
+		*from_straightened = best.converged && straight;
 	return best;
+}
+
+const char *method_name(SmoothMethod m)
+{
+	switch (m) {
+	case SmoothMethod::Full: return "full";
+	case SmoothMethod::Straightened: return "straightened";
+	case SmoothMethod::FinerMesh: return "finer mesh";
+	case SmoothMethod::PhaseByPhase: return "phase by phase";
+	case SmoothMethod::GraphPath: return "graph path";
+	case SmoothMethod::ViaPoints: return "via points";
+	}
+	return "?";
+}
+
+namespace {
+
+// Appends phase solution ph (mode m) to a joined trajectory.
+void append_phase(MultiPhaseSolution &out, const std::string &m, Solution ph)
+{
+	out.modes.push_back(m);
+	out.cost += ph.cost;
+	out.T += ph.T;
+	out.replay_cost += ph.replay_cost;
+	out.replay_error = std::max(out.replay_error, ph.replay_error);
+	out.phases.push_back(std::move(ph));
+}
+
+std::string why_not(const MultiPhaseSolution &s)
+{
+	return s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")");
+}
+
+// Every component of a knot's bounds [lo, hi] not fixed yet, fixed to x.
+void fix_free(std::vector<double> &lo, std::vector<double> &hi, const std::vector<double> &x)
+{
+	for (size_t c = 0; c < lo.size() && c < x.size(); c++)
+		if (lo[c] != hi[c])
+			lo[c] = hi[c] = std::min(std::max(x[c], lo[c]), hi[c]);
+}
+
+// The phase-by-phase step: the plan's problem with its switch points pinned
+// to the plan's guard points, every phase then solved alone from the switch
+// states the plan has there (what the joins leave free of a switch knot is
+// fixed to the plan's state, so consecutive phases still meet).
+MultiPhaseSolution phase_by_phase(const RobotParams &robot, const std::vector<Waypoint> &plan,
+				  const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
+{
+	SmoothOptions pinned = opt;
+	pinned.guard_half_length_m = 0;
+	MultiPhaseProblem p = smoothing_problem(robot, plan, map, costs, pinned);
+	SolveOptions so = solver_options(opt, false);
+	so.refinements = 4;
+	MultiPhaseSolution out;
+	out.converged = true;
+	for (size_t k = 0; k < p.phases.size(); k++) {
+		PhaseSpec s = p.phases[k];
+		auto b = state_bounds(s.mode, robot);
+		if (s.first_lo.empty()) s.first_lo = b.first, s.first_hi = b.second;
+		if (s.last_lo.empty()) s.last_lo = b.first, s.last_hi = b.second;
+		if (k > 0)
+			fix_free(s.first_lo, s.first_hi, s.guess.front());
+		if (k + 1 < p.phases.size())
+			fix_free(s.last_lo, s.last_hi, s.guess.back());
+		MultiPhaseProblem q;
+		q.phases = {s};
+		q.T_scales = p.T_scales;
+		MultiPhaseSolution r = solve_multiphase(robot, q, so);
+		out.solve_seconds += r.solve_seconds;
+		if (!r.converged) {
+			out.converged = false;
+			out.status_text = "phase " + std::to_string(k) + " (" + s.mode + ") alone: " + r.status_text;
+			out.rejection = r.rejection;
+			return out;
+		}
+		append_phase(out, s.mode, std::move(r.phases[0]));
+	}
+	out.cost += p.switch_cost;
+	out.replay_cost += p.switch_cost;
+	return out;
+}
+
+// The via points step: the full problem, made to pass through the plan's
+// inner waypoint nearest to where its trajectory leaves the domain, one more
+// per solve while it still does (up to kMaxVia). Not converged when a solve
+// fails or the waypoints run out.
+MultiPhaseSolution via_points(const RobotParams &robot, const std::vector<Waypoint> &plan, const TerrainGrid &map,
+			      const TakeoffLanding &costs, const SmoothOptions &opt, DomainCheck d)
+{
+	constexpr int kMaxVia = 8;
+	std::vector<Waypoint> p = plan;
+	const SolveOptions so = solver_options(opt, false);
+	double seconds = 0;
+	std::string added;
+	MultiPhaseSolution s;
+	for (int n = 0;; n++) {
+		if (n > 0) {
+			s = solve_multiphase(robot, smoothing_problem(robot, p, map, costs, opt), so);
+			seconds += s.solve_seconds;
+			s.solve_seconds = seconds;
+			if (!s.converged) {
+				s.status_text = "through" + added + ": " + s.status_text;
+				return s;
+			}
+			d = domain_check(s, map);
+			if (d.worst_m <= domain_tolerance_m(map))
+				return s;
+		}
+		// The inner waypoint of a run of the offending mode nearest to the violation.
+		size_t best = 0;
+		double best_d = std::numeric_limits<double>::infinity();
+		for (size_t i = 1; i + 1 < p.size(); i++) {
+			if (p[i].via || p[i].guard || p[i].mode != p[i - 1].mode || p[i].mode != p[i + 1].mode ||
+			    mode_name(p[i].mode) != d.mode)
+				continue;
+			double di = std::hypot(p[i].state[0] - d.x_m, p[i].state[1] - d.y_m);
+			if (di < best_d) {
+				best_d = di;
+				best = i;
+			}
+		}
+		if (best == 0 || n == kMaxVia) {
+			s.converged = false;
+			s.status_text = added.empty() ? "no waypoint near where it leaves the domain"
+						      : "through" + added + " still leaves the domain";
+			s.rejection = "domain: " + d.text();
+			s.rejected_cost = std::numeric_limits<double>::infinity();
+			return s;
+		}
+		p[best].via = true;
+		added += " " + std::to_string(best);
+	}
+}
+
+}  // namespace
+
+MultiPhaseSolution graph_path_trajectory(const RobotParams &robot, const std::vector<Waypoint> &plan,
+					 const TakeoffLanding &costs, const SolveOptions &opt)
+{
+	SolveOptions edge_opt = opt;
+	edge_opt.strategy_starts = true;
+	MultiPhaseSolution out;
+	out.converged = true;
+	for (size_t i = 1; i < plan.size(); i++) {
+		const Waypoint &a = plan[i - 1], &b = plan[i];
+		std::string ma = mode_name(a.mode), mb = mode_name(b.mode);
+		if (ma != mb) {   // a guard pair: the switch itself
+			double c = ma == "ground" && mb == "flight" ? costs.takeoff_j
+				 : ma == "flight" && mb == "ground" ? costs.landing_j : 0;
+			out.cost += c;
+			out.replay_cost += c;
+			continue;
+		}
+		std::vector<double> xa = sampled(a), xb = sampled(b);
+		Solution s = solve_bvp(ma, robot, xa.data(), xb.data(), edge_opt);
+		out.solve_seconds += s.solve_seconds;
+		if (!s.converged) {
+			out.converged = false;
+			out.status_text = "edge " + std::to_string(i - 1) + " -> " + std::to_string(i) + " (" + ma +
+					  "): " + s.status_text;
+			if (s.replayed && !s.replay_ok)
+				out.rejection = replay_verdict(s);
+			return out;
+		}
+		append_phase(out, ma, std::move(s));
+	}
+	if (out.phases.empty()) {
+		out.converged = false;
+		out.status_text = "the plan has no edge to follow";
+	}
+	return out;
+}
+
+namespace {
+
+// Distance from (x, y) to the nearest cell of terrain class cls within
+// reach (infinity if none): 0 on such a cell.
+double distance_to_class(const TerrainGrid &m, double x, double y, int8_t cls, double reach)
+{
+	Cell c = cell_at(m, x, y);
+	if (!c.inside)
+		return std::numeric_limits<double>::infinity();
+	if (m.terrain[static_cast<size_t>(c.index)] == cls)
+		return 0;
+	const int cx = c.index % m.nx, cy = c.index / m.nx;
+	const int span = static_cast<int>(std::ceil(reach / m.resolution_m)) + 1;
+	double best = std::numeric_limits<double>::infinity();
+	for (int iy = std::max(0, cy - span); iy <= std::min(m.ny - 1, cy + span); iy++)
+		for (int ix = std::max(0, cx - span); ix <= std::min(m.nx - 1, cx + span); ix++) {
+			if (m.terrain[static_cast<size_t>(iy * m.nx + ix)] != cls)
+				continue;
+			double x0 = m.origin_x_m + ix * m.resolution_m, y0 = m.origin_y_m + iy * m.resolution_m;
+			double dx = std::max({x0 - x, 0.0, x - (x0 + m.resolution_m)});
+			double dy = std::max({y0 - y, 0.0, y - (y0 + m.resolution_m)});
+			best = std::min(best, std::hypot(dx, dy));
+		}
+	return best;
+}
+
+}  // namespace
+
+double domain_tolerance_m(const TerrainGrid &map)
+{
+	return map.resolution_m;
+}
+
+DomainCheck domain_check(const MultiPhaseSolution &s, const TerrainGrid &map)
+{
+	DomainCheck d;
+	if (map.nx <= 0 || map.ny <= 0)
+		return d;
+	const double reach = 4 * domain_tolerance_m(map);
+	double t0 = 0;
+	for (size_t k = 0; k < s.phases.size(); k++) {
+		const Trajectory &tr = s.phases[k].traj;
+		const std::string &mode = s.modes[k];
+		const bool planar = mode == "ground" || mode == "marine";
+		if (planar || mode == "flight")
+			for (size_t i = 0; i < tr.t.size(); i++) {
+				const double *x = &tr.x[i * static_cast<size_t>(tr.nx)];
+				double out;
+				if (planar) {
+					out = distance_to_class(map, x[0], x[1], mode == "ground" ? kGround : kWater, reach);
+				} else {
+					Cell c = cell_at(map, x[0], x[1]);
+					out = c.inside ? std::max(0.0, map.height_m[static_cast<size_t>(c.index)] - x[2])
+						       : std::numeric_limits<double>::infinity();
+				}
+				if (out > d.worst_m) {
+					d = {out, static_cast<int>(k), mode, t0 + tr.t[i], x[0], x[1], reach};
+				}
+			}
+		t0 += s.phases[k].T;
+	}
+	return d;
+}
+
+std::string DomainCheck::text() const
+{
+	if (phase < 0)
+		return "inside its domain";
+	char buf[200];
+	const char *what = mode == "ground" ? "m from ground" : mode == "marine" ? "m from water" : "m below the terrain";
+	if (std::isfinite(worst_m))
+		std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: %.3g %s", phase, mode.c_str(),
+			      t_s, x_m, y_m, worst_m, what);
+	else   // off the map, or farther than domain_check looks
+		std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: off the map or over %.3g %s",
+			      phase, mode.c_str(), t_s, x_m, y_m, reach_m, what);
+	return buf;
+}
+
+SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<Waypoint> &plan,
+				   const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
+{
+	SmoothResult r;
+	DomainCheck left;   // where the last full-problem solution left the domain (phase -1: none did)
+	auto take = [&](SmoothMethod m, MultiPhaseSolution s) {
+		r.seconds += s.solve_seconds;
+		const bool full_problem = m == SmoothMethod::Full || m == SmoothMethod::FinerMesh;
+		if (full_problem)
+			r.lowest_cost = std::min(r.lowest_cost, s.rejected_cost);
+		if (!s.converged) {
+			r.rejections.push_back(std::string(method_name(m)) + ": " + why_not(s));
+			return false;
+		}
+		DomainCheck d = domain_check(s, map);
+		if (d.worst_m > domain_tolerance_m(map)) {
+			char tol[64];
+			std::snprintf(tol, sizeof tol, " > tolerance %.3g m", domain_tolerance_m(map));
+			r.rejections.push_back(std::string(method_name(m)) + ": domain: " + d.text() + tol);
+			if (full_problem) {
+				r.lowest_cost = std::min(r.lowest_cost, s.cost);
+				left = d;
+			}
+			return false;
+		}
+		r.ok = true;
+		r.method = m;
+		r.solution = std::move(s);
+		return true;
+	};
+	auto step = [&](SmoothMethod m, auto &&solve) {
+		try {
+			return take(m, solve());
+		} catch (const std::invalid_argument &e) {   // the step cannot pose its problem
+			r.rejections.push_back(std::string(method_name(m)) + ": " + e.what());
+			return false;
+		}
+	};
+	bool straight = false;
+	if (step(SmoothMethod::Full, [&] { return smooth_best(robot, plan, map, costs, opt, {}, &straight); })) {
+		if (straight)
+			r.method = SmoothMethod::Straightened;
+		return r;
+	}
+	// A full solution that replayed but left the domain gains nothing from a
+	// finer mesh: straight to the via points.
+	if (left.phase < 0 && step(SmoothMethod::FinerMesh, [&] {
+		    SmoothOptions fine = opt;
+		    fine.segments_per_edge *= 2;
+		    fine.min_segments *= 2;
+		    fine.max_segments *= 2;
+		    MultiPhaseProblem prob = smoothing_problem(robot, plan, map, costs, fine);
+		    SolveOptions so = solver_options(opt, true);
+		    so.refinements = 4;
+		    return solve_multiphase(robot, prob, so);
+	    }))
+		return r;
+	// Via points start where a full solution left the domain; without one
+	// they would only repeat the full optimization.
+	if (left.phase >= 0 && step(SmoothMethod::ViaPoints, [&] { return via_points(robot, plan, map, costs, opt, left); }))
+		return r;
+	if (step(SmoothMethod::PhaseByPhase, [&] { return phase_by_phase(robot, plan, map, costs, opt); }))
+		return r;
+	if (step(SmoothMethod::GraphPath,
+		 [&] { return graph_path_trajectory(robot, plan, costs, solver_options(opt, false)); }))
+		return r;
+	r.failure = r.rejections.back().substr(std::string(method_name(SmoothMethod::GraphPath)).size() + 2);
+	return r;
 }
 
 SolveOptions smoothing_solve_options()

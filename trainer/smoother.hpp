@@ -16,6 +16,7 @@
 #define HYLO_TRAINER_SMOOTHER_HPP
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct Waypoint {
 	int mode = 0;                  // goal_t MODE_*
 	double state[6] = {};          // sampled coordinates (docs/models.md section 7)
 	bool guard = false;
+	// The smoothed trajectory must pass through this waypoint's position
+	// (smoothing_problem cuts its run into two phases there; the via points
+	// step of smooth_with_fallbacks sets it). Inner waypoints of a run only.
+	bool via = false;
 };
 
 struct SmoothOptions {
@@ -49,6 +54,10 @@ struct SmoothOptions {
 	int min_segments = 10, max_segments = 48;
 	double guard_half_length_m = 6; // how far a switch point may slide each way (per axis on platforms)
 	std::vector<IpoptOption> ipopt_options;  // added to smoothing_solve_options() (hylo-smooth --ipopt-option)
+	// Added after ipopt_options to the multi-phase optimization's solves only
+	// (fallback steps full, straightened and finer mesh; hylo-smooth
+	// --full-ipopt-option): max_iter=1 forces the fallbacks, as a test does.
+	std::vector<IpoptOption> full_ipopt_options;
 };
 
 // The multi-phase problem of a plan. Throws std::invalid_argument for a plan
@@ -67,9 +76,10 @@ std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan);
 // Smooths a plan: the multi-phase problem from the plan itself, and if that
 // fails, from its straightened copy (a roadmap's sideways S-curves can stall
 // Ipopt; docs/decisions.md, "Smoothing long plans").
+// from_straightened (if given) says whether the straightened copy's solve was kept.
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales = {});
+			       const std::vector<double> &T_scales = {}, bool *from_straightened = nullptr);
 
 // The plan's neighbours in mode sequence: for each ground run between two
 // flights, the plan with that run flown over instead (the landing, the drive
@@ -83,7 +93,73 @@ std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
 // flown_over() neighbour; the plan's own when none converges.
 MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypoint> &plan,
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales = {});
+			       const std::vector<double> &T_scales = {}, bool *from_straightened = nullptr);
+
+// How far a trajectory leaves its map's domain: for every knot and
+// midpoint, a ground (marine) state's distance from the nearest ground
+// (water) cell, a flight's depth below the terrain under it; the worst over
+// the trajectory. Off the map counts as infinitely far. Modes without a
+// terrain class (the double integrator's) are not checked.
+struct DomainCheck {
+	double worst_m = 0;       // 0: inside everywhere
+	int phase = -1;           // where it is worst
+	std::string mode;
+	double t_s = 0, x_m = 0, y_m = 0;
+	double reach_m = 0;       // how far it looks for a cell of the mode's class
+	std::string text() const;   // "phase 1 (marine) at t = 3.2 s, (4.1, 7.0) m: 0.9 m from water"
+};
+DomainCheck domain_check(const MultiPhaseSolution &s, const TerrainGrid &map);
+
+// A trajectory may leave its domain by this much and still be accepted:
+// one cell (the switch points sit on cell edges, the map is a raster).
+double domain_tolerance_m(const TerrainGrid &map);
+
+// The steps of the fallback chain, numbered as traj_t METHOD_* (docs/smoothing.md).
+enum class SmoothMethod { Full = 0, Straightened = 1, FinerMesh = 2, PhaseByPhase = 3, GraphPath = 4, ViaPoints = 5 };
+const char *method_name(SmoothMethod m);   // "full", "straightened", "finer mesh", ...
+
+struct SmoothResult {
+	bool ok = false;
+	SmoothMethod method = SmoothMethod::Full;
+	MultiPhaseSolution solution;           // ok: the trajectory (its phases in time order)
+	std::vector<std::string> rejections;   // every step that failed, and why ("full: ...")
+	std::string failure;                   // !ok: the phase or edge that cannot be followed, and why
+	// Cheapest solution of the full problem a step reached that the replay
+	// or the domain check rejected [J] (infinity: none).
+	double lowest_cost = std::numeric_limits<double>::infinity();
+	double seconds = 0;
+};
+
+// A trajectory for the plan, from the first step of the chain that gives
+// one whose every phase replays:
+//   full / straightened  smooth_best (the plan, its straightened copy, its
+//                        flown-over neighbours)
+//   finer mesh           the plan with twice the segments per edge and four
+//                        mesh refinements of the phases whose replay disagrees
+//                        (skipped when a full solution replayed but left the
+//                        domain)
+//   via points           when a full solution left the domain: the full
+//                        problem again, made to pass through the plan's
+//                        waypoint nearest to where it left, one more waypoint
+//                        per solve (up to 8) while it still leaves it
+//   phase by phase       each phase solved on its own, the switch states
+//                        fixed at the plan's guard points (switch points
+//                        pinned, the states the plan has there)
+//   graph path           every plan edge solved on its own (the trainer's
+//                        single-mode BVP, strategy starts), joined in time
+// A step's trajectory is taken if every phase replays (replay_verdict) and it
+// stays within domain_tolerance_m of its map's domain (domain_check).
+// Not ok only when an edge of the plan itself cannot be solved: failure
+// names the edge, its mode and why.
+SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<Waypoint> &plan,
+				   const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt);
+
+// The graph path step alone: every edge of the plan solved on its own and
+// the solutions joined in time (switches as in smoothing_problem: a guard
+// pair adds its switching cost, no phase). Not converged when an edge fails;
+// rejection then names it.
+MultiPhaseSolution graph_path_trajectory(const RobotParams &robot, const std::vector<Waypoint> &plan,
+					 const TakeoffLanding &costs, const SolveOptions &opt);
 
 // Solver options of the smoother, for plans of tens of metres: a phase's
 // replayed end state within 0.05 (scaled; training: 0.02), flight segments

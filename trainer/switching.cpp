@@ -136,6 +136,21 @@ void join_gate(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const W
 	a.last_lo[2] = std::max(a.last_lo[2], g.z_min);
 }
 
+void join_via(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const double *position)
+{
+	if (k + 1 >= p.phases.size() || p.phases[k].mode != p.phases[k + 1].mode)
+		throw std::invalid_argument("join_via: phases " + std::to_string(k) + " and " + std::to_string(k + 1) +
+					    " are not two phases of one mode");
+	PhaseSpec &a = p.phases[k];
+	default_bounds(a, robot);
+	default_bounds(p.phases[k + 1], robot);
+	for (int i = 0; i < state_dim(a.mode); i++)
+		p.rows.push_back(carry(k, i, i));
+	const int n = a.mode == "flight" ? 3 : a.mode == "ground" || a.mode == "marine" ? 2 : 1;
+	for (int i = 0; i < n; i++)
+		fix(a.last_lo, a.last_hi, i, position[i]);
+}
+
 PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,
 			const double *xs1, const double *guess0, const double *guess1, int segments)
 {

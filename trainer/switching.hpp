@@ -51,6 +51,10 @@ struct WallGate {
 };
 void join_gate(MultiPhaseProblem &problem, size_t k, const RobotParams &robot, const WallGate &gate);
 
+// A via point: phases k and k + 1 (one mode, one run cut in two) meet at
+// position (x, y) (and height z for a flight); the state carries over; no cost.
+void join_via(MultiPhaseProblem &problem, size_t k, const RobotParams &robot, const double *position);
+
 // A phase of mode from sampled state xs0 to xs1 (either nullptr: left free
 // within the mode's bounds), its guess a straight line guess0 -> guess1.
 PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,

@@ -101,6 +101,13 @@ int main(int argc, char **argv)
 	replay("di_neg", di, bad);
 	check(!bad.replay_ok && bad.replay_error > 0.05, "a corrupted control is detected by the replay",
 	      std::to_string(bad.replay_error));
+	// ... and says why: the check, its value and its tolerance.
+	const std::string verdict = replay_verdict(bad);
+	check(!bad.replay_check.check.empty() && bad.replay_check.value > bad.replay_check.tol &&
+		      verdict.find(bad.replay_check.check + ": ") == 0 && verdict.find("> tolerance") != std::string::npos,
+	      "a rejected replay names the check, the value and the tolerance", verdict);
+	check(replay_verdict(f) == "replay passed" && f.replay_check.check.empty(), "a passed replay says so",
+	      replay_verdict(f));
 
 	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
 	double g1[4] = {0, 0, 1, 0}, g2[4] = {3, 0, 1, 0};

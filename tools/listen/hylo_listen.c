@@ -162,6 +162,20 @@ static void jrow(const double *v, int n, int comma)
 	putchar(']');
 }
 
+/* traj_t.method: the step of the smoother's fallback chain (docs/smoothing.md). */
+static const char *method_str(int8_t m)
+{
+	switch (m) {
+	case HYLO_TRAJ_T_METHOD_FULL: return "full";
+	case HYLO_TRAJ_T_METHOD_STRAIGHTENED: return "straightened";
+	case HYLO_TRAJ_T_METHOD_FINER_MESH: return "finer mesh";
+	case HYLO_TRAJ_T_METHOD_PHASE_BY_PHASE: return "phase by phase";
+	case HYLO_TRAJ_T_METHOD_GRAPH_PATH: return "graph path";
+	case HYLO_TRAJ_T_METHOD_VIA_POINTS: return "via points";
+	default: return "unknown";
+	}
+}
+
 static void print_traj(const hylo_traj_t *t)
 {
 	if (json) {
@@ -180,6 +194,10 @@ static void print_traj(const hylo_traj_t *t)
 		jnum(t->replay_energy_j);
 		printf(",\"replay_error\":");
 		jnum(t->replay_error);
+		printf(",\"method\":");
+		jstr(method_str(t->method));
+		printf(",\"gap_j\":");
+		jnum(t->gap_j);
 		printf(",\"t_s\":[");
 		for (k = 0; k < t->n_samples; k++) {
 			if (k)
@@ -199,10 +217,15 @@ static void print_traj(const hylo_traj_t *t)
 		return;
 	}
 	printf("traj %lld (map %lld, %s): %s, energy %.6g J, replay %.6g J, replay error %.3g, "
-	       "%d samples, %.3f s\n", (long long)t->request_id, (long long)t->map_id,
+	       "%d samples, %.3f s", (long long)t->request_id, (long long)t->map_id,
 	       t->robot[0] ? t->robot : "-", status_str(t->status), t->energy_j,
 	       t->replay_energy_j, t->replay_error, t->n_samples,
 	       t->n_samples > 0 ? t->t_s[t->n_samples - 1] : 0.0);
+	if (t->status == HYLO_PLAN_T_STATUS_OK && t->method != HYLO_TRAJ_T_METHOD_FULL)
+		printf(", fallback %s (up to %.4g J above the optimum)", method_str(t->method), t->gap_j);
+	if (t->status != HYLO_PLAN_T_STATUS_OK)
+		printf(": %s", t->reason);
+	putchar('\n');
 }
 
 static long received;
