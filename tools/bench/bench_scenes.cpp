@@ -27,6 +27,7 @@
 
 #include "hylo/planner.h"
 #include "node/registry.h"
+#include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
 
 namespace {
@@ -98,50 +99,8 @@ void write_json(const char *path)
 	out << "]\n";
 }
 
-hylo_map_view map_view(const Scene &sc)
-{
-	hylo_map_view v{};
-	v.map_id = sc.map_id;
-	v.robot = sc.robot.c_str();
-	v.nx = sc.nx;
-	v.ny = sc.ny;
-	v.resolution = sc.resolution_m;
-	v.origin_x = sc.origin_x_m;
-	v.origin_y = sc.origin_y_m;
-	v.ceiling = sc.ceiling_m;
-	v.max_step = sc.max_step_m;
-	v.n_cells = sc.nx * sc.ny;
-	v.terrain = sc.terrain.data();
-	v.height = sc.height_m.data();
-	return v;
-}
-
-hylo_goal goal_of(const Scene &sc)
-{
-	const hylo::scene::Goal &g = sc.goal;
-	hylo_goal q{};
-	q.request_id = 1;
-	q.algorithm = g.algorithm;
-	q.start_mode = g.start.mode;
-	q.goal_mode = g.goal.mode;
-	for (int k = 0; k < HYLO_XS_DIM; k++) {
-		q.start[k] = g.start.x[static_cast<size_t>(k)];
-		q.goal[k] = g.goal.x[static_cast<size_t>(k)];
-	}
-	q.seed = static_cast<uint64_t>(g.seed);
-	q.spacing = g.spacing_m;
-	q.air_spacing = g.air_spacing_m;
-	q.guard_spacing = g.guard_spacing_m;
-	q.connect_radius = g.connect_radius_m;
-	q.air_connect_radius = g.air_connect_radius_m;
-	q.n_speeds = static_cast<uint32_t>(g.speeds_mps.size());
-	q.speeds = g.speeds_mps.data();
-	q.n_headings = static_cast<uint32_t>(g.headings_rad.size());
-	q.headings = g.headings_rad.data();
-	q.n_air_speeds = static_cast<uint32_t>(g.air_speeds_mps.size());
-	q.air_speeds = g.air_speeds_mps.data();
-	return q;
-}
+using hylo::scene::goal_of;
+using hylo::scene::map_view;
 
 struct Bench {
 	hylo_robot robots[HYLO_MAX_ROBOTS];
