@@ -30,7 +30,7 @@ static uint32_t sentinel(const hylo_planner *pl)
 static hylo_status push(hylo_planner *pl, const hylo_search *s, uint32_t u, hylo_real cost,
 			uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
-	if (hylo_search_closed(s, u))
+	if (s && hylo_search_closed(s, u))
 		return HYLO_OK;
 	if (*n >= cap)
 		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
@@ -83,28 +83,19 @@ static hylo_status position_predecessors(hylo_planner *pl, const hylo_search *s,
 	return st;
 }
 
-static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32_t *heads,
-				   hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+/* The edges into node v (position j, not the start's): heads[0 .. *n), the
+ * moves first (*n_moves of them), then the switches. Closed tails of s are
+ * left out (s: NULL keeps every one). */
+static hylo_status predecessors(hylo_planner *pl, const hylo_search *s, uint32_t v, uint32_t *heads,
+				hylo_real *costs, uint32_t cap, uint32_t *n, uint32_t *n_moves)
 {
-	hylo_planner *pl = ctx;
 	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t j, k, n_pred, a0 = UINT32_MAX;
+	uint32_t j = rm->node_pos[v], cj = v - rm->pos[j].node_base, k, n_pred, a0 = UINT32_MAX;
 	const uint32_t *pred;
 	hylo_real head[HYLO_XS_DIM];
 	hylo_status st = HYLO_OK;
-	uint32_t cj;
 
-	(void)r;
 	*n = 0;
-	if (v >= rm->n_nodes + 2)
-		return HYLO_OK;
-	j = rm->node_pos[v];
-	cj = v - rm->pos[j].node_base;
-	if (j == pl->start_pos && !isfinite(pl->h_reach))   /* every node is wanted */
-		return HYLO_OK;
-	if (j == pl->start_pos)   /* its distance is known: go on to the sentinel */
-		return push(pl, s, sentinel(pl), (pl->h_reach - 1) * hylo_search_cost(s, v), heads,
-			    costs, cap, n);
 	hylo_planner_node_state(pl, j, cj, head);
 	/* Same-mode neighbours are symmetric: j's list is also its predecessors. */
 	if (j == pl->goal_pos) {
@@ -121,9 +112,29 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 			      (j < rm->n_positions && pl->links_start[j])))
 		st = position_predecessors(pl, s, pl->start_pos, j, UINT32_MAX, cj, head, heads, costs,
 					   cap, n);
+	*n_moves = *n;
 	if (st == HYLO_OK)
 		st = switch_predecessors(pl, s, v, heads, costs, cap, n);
 	return st;
+}
+
+static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32_t *heads,
+				   hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t n_moves;
+
+	(void)r;
+	*n = 0;
+	if (v >= rm->n_nodes + 2)
+		return HYLO_OK;
+	if (rm->node_pos[v] == pl->start_pos && !isfinite(pl->h_reach))   /* every node is wanted */
+		return HYLO_OK;
+	if (rm->node_pos[v] == pl->start_pos)   /* its distance is known: go on to the sentinel */
+		return push(pl, s, sentinel(pl), (pl->h_reach - 1) * hylo_search_cost(s, v), heads,
+			    costs, cap, n);
+	return predecessors(pl, s, v, heads, costs, cap, n, &n_moves);
 }
 
 /* The start's distance from the kept distances (its successors'), to see
@@ -205,4 +216,191 @@ hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget)
 	pl->h_goal_mode = rm->pos[pl->goal_pos].mode;
 	memcpy(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs);
 	return HYLO_OK;
+}
+
+/*
+ * The layered heuristic (alternatives), computed when the alternatives'
+ * search closes a goal copy (before that, the plain heuristic: with every
+ * sequence still open it is nearly the same): the backward search over the
+ * search's copies of the graph (planner_graph.c, offer_for: layer l counts
+ * the changes of travel mode so far; a move in another mode than layer l's
+ * leads to l + 1, the last layer keeps everything), from every goal copy not
+ * closed yet. A node's value is its exact bound-distance to the nearest
+ * sequence still sought: in a layer whose own sequence is found only the way
+ * to a further change of mode counts, and a layer that cannot reach its goal
+ * copy with its number of changes is pruned. The search only needs nodes
+ * that could lie on a path within `cap` (alternatives_within times the first
+ * one's cost): a node whose forward bound-distance from the start plus its
+ * backward one exceeds cap is not expanded, and a node never reached gets
+ * +inf (a path within cap through it would have reached it). The heuristic
+ * only grows; the search re-checks its keys (search.h). Node ids: the
+ * layered ones, then a source linked to the open goal copies.
+ */
+
+/* The forward bound-distances from the start, as far as pl->layered_cap. */
+static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t v, uint32_t *heads,
+				  hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t i, c, k, c2, n_adj, m, combos[HYLO_MAX_COMBOS];
+	const uint32_t *adj;
+	hylo_real tail[HYLO_XS_DIM], lb[HYLO_MAX_COMBOS];
+	hylo_pair_bound pb;
+	hylo_status st = HYLO_OK;
+
+	(void)r;
+	*n = 0;
+	if (v >= rm->n_nodes + 2)
+		return HYLO_OK;
+	i = rm->node_pos[v];
+	if ( i == pl->goal_pos || hylo_search_cost(s, v) > pl->layered_cap)
+		return HYLO_OK;
+	c = v - rm->pos[i].node_base;
+	hylo_planner_node_state(pl, i, c, tail);
+	adj = hylo_planner_neighbours(pl, i, &n_adj);
+	for (k = 0; k <= n_adj && st == HYLO_OK; k++) {
+		uint32_t j = k < n_adj ? adj[k] : pl->goal_pos;
+
+		if (k == n_adj && !((i == pl->start_pos && pl->start_goal_linked) ||
+				    (i < rm->n_positions && pl->links_goal[i])))
+			break;
+		hylo_planner_pair_bound(pl, i, j, &pb);
+		hylo_planner_bounds_from(&pb, c, tail, j, lb);
+		for (c2 = 0; c2 < rm->pos[j].n_combos && st == HYLO_OK; c2++)
+			if (isfinite(lb[c2]))
+				st = push(pl, s, rm->pos[j].node_base + c2, lb[c2], heads, costs, cap, n);
+	}
+	if (st != HYLO_OK || i >= rm->n_positions || rm->pos[i].twin == HYLO_NO_POSITION)
+		return st;
+	m = hylo_roadmap_switch_heads(rm, i, c, combos);
+	for (k = 0; k < m && st == HYLO_OK; k++)
+		st = push(pl, s, rm->pos[rm->pos[i].twin].node_base + combos[k],
+			  hylo_planner_switch_cost(pl, i), heads, costs, cap, n);
+	return st;
+}
+
+static uint32_t layered_source(const hylo_planner *pl)
+{
+	return pl->layers * pl->layer_stride;
+}
+
+/* 1 when a move in mode m from layer l leads into layer lh (see offer_for). */
+static int moves_into(const hylo_planner *pl, uint32_t l, uint8_t m, uint32_t lh)
+{
+	uint32_t next = l + 1 < pl->layers && m != pl->layer_mode[l % 2] ? l + 1 : l;
+
+	return next == lh;
+}
+
+static hylo_status layered_push(hylo_planner *pl, uint32_t u, hylo_real c, uint32_t *heads,
+				hylo_real *costs, uint32_t cap, uint32_t *n)
+{
+	if (*n >= cap)
+		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+				 "the layered heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
+				 HYLO_MAX_SUCCESSORS);
+	heads[*n] = u;
+	costs[(*n)++] = c;
+	return HYLO_OK;
+}
+
+static hylo_status expand_layered(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
+				  hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t src = layered_source(pl), stride = pl->layer_stride, lh, v, k, m, n_moves, l;
+	hylo_status st = HYLO_OK;
+
+	(void)r;
+	*n = 0;
+	if (u == src) {
+		for (l = 0; l < pl->layers && st == HYLO_OK; l++)
+			if (!hylo_search_closed(pl->layered_forward, l * stride + rm->n_nodes + 1))
+				st = layered_push(pl, l * stride + rm->n_nodes + 1, 0, heads, costs, cap, n);
+		return st;
+	}
+	if (u > src)
+		return HYLO_OK;
+	lh = u / stride;
+	v = u % stride;
+	/* No edge leads into the start; beyond cap nothing is wanted. */
+	if (rm->node_pos[v] == pl->start_pos ||
+	    pl->h_forward[v] + hylo_search_cost(s, u) > pl->layered_cap)
+		return HYLO_OK;
+	st = predecessors(pl, NULL, v, pl->scratch_heads, pl->scratch_costs, HYLO_MAX_SUCCESSORS, &m,
+			  &n_moves);
+	for (k = 0; k < m && st == HYLO_OK; k++) {
+		uint32_t t = pl->scratch_heads[k];
+		uint8_t mode = rm->pos[rm->node_pos[t]].mode;
+		hylo_real c = pl->scratch_costs[k];
+
+		if (k >= n_moves) {   /* a switch stays in its layer */
+			st = layered_push(pl, lh * stride + t, c, heads, costs, cap, n);
+			continue;
+		}
+		if (moves_into(pl, lh, mode, lh))
+			st = layered_push(pl, lh * stride + t, c, heads, costs, cap, n);
+		if (st == HYLO_OK && lh > 0 && moves_into(pl, lh - 1, mode, lh))
+			st = layered_push(pl, (lh - 1) * stride + t, c, heads, costs, cap, n);
+	}
+	return st;
+}
+
+/* h_node for every layered node towards the goal copies fwd has not closed,
+ * for paths costing at most cap. */
+static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hylo_real cap)
+{
+	hylo_search *s = &pl->layer_search;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t src = layered_source(pl), u;
+	hylo_budget unlimited;
+	hylo_outcome outcome;
+	hylo_graph g;
+	hylo_status st;
+
+	memset(&unlimited, 0, sizeof unlimited);
+	memset(&g, 0, sizeof g);
+	/* Room for slightly different rounding of the same sums in the search. */
+	pl->layered_cap = cap * (1 + 1e-9) + 1e-9;
+	pl->layered_forward = fwd;
+	g.weight = 1;
+	g.ctx = pl;
+	/* Both searches run until nothing is left: their goal is a node no edge reaches. */
+	g.n_nodes = rm->n_nodes + 3;
+	g.expand = expand_forward;
+	st = hylo_search_run(s, &g, rm->n_nodes, rm->n_nodes + 2, &unlimited, &outcome, &pl->reason);
+	for (u = 0; st == HYLO_OK && u < rm->n_nodes + 2; u++)
+		pl->h_forward[u] = hylo_search_cost(s, u);
+	g.n_nodes = src + 2;
+	g.expand = expand_layered;
+	if (st == HYLO_OK)
+		st = hylo_search_run(s, &g, src, src + 1, &unlimited, &outcome, &pl->reason);
+	pl->layered_forward = NULL;
+	if (st != HYLO_OK)
+		return st;
+	pl->h_valid = 0;   /* h_node is indexed by layer now */
+	for (u = 0; u < src; u++)
+		pl->h_node[u] = hylo_search_cost(s, u);
+	pl->h_layered = 1;
+	return HYLO_OK;
+}
+
+hylo_status hylo_planner_found(void *ctx, hylo_search *s, uint32_t goal, int *grew,
+			       hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	hylo_status st;
+
+	(void)goal;
+	*grew = 0;
+	if (!pl->use_heuristic)
+		return HYLO_OK;
+	st = layer_heuristic(pl, s, pl->layered_within *
+					hylo_search_cost(s, hylo_search_found(s, 0)));
+	if (st != HYLO_OK && r != &pl->reason)
+		*r = pl->reason;
+	*grew = st == HYLO_OK;
+	return st;
 }
