@@ -8,7 +8,7 @@
  * A dead node has h = +inf: it cannot reach the goal, so it is never queued.
  */
 #define SEARCH_UNSEEN HYLO_NO_NODE
-#define SEARCH_CLOSED (HYLO_NO_NODE - 1u)
+#define SEARCH_CLOSED HYLO_SEARCH_CLOSED
 #define SEARCH_DEAD (HYLO_NO_NODE - 2u)
 
 /* Reading the clock costs more than a cheap expansion: look every so often. */
@@ -556,11 +556,6 @@ hylo_real hylo_search_min_key(const hylo_search *s)
 	if (s->n_deferred > 0 && s->defer_key[0] < k)
 		k = s->defer_key[0];
 	return k;
-}
-
-int hylo_search_closed(const hylo_search *s, uint32_t v)
-{
-	return s && v < s->n_nodes && s->heap_pos[v] == SEARCH_CLOSED;
 }
 
 hylo_real hylo_search_cost(const hylo_search *s, uint32_t v)

@@ -199,6 +199,7 @@ typedef struct {
 	/* the layered heuristic (planner_heuristic.c): in h_node once h_layered */
 	hylo_search layer_search;       /* its searches */
 	hylo_real h_forward[HYLO_MAX_NODES]; /* bound-distances from the start, up to the cap */
+	int h_forward_valid;            /* computed for this goal */
 	const hylo_search *layered_forward;  /* while it runs: the alternatives' search */
 	hylo_real layered_cap;          /* paths dearer than this are not wanted */
 	hylo_real layered_within;       /* the goal's alternatives_within */

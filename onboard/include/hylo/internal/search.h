@@ -169,8 +169,15 @@ hylo_real hylo_search_weight(const hylo_search *s);
  * it ran out of budget. */
 hylo_real hylo_search_min_key(const hylo_search *s);
 
-/** 1 when v has been expanded (its cost is final). */
-int hylo_search_closed(const hylo_search *s, uint32_t v);
+/* heap_pos[v] of a node expanded (closed): above any heap index. */
+#define HYLO_SEARCH_CLOSED (HYLO_NO_NODE - 1u)
+
+/** 1 when v has been expanded (its cost is final). Inline: expand callbacks
+ * ask it for every head. */
+static inline int hylo_search_closed(const hylo_search *s, uint32_t v)
+{
+	return s && v < s->n_nodes && s->heap_pos[v] == HYLO_SEARCH_CLOSED;
+}
 
 /** Best known cost from the start to v; +inf when v was not reached. */
 hylo_real hylo_search_cost(const hylo_search *s, uint32_t v);
