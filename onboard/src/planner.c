@@ -116,6 +116,8 @@ hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_
 	pl->n_found = 0;
 	pl->layers = 1;
 	pl->layer_stride = 0;
+	pl->layered_forward = NULL;
+	pl->h_layered = 0;
 	pl->n_goal_adj = 0;
 	pl->n_start_adj = 0;
 	memset(pl->links_goal, 0, sizeof pl->links_goal);
@@ -538,7 +540,7 @@ static hylo_status connect_terminals(hylo_planner *pl, const hylo_goal *g, hylo_
 
 static hylo_real node_heuristic(void *ctx, uint32_t u)
 {
-	return hylo_planner_search_h((const hylo_planner *)ctx, u);
+	return hylo_planner_h((const hylo_planner *)ctx, u);
 }
 
 /* ---- plan extraction --------------------------------------------------- */
@@ -778,7 +780,8 @@ static void report_counts(const hylo_planner *pl, hylo_plan *plan)
  * last holds that many switches or more); 1 (the graph) for one plan. */
 static uint32_t layers_for(const hylo_planner *pl, uint32_t k)
 {
-	uint32_t l = HYLO_MAX_NODES / pl->layer_stride;
+	/* room for the layered heuristic's source and sentinel too */
+	uint32_t l = (HYLO_MAX_NODES - 2) / pl->layer_stride;
 
 	if (k <= 1 || l < 2)
 		return 1;
@@ -824,16 +827,19 @@ static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan,
 	budget.clock_ctx = pl->cfg.clock_ctx;
 	pl->use_heuristic = g->algorithm == HYLO_ASTAR;
 	pl->h_reach = g->alternatives > 1 && within > HYLO_HEURISTIC_REACH ? within : HYLO_HEURISTIC_REACH;
-	if (pl->use_heuristic)
-		st = hylo_planner_heuristic(pl, &unlimited);
-	if (st != HYLO_OK)
-		return st;
-	/* The walk's bound would prune every path dearer than the best. */
 	pl->layers = layers_for(pl, g->alternatives);
 	pl->layer_mode[0] = (uint8_t)g->start_mode;
 	pl->layer_mode[1] = pl->robot->n_modes == 2 && (int)pl->robot->modes[0].mode == g->start_mode
 				    ? (uint8_t)pl->robot->modes[1].mode
 				    : (uint8_t)pl->robot->modes[0].mode;
+	pl->h_layered = 0;
+	pl->h_forward_valid = 0;
+	pl->layered_within = within;
+	if (pl->use_heuristic)
+		st = hylo_planner_heuristic(pl, &unlimited);
+	if (st != HYLO_OK)
+		return st;
+	/* The walk's bound would prune every path dearer than the best. */
 	plan->max_switches = pl->layers - 1;
 	if (pl->use_heuristic && pl->layers == 1)
 		pl->bound = hylo_planner_greedy_walk(pl, deadline);
@@ -848,6 +854,8 @@ static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan,
 	graph.heuristic = pl->use_heuristic ? node_heuristic : NULL;
 	graph.weight = pl->weight;
 	graph.ctx = pl;
+	graph.found = pl->layers > 1 ? hylo_planner_found : NULL;
+	graph.group_key = pl->layers > 1 ? hylo_planner_group_key : NULL;
 	for (k = 0; k < pl->layers; k++)
 		goals[k] = k * pl->layer_stride + rm->n_nodes + 1;
 	want = pl->layers == 1 ? 1 : g->alternatives < pl->layers ? g->alternatives : pl->layers;

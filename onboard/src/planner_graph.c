@@ -320,7 +320,7 @@ hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i)
 
 hylo_real hylo_planner_h(const hylo_planner *pl, uint32_t u)
 {
-	return pl->h_node[u];
+	return pl->h_node[pl->h_layered ? u : hylo_planner_graph_node(pl, u)];
 }
 
 /* The states of the combinations combos[0 .. n) of position j into pl->head_xs. */
@@ -418,11 +418,6 @@ uint32_t hylo_planner_graph_node(const hylo_planner *pl, uint32_t u)
 	return pl->layers > 1 ? u % pl->layer_stride : u;
 }
 
-hylo_real hylo_planner_search_h(const hylo_planner *pl, uint32_t u)
-{
-	return pl->h_node[hylo_planner_graph_node(pl, u)];
-}
-
 /*
  * Layer l counts the changes of mode between the stretches a path has
  * travelled so far: its travel mode is the start's for even l, the other
@@ -452,7 +447,7 @@ static void offer_for(const hylo_planner *pl, hylo_search *s, uint32_t u, offer 
 static int wanted(const hylo_planner *pl, const offer *o, uint32_t v, uint32_t layer, hylo_real lb,
 		  hylo_real *hv)
 {
-	*hv = pl->use_heuristic ? hylo_planner_h(pl, v) : 0;
+	*hv = pl->use_heuristic ? hylo_planner_h(pl, layer + v) : 0;
 	if (o->s && hylo_search_closed(o->s, layer + v))
 		return 0;
 	if (pl->use_heuristic && !isfinite(*hv))
@@ -520,9 +515,47 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++)
 		if (isfinite(got[c2]) &&
 		    !(pl->use_heuristic && o->s &&
-		      o->g + got[c2] + hylo_planner_h(pl, q->node_base + c2) > pl->bound * (1 + BOUND_SLACK)))
+		      o->g + got[c2] + hylo_planner_h(pl, o->move + q->node_base + c2) >
+			      pl->bound * (1 + BOUND_SLACK)))
 			st = emit(pl, o->move + q->node_base + c2, got[c2], heads, costs, cap, n);
 	return st;
+}
+
+/* Lower bounds lb[] of the edges from u to the combinations of position j. */
+static void group_bounds(hylo_planner *pl, uint32_t u, uint32_t j, hylo_real *lb)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
+	hylo_real tail[HYLO_XS_DIM];
+	hylo_pair_bound pb;
+
+	hylo_planner_node_state(pl, i, c, tail);
+	hylo_planner_pair_bound(pl, i, j, &pb);
+	hylo_planner_bounds_from(&pb, c, tail, j, lb);
+}
+
+/* The least f-value the wanted heads of group (u, j) could get (those whose
+ * costs are not known yet, when skip_known: the others go out at once);
+ * *need = 0 (and +inf) when there are none. */
+static hylo_real pending_key(hylo_planner *pl, const offer *o, uint32_t u, uint32_t group,
+			     uint32_t j, const hylo_real *lb, int skip_known, int *need)
+{
+	const hylo_position *q = &pl->roadmap.pos[j];
+	const hylo_real *cached = skip_known ? group_costs(pl, u, group, 0) : NULL;
+	hylo_real key = INFINITY, hv, f;
+	uint32_t c2;
+
+	*need = 0;
+	for (c2 = 0; c2 < q->n_combos; c2++) {
+		if (!wanted(pl, o, q->node_base + c2, o->move, lb[c2], &hv) ||
+		    (cached && !isnan(cached[c2])))
+			continue;
+		*need = 1;
+		f = o->g + lb[c2] + pl->weight * hv;
+		if (f < key)
+			key = f;
+	}
+	return key;
 }
 
 /*
@@ -533,38 +566,27 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uint32_t group,
 			       uint32_t j, uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
-	const hylo_roadmap *rm = &pl->roadmap;
-	const hylo_position *q = &rm->pos[j];
-	uint32_t i = rm->node_pos[u], c2;
+	const hylo_position *q = &pl->roadmap.pos[j];
 	const hylo_real *cached = group_costs(pl, u, group, 0);
-	hylo_real key = INFINITY, hv, tail[HYLO_XS_DIM], lb[HYLO_MAX_COMBOS];
-	hylo_pair_bound pb;
+	hylo_real key, hv, lb[HYLO_MAX_COMBOS];
 	hylo_status st = HYLO_OK;
-	uint32_t c = u - rm->pos[i].node_base;
-	int need = 0;
+	uint32_t c2;
+	int need;
 
-	hylo_planner_node_state(pl, i, c, tail);
-	hylo_planner_pair_bound(pl, i, j, &pb);
-	hylo_planner_bounds_from(&pb, c, tail, j, lb);
+	group_bounds(pl, u, j, lb);
 	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++) {
-		hylo_real b = lb[c2], f;
-
-		if (!wanted(pl, o, q->node_base + c2, o->move, b, &hv))
+		if (!cached || isnan(cached[c2]) || !wanted(pl, o, q->node_base + c2, o->move, lb[c2], &hv))
 			continue;
-		if (cached && !isnan(cached[c2])) {
-			pl->n_cached++;
-			if (isfinite(cached[c2]) &&
-			    !(pl->use_heuristic && o->g + cached[c2] + hv > pl->bound * (1 + BOUND_SLACK)))
-				st = emit(pl, o->move + q->node_base + c2, cached[c2], heads, costs, cap, n);
-			continue;
-		}
-		need = 1;
-		f = o->g + b + pl->weight * hv;
-		if (f < key)
-			key = f;
+		pl->n_cached++;
+		if (isfinite(cached[c2]) &&
+		    !(pl->use_heuristic && o->g + cached[c2] + hv > pl->bound * (1 + BOUND_SLACK)))
+			st = emit(pl, o->move + q->node_base + c2, cached[c2], heads, costs, cap, n);
 	}
-	if (st != HYLO_OK || !need)
+	if (st != HYLO_OK)
 		return st;
+	key = pending_key(pl, o, u, group, j, lb, 1, &need);
+	if (!need)
+		return HYLO_OK;
 	if (pl->use_heuristic && o->s && hylo_search_defer(o->s, o->tail, group, key))
 		return HYLO_OK;
 	return resolve_group(pl, o, u, group, j, heads, costs, cap, n);
@@ -626,23 +648,49 @@ hylo_status hylo_planner_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t 
 	return successors(pl, &o, hylo_planner_graph_node(pl, u), heads, costs, cap, n);
 }
 
+/* The position of group `group` of graph node v, HYLO_NO_POSITION when it has none. */
+static uint32_t group_position(const hylo_planner *pl, uint32_t v, uint32_t group)
+{
+	uint32_t n_adj;
+	const uint32_t *adj = hylo_planner_neighbours(pl, pl->roadmap.node_pos[v], &n_adj);
+
+	if (group == HYLO_GOAL_GROUP)
+		return pl->goal_pos;
+	return group < n_adj ? adj[group] : HYLO_NO_POSITION;
+}
+
+hylo_real hylo_planner_group_key(void *ctx, hylo_search *s, uint32_t u, uint32_t group)
+{
+	hylo_planner *pl = ctx;
+	uint32_t v = hylo_planner_graph_node(pl, u), j = group_position(pl, v, group);
+	hylo_real lb[HYLO_MAX_COMBOS];
+	offer o;
+	int need;
+
+	if (j == HYLO_NO_POSITION)
+		return -INFINITY;   /* not ours: resolve says so */
+	offer_for(pl, s, u, &o);
+	group_bounds(pl, v, j, lb);
+	/* Every wanted head: another layer's copy of v may have filled the
+	 * cache since, and this group's heads have not gone out. */
+	return pending_key(pl, &o, v, group, j, lb, 0, &need);
+}
+
 hylo_status hylo_planner_resolve(void *ctx, hylo_search *s, uint32_t u, uint32_t group,
 				 uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n,
 				 hylo_reason *r)
 {
 	hylo_planner *pl = ctx;
-	uint32_t n_adj, v = hylo_planner_graph_node(pl, u), i = pl->roadmap.node_pos[v];
-	const uint32_t *adj = hylo_planner_neighbours(pl, i, &n_adj);
+	uint32_t v = hylo_planner_graph_node(pl, u), j = group_position(pl, v, group);
 	offer o;
 
 	(void)r;
 	*n = 0;
-	if (group != HYLO_GOAL_GROUP && group >= n_adj)
+	if (j == HYLO_NO_POSITION)
 		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "resolve: node %u has no group %u",
 				 (unsigned)v, (unsigned)group);
 	offer_for(pl, s, u, &o);
-	return resolve_group(pl, &o, v, group, group == HYLO_GOAL_GROUP ? pl->goal_pos : adj[group],
-			     heads, costs, cap, n);
+	return resolve_group(pl, &o, v, group, j, heads, costs, cap, n);
 }
 
 /*
@@ -682,18 +730,18 @@ hylo_real hylo_planner_greedy_walk(hylo_planner *pl, double deadline)
 			return INFINITY;
 		/* Candidates: heads below u's heuristic, and switch heads at it. */
 		o.h_below = switched ? hu : nextafter(hu, INFINITY);
-		if (successors(pl, &o, u, pl->walk_heads, pl->walk_costs, HYLO_MAX_SUCCESSORS, &n) != HYLO_OK)
+		if (successors(pl, &o, u, pl->scratch_heads, pl->scratch_costs, HYLO_MAX_SUCCESSORS, &n) != HYLO_OK)
 			return INFINITY;
 		for (k = 0; k < n; k++) {
-			uint32_t v = pl->walk_heads[k], vi = rm->node_pos[v];
+			uint32_t v = pl->scratch_heads[k], vi = rm->node_pos[v];
 			hylo_real hv = hylo_planner_h(pl, v);
 			int sw = ui < rm->n_positions && rm->pos[ui].twin == vi;
 
 			if (!(hv < hu || (sw && !switched && hv <= hu)))
 				continue;
-			if (pl->walk_costs[k] + hv < best) {
-				best = pl->walk_costs[k] + hv;
-				best_c = pl->walk_costs[k];
+			if (pl->scratch_costs[k] + hv < best) {
+				best = pl->scratch_costs[k] + hv;
+				best_c = pl->scratch_costs[k];
 				best_v = v;
 				best_switch = sw;
 			}

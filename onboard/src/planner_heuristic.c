@@ -27,22 +27,53 @@ static uint32_t sentinel(const hylo_planner *pl)
 	return pl->roadmap.n_nodes + 2;
 }
 
-static hylo_status push(hylo_planner *pl, const hylo_search *s, uint32_t u, hylo_real cost,
+/* Which copies of a tail an edge comes from: node ids tail + off[k] of the
+ * search s, those closed left out (the plain heuristic: one copy, offset 0;
+ * the layered one: the layers an edge can come from, planner_graph.c). */
+typedef struct {
+	const hylo_search *s;
+	uint32_t off[2];
+	uint32_t n_off;
+} copies;
+
+static hylo_status push(hylo_planner *pl, const copies *cp, uint32_t u, hylo_real cost,
 			uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
-	if (hylo_search_closed(s, u))
-		return HYLO_OK;
-	if (*n >= cap)
-		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
-				 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
-				 HYLO_MAX_SUCCESSORS);
-	heads[*n] = u;
-	costs[(*n)++] = cost;
+	uint32_t k;
+
+	for (k = 0; k < cp->n_off; k++) {
+		if (cp->s && hylo_search_closed(cp->s, u + cp->off[k]))
+			continue;
+		if (*n >= cap)
+			return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+					 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
+					 HYLO_MAX_SUCCESSORS);
+		heads[*n] = u + cp->off[k];
+		costs[(*n)++] = cost;
+	}
 	return HYLO_OK;
 }
 
+/* Marks in open[c] the copies (bit k: off[k]) of node c of position i that
+ * are not closed; 0 when none is. */
+static int open_copies(const hylo_planner *pl, const copies *cp, uint32_t i, uint8_t *open)
+{
+	const hylo_position *p = &pl->roadmap.pos[i];
+	uint32_t c, k;
+	int any = 0;
+
+	for (c = 0; c < p->n_combos; c++) {
+		open[c] = 0;
+		for (k = 0; k < cp->n_off; k++)
+			if (!hylo_search_closed(cp->s, p->node_base + c + cp->off[k]))
+				open[c] |= (uint8_t)(1u << k);
+		any |= open[c];
+	}
+	return any;
+}
+
 /* The switch edges into node v (position j) from j's guard twin. */
-static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t v,
+static hylo_status switch_predecessors(hylo_planner *pl, const copies *cp, uint32_t v,
 				       uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
@@ -55,56 +86,56 @@ static hylo_status switch_predecessors(hylo_planner *pl, const hylo_search *s, u
 		m = hylo_roadmap_switch_heads(rm, t, c, combos);
 		for (k = 0; k < m && st == HYLO_OK; k++)
 			if (rm->pos[j].node_base + combos[k] == v)
-				st = push(pl, s, rm->pos[t].node_base + c, hylo_planner_switch_cost(pl, t),
+				st = push(pl, cp, rm->pos[t].node_base + c, hylo_planner_switch_cost(pl, t),
 					  heads, costs, cap, n);
 	}
 	return st;
 }
 
 /* The edges from the nodes of position i into node v (position j, state
- * head); a: the pair's entry in j's adjacency list, or UINT32_MAX. */
-static hylo_status position_predecessors(hylo_planner *pl, const hylo_search *s, uint32_t i,
+ * head); a: the pair's entry in j's adjacency list, or UINT32_MAX. Their
+ * bounds are not computed when every tail is closed already. */
+static hylo_status position_predecessors(hylo_planner *pl, const copies *cp, uint32_t i,
 					 uint32_t j, uint32_t a, uint32_t cj, const hylo_real *head,
 					 uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
 	const hylo_position *p = &pl->roadmap.pos[i];
 	hylo_real lb[HYLO_MAX_COMBOS];
+	uint8_t open[HYLO_MAX_COMBOS];
 	hylo_pair_bound pb;
-	uint32_t c;
-	hylo_status st = HYLO_OK;
+	uint32_t c, k;
 
+	if (!open_copies(pl, cp, i, open))
+		return HYLO_OK;
 	if (a == UINT32_MAX)
 		hylo_planner_pair_bound(pl, i, j, &pb);
 	else
 		hylo_planner_pair_bound_into(pl, i, j, a, &pb);
 	hylo_planner_bounds_into(&pb, i, cj, head, lb);
-	for (c = 0; c < p->n_combos && st == HYLO_OK; c++)
-		st = push(pl, s, p->node_base + c, lb[c], heads, costs, cap, n);
-	return st;
+	if (*n + p->n_combos * cp->n_off > cap)
+		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+				 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
+				 HYLO_MAX_SUCCESSORS);
+	for (c = 0; c < p->n_combos; c++)
+		for (k = 0; k < cp->n_off; k++)
+			if (open[c] & (1u << k)) {
+				heads[*n] = p->node_base + c + cp->off[k];
+				costs[(*n)++] = lb[c];
+			}
+	return HYLO_OK;
 }
 
-static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32_t *heads,
-				   hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+/* The edges into node v (position j, not the start's), from the copies
+ * `moves` of its same-mode predecessors and `switches` of its guard twin's. */
+static hylo_status predecessors(hylo_planner *pl, const copies *moves, const copies *switches,
+				uint32_t v, uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
 {
-	hylo_planner *pl = ctx;
 	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t j, k, n_pred, a0 = UINT32_MAX;
+	uint32_t j = rm->node_pos[v], cj = v - rm->pos[j].node_base, k, n_pred, a0 = UINT32_MAX;
 	const uint32_t *pred;
 	hylo_real head[HYLO_XS_DIM];
 	hylo_status st = HYLO_OK;
-	uint32_t cj;
 
-	(void)r;
-	*n = 0;
-	if (v >= rm->n_nodes + 2)
-		return HYLO_OK;
-	j = rm->node_pos[v];
-	cj = v - rm->pos[j].node_base;
-	if (j == pl->start_pos && !isfinite(pl->h_reach))   /* every node is wanted */
-		return HYLO_OK;
-	if (j == pl->start_pos)   /* its distance is known: go on to the sentinel */
-		return push(pl, s, sentinel(pl), (pl->h_reach - 1) * hylo_search_cost(s, v), heads,
-			    costs, cap, n);
 	hylo_planner_node_state(pl, j, cj, head);
 	/* Same-mode neighbours are symmetric: j's list is also its predecessors. */
 	if (j == pl->goal_pos) {
@@ -115,15 +146,37 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 		a0 = rm->pos[j].adj_begin;
 	}
 	for (k = 0; k < n_pred && st == HYLO_OK; k++)
-		st = position_predecessors(pl, s, pred[k], j, a0 == UINT32_MAX ? a0 : a0 + k, cj, head,
+		st = position_predecessors(pl, moves, pred[k], j, a0 == UINT32_MAX ? a0 : a0 + k, cj, head,
 					   heads, costs, cap, n);
 	if (st == HYLO_OK && ((j == pl->goal_pos && pl->start_goal_linked) ||
 			      (j < rm->n_positions && pl->links_start[j])))
-		st = position_predecessors(pl, s, pl->start_pos, j, UINT32_MAX, cj, head, heads, costs,
+		st = position_predecessors(pl, moves, pl->start_pos, j, UINT32_MAX, cj, head, heads, costs,
 					   cap, n);
 	if (st == HYLO_OK)
-		st = switch_predecessors(pl, s, v, heads, costs, cap, n);
+		st = switch_predecessors(pl, switches, v, heads, costs, cap, n);
 	return st;
+}
+
+static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32_t *heads,
+				   hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	const hylo_roadmap *rm = &pl->roadmap;
+	copies cp;
+
+	(void)r;
+	*n = 0;
+	if (v >= rm->n_nodes + 2)
+		return HYLO_OK;
+	cp.s = s;
+	cp.off[0] = 0;
+	cp.n_off = 1;
+	if (rm->node_pos[v] == pl->start_pos && !isfinite(pl->h_reach))   /* every node is wanted */
+		return HYLO_OK;
+	if (rm->node_pos[v] == pl->start_pos)   /* its distance is known: go on to the sentinel */
+		return push(pl, &cp, sentinel(pl), (pl->h_reach - 1) * hylo_search_cost(s, v), heads,
+			    costs, cap, n);
+	return predecessors(pl, &cp, &cp, v, heads, costs, cap, n);
 }
 
 /* The start's distance from the kept distances (its successors'), to see
@@ -205,4 +258,200 @@ hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget)
 	pl->h_goal_mode = rm->pos[pl->goal_pos].mode;
 	memcpy(pl->h_goal_xs, pl->goal_xs, sizeof pl->h_goal_xs);
 	return HYLO_OK;
+}
+
+/*
+ * The layered heuristic (alternatives), computed when the alternatives'
+ * search closes a goal copy (before that, the plain heuristic: with every
+ * sequence still open it is nearly the same): the backward search over the
+ * search's copies of the graph (planner_graph.c, offer_for: layer l counts
+ * the changes of travel mode so far; a move in another mode than layer l's
+ * leads to l + 1, the last layer keeps everything), from every goal copy not
+ * closed yet. A node's value is its exact bound-distance to the nearest
+ * sequence still sought: in a layer whose own sequence is found only the way
+ * to a further change of mode counts, and a layer that cannot reach its goal
+ * copy with its number of changes is pruned. The search only needs nodes
+ * that could lie on a path within `cap` (alternatives_within times the first
+ * one's cost): a node whose forward bound-distance from the start plus its
+ * backward one exceeds cap is not expanded, and a node never reached gets
+ * +inf (a path within cap through it would have reached it). The heuristic
+ * only grows; the search re-checks its keys (search.h). Node ids: the
+ * layered ones, then a source linked to the open goal copies.
+ */
+
+static uint32_t layered_source(const hylo_planner *pl)
+{
+	return pl->layers * pl->layer_stride;
+}
+
+/* 1 when a move in mode m from layer l leads into layer lh (see offer_for). */
+static int moves_into(const hylo_planner *pl, uint32_t l, uint8_t m, uint32_t lh)
+{
+	uint32_t next = l + 1 < pl->layers && m != pl->layer_mode[l % 2] ? l + 1 : l;
+
+	return next == lh;
+}
+
+/* The forward bound-distances from the start's copy in layer 0 to every
+ * node copy that could be on a path within pl->layered_cap. */
+static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
+				  hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t stride = pl->layer_stride, i, c, k, c2, n_adj, m, l, v, combos[HYLO_MAX_COMBOS];
+	const uint32_t *adj;
+	hylo_real tail[HYLO_XS_DIM], lb[HYLO_MAX_COMBOS];
+	uint8_t open[HYLO_MAX_COMBOS];
+	hylo_pair_bound pb;
+	hylo_status st = HYLO_OK;
+	copies moves, switches;
+
+	(void)r;
+	*n = 0;
+	if (u >= layered_source(pl))
+		return HYLO_OK;
+	l = u / stride;
+	v = u % stride;
+	i = rm->node_pos[v];
+	/* Beyond the cap even by the plain heuristic (still in h_node: this
+	 * runs before the first layered one), nothing is wanted. */
+	if (i == pl->goal_pos ||
+	    hylo_search_cost(s, u) + (pl->h_layered ? 0 : pl->h_node[v]) > pl->layered_cap)
+		return HYLO_OK;
+	c = v - rm->pos[i].node_base;
+	moves.s = s;
+	moves.off[0] = (moves_into(pl, l, rm->pos[i].mode, l) ? l : l + 1) * stride;
+	moves.n_off = 1;
+	switches.s = s;
+	switches.off[0] = l * stride;
+	switches.n_off = 1;
+	hylo_planner_node_state(pl, i, c, tail);
+	adj = hylo_planner_neighbours(pl, i, &n_adj);
+	for (k = 0; k <= n_adj && st == HYLO_OK; k++) {
+		uint32_t j = k < n_adj ? adj[k] : pl->goal_pos;
+
+		if (k == n_adj && !((i == pl->start_pos && pl->start_goal_linked) ||
+				    (i < rm->n_positions && pl->links_goal[i])))
+			break;
+		if (!open_copies(pl, &moves, j, open))
+			continue;
+		hylo_planner_pair_bound(pl, i, j, &pb);
+		hylo_planner_bounds_from(&pb, c, tail, j, lb);
+		for (c2 = 0; c2 < rm->pos[j].n_combos && st == HYLO_OK; c2++)
+			if ((open[c2] & 1u) && isfinite(lb[c2]))
+				st = push(pl, &moves, rm->pos[j].node_base + c2, lb[c2], heads, costs, cap, n);
+	}
+	if (st != HYLO_OK || i >= rm->n_positions || rm->pos[i].twin == HYLO_NO_POSITION)
+		return st;
+	m = hylo_roadmap_switch_heads(rm, i, c, combos);
+	for (k = 0; k < m && st == HYLO_OK; k++)
+		st = push(pl, &switches, rm->pos[rm->pos[i].twin].node_base + combos[k],
+			  hylo_planner_switch_cost(pl, i), heads, costs, cap, n);
+	return st;
+}
+
+static hylo_status expand_layered(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
+				  hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t src = layered_source(pl), stride = pl->layer_stride, lh, v, l;
+	copies moves, switches, goal;
+	uint8_t mode;
+	hylo_status st = HYLO_OK;
+
+	(void)r;
+	*n = 0;
+	if (u == src) {
+		goal.s = pl->layered_forward;   /* its closed goal copies are found */
+		goal.n_off = 1;
+		for (l = 0; l < pl->layers && st == HYLO_OK; l++) {
+			goal.off[0] = l * stride;
+			st = push(pl, &goal, rm->n_nodes + 1, 0, heads, costs, cap, n);
+		}
+		return st;
+	}
+	if (u > src)
+		return HYLO_OK;
+	lh = u / stride;
+	v = u % stride;
+	/* No edge leads into the start; beyond cap nothing is wanted. */
+	if (rm->node_pos[v] == pl->start_pos ||
+	    pl->h_forward[u] + hylo_search_cost(s, u) > pl->layered_cap)
+		return HYLO_OK;
+	/* A move into v is in v's mode: from layer lh when that is lh's travel
+	 * mode (or lh is the last), from lh - 1 when it is not lh - 1's. */
+	mode = rm->pos[rm->node_pos[v]].mode;
+	moves.s = s;
+	moves.n_off = 0;
+	if (moves_into(pl, lh, mode, lh))
+		moves.off[moves.n_off++] = lh * stride;
+	if (lh > 0 && moves_into(pl, lh - 1, mode, lh))
+		moves.off[moves.n_off++] = (lh - 1) * stride;
+	switches.s = s;
+	switches.off[0] = lh * stride;
+	switches.n_off = 1;
+	return predecessors(pl, &moves, &switches, v, heads, costs, cap, n);
+}
+
+/* h_node for every layered node towards the goal copies fwd has not closed,
+ * for paths costing at most cap. */
+static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hylo_real cap)
+{
+	hylo_search *s = &pl->layer_search;
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t src = layered_source(pl), u;
+	hylo_budget unlimited;
+	hylo_outcome outcome;
+	hylo_graph g;
+	hylo_status st = HYLO_OK;
+
+	memset(&unlimited, 0, sizeof unlimited);
+	memset(&g, 0, sizeof g);
+	/* Room for slightly different rounding of the same sums in the search. */
+	pl->layered_cap = cap * (1 + 1e-9) + 1e-9;
+	pl->layered_forward = fwd;
+	g.weight = 1;
+	g.ctx = pl;
+	/* Both searches run until nothing is left: their goal is a node no edge
+	 * reaches. The forward one is the same for every goal copy closed (the
+	 * cap is the first one's). */
+	g.n_nodes = src + 2;
+	if (!pl->h_forward_valid) {
+		g.expand = expand_forward;
+		st = hylo_search_run(s, &g, rm->n_nodes, src + 1, &unlimited, &outcome, &pl->reason);
+		for (u = 0; st == HYLO_OK && u < src; u++)
+			pl->h_forward[u] = hylo_search_cost(s, u);
+		pl->h_forward_valid = st == HYLO_OK;
+	}
+	g.expand = expand_layered;
+	if (st == HYLO_OK)
+		st = hylo_search_run(s, &g, src, src + 1, &unlimited, &outcome, &pl->reason);
+	pl->layered_forward = NULL;
+	if (st != HYLO_OK)
+		return st;
+	pl->h_valid = 0;   /* h_node is indexed by layer now */
+	for (u = 0; u < src; u++)
+		pl->h_node[u] = hylo_search_cost(s, u);
+	pl->h_layered = 1;
+	return HYLO_OK;
+}
+
+hylo_status hylo_planner_found(void *ctx, hylo_search *s, uint32_t goal, int *grew,
+			       hylo_reason *r)
+{
+	hylo_planner *pl = ctx;
+	hylo_status st;
+
+	(void)goal;
+	*grew = 0;
+	if (!pl->use_heuristic)
+		return HYLO_OK;
+	st = layer_heuristic(pl, s, pl->layered_within *
+					hylo_search_cost(s, hylo_search_found(s, 0)));
+	if (st != HYLO_OK && r != &pl->reason)
+		*r = pl->reason;
+	*grew = st == HYLO_OK;
+	return st;
 }

@@ -84,13 +84,12 @@ void hylo_planner_bound_tables(hylo_planner *pl);
 /* Cost of the switch edges from guard copy i to its twin. */
 hylo_real hylo_planner_switch_cost(const hylo_planner *pl, uint32_t i);
 
-/* The heuristic of node u. */
+/* The heuristic of the search's node u (with alternatives, a graph node's
+ * copy in a layer: its own value, towards the goal copies still open). */
 hylo_real hylo_planner_h(const hylo_planner *pl, uint32_t u);
 /* The graph node of the search's node u (alternatives search the graph's
  * copies, one per layer: hylo_planner.layers). */
 uint32_t hylo_planner_graph_node(const hylo_planner *pl, uint32_t u);
-/* The same for the search's node u (a graph node's copy in a layer). */
-hylo_real hylo_planner_search_h(const hylo_planner *pl, uint32_t u);
 
 /* How far past the start's distance the heuristic's backward search goes
  * for one plan; for alternatives, as far as they are sought
@@ -100,6 +99,13 @@ hylo_real hylo_planner_search_h(const hylo_planner *pl, uint32_t u);
 /* Computes h_node for the current goal (planner_heuristic.c), or keeps it
  * when the roadmap and the goal are those it was computed for. */
 hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget);
+
+/* The alternatives' search's callbacks when it closes a goal copy (the
+ * layered heuristic is computed towards the others, planner_heuristic.c)
+ * and for a deferred group's key (planner_graph.c). */
+hylo_status hylo_planner_found(void *ctx, hylo_search *s, uint32_t goal, int *grew,
+			       hylo_reason *r);
+hylo_real hylo_planner_group_key(void *ctx, hylo_search *s, uint32_t u, uint32_t group);
 
 /* The search's callbacks (ctx: the planner). */
 hylo_status hylo_planner_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,

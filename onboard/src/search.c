@@ -8,7 +8,7 @@
  * A dead node has h = +inf: it cannot reach the goal, so it is never queued.
  */
 #define SEARCH_UNSEEN HYLO_NO_NODE
-#define SEARCH_CLOSED (HYLO_NO_NODE - 1u)
+#define SEARCH_CLOSED HYLO_SEARCH_CLOSED
 #define SEARCH_DEAD (HYLO_NO_NODE - 2u)
 
 /* Reading the clock costs more than a cheap expansion: look every so often. */
@@ -203,6 +203,7 @@ static void reset(hylo_search *s, uint32_t n_nodes)
 	s->n_found = 0;
 	s->want = 0;
 	s->within = INFINITY;
+	s->rekey = 0;
 	for (i = 0; i < n_nodes; i++) {
 		s->g[i] = INFINITY;
 		s->parent[i] = HYLO_NO_NODE;
@@ -358,6 +359,48 @@ static hylo_outcome ended(const hylo_search *s, hylo_outcome none)
 	return s->n_found > 0 ? HYLO_FOUND : none;
 }
 
+/*
+ * After the heuristic grew (hylo_found_fn): the first open node's key
+ * brought up to date. Returns 1 when it had to grow (the node went back into
+ * the heap, or died when it can no longer reach an open goal), 0 when the key
+ * is current and the node can be taken.
+ */
+static int stale_node(hylo_search *s, const hylo_graph *g, hylo_reason *r, hylo_status *st)
+{
+	uint32_t u = s->heap[0];
+	hylo_real h, f;
+
+	*st = heuristic(g, u, &h, r);
+	if (*st != HYLO_OK)
+		return 1;
+	if (isinf(h) && !is_goal(s, u)) {
+		heap_pop(s);
+		s->heap_pos[u] = SEARCH_DEAD;
+		return 1;
+	}
+	f = s->g[u] + s->weight * h;
+	if (!(f > s->heap_f[0]))
+		return 0;
+	s->heap_f[0] = f;
+	heap_down(s, 0);
+	return 1;
+}
+
+/* The same for the first deferred group. */
+static int stale_group(hylo_search *s, const hylo_graph *g)
+{
+	uint32_t u, group;
+	hylo_real key = g->group_key(g->ctx, s, s->defer_node[0], s->defer_group[0]);
+
+	if (!(key > s->defer_key[0]))
+		return 0;
+	defer_pop(s, &u, &group);
+	/* Room: one was just taken. Not a new group for the statistics. */
+	if (isfinite(key) && hylo_search_defer(s, u, group, key))
+		s->stats.deferred--;
+	return 1;
+}
+
 static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_budget *b,
 			       double t0, hylo_outcome *outcome, hylo_reason *r)
 {
@@ -391,6 +434,8 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 		if (s->n_deferred > 0 && (s->heap_size == 0 || s->defer_key[0] <= s->heap_f[0])) {
 			uint32_t group;
 
+			if (s->rekey && g->group_key && stale_group(s, g))
+				continue;
 			defer_pop(s, &u, &group);
 			s->stats.resolved++;
 			st = successors(s, g, u, group, r);
@@ -398,13 +443,26 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 				return st;
 			continue;
 		}
+		if (s->rekey && stale_node(s, g, r, &st)) {
+			if (st != HYLO_OK)
+				return st;
+			continue;
+		}
 		u = heap_pop(s);
 		s->stats.expansions++;
 		if (is_goal(s, u)) {
+			int grew = 0;
+
 			s->found[s->n_found++] = u;
 			if (s->n_found == s->want) {
 				*outcome = HYLO_FOUND;
 				return HYLO_OK;
+			}
+			if (g->found) {
+				st = g->found(g->ctx, s, u, &grew, r);
+				if (st != HYLO_OK)
+					return st;
+				s->rekey |= grew && g->heuristic;
 			}
 			continue;
 		}
@@ -498,11 +556,6 @@ hylo_real hylo_search_min_key(const hylo_search *s)
 	if (s->n_deferred > 0 && s->defer_key[0] < k)
 		k = s->defer_key[0];
 	return k;
-}
-
-int hylo_search_closed(const hylo_search *s, uint32_t v)
-{
-	return s && v < s->n_nodes && s->heap_pos[v] == SEARCH_CLOSED;
 }
 
 hylo_real hylo_search_cost(const hylo_search *s, uint32_t v)

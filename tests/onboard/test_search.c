@@ -338,7 +338,7 @@ static void check_path(const tgraph *t, const hylo_search *s)
 
 static void run_query(tgraph *t, int h_mode, int skip_closed, run_result *o)
 {
-	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
 	hylo_budget b = no_budget();
 	hylo_reason r;
 	hylo_status st;
@@ -459,6 +459,189 @@ static void test_random_graphs(void **state)
 	assert_true(fewer > 50);
 }
 
+/* ---- a heuristic that grows (hylo_found_fn) ------------------------------ */
+
+#define GROW_GOALS 3
+
+/* Three goals; h = the Euclidean distance to the nearest goal not closed
+ * yet (consistent towards each open goal; it grows as goals close). */
+typedef struct {
+	tgraph *t;
+	uint32_t goals[GROW_GOALS];
+	int open[GROW_GOALS];
+	int grow;                    /* 0: found is not told, h stays the minimum over all */
+	uint32_t n_exp;
+	double exp_f[MAXN];          /* g + current h of each expansion */
+	uint32_t exp_phase[MAXN];    /* goals closed before it */
+	uint32_t phase;
+} grow_ctx;
+
+static grow_ctx gc;
+
+static hylo_real grow_h(void *ctx, uint32_t u)
+{
+	const grow_ctx *c = ctx;
+	double h = INFINITY;
+	int k;
+
+	for (k = 0; k < GROW_GOALS; k++)
+		if (c->open[k] && dist(c->t, u, c->goals[k]) < h)
+			h = dist(c->t, u, c->goals[k]);
+	return h;
+}
+
+static hylo_status grow_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
+			       hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
+{
+	grow_ctx *c = ctx;
+
+	c->exp_f[c->n_exp] = hylo_search_cost(s, u) + grow_h(c, u);
+	c->exp_phase[c->n_exp++] = c->phase;
+	return csr_expand(c->t, s, u, heads, costs, cap, n, r);
+}
+
+static hylo_status grow_found(void *ctx, hylo_search *s, uint32_t goal, int *grew, hylo_reason *r)
+{
+	grow_ctx *c = ctx;
+	int k;
+
+	(void)s;
+	(void)r;
+	c->phase++;
+	for (k = 0; k < GROW_GOALS; k++)
+		if (c->goals[k] == goal)
+			c->open[k] = 0;
+	*grew = 1;
+	return HYLO_OK;
+}
+
+/* The group key of the tests' graphs: they never defer. */
+static hylo_real grow_group_key(void *ctx, hylo_search *s, uint32_t u, uint32_t group)
+{
+	(void)ctx;
+	(void)s;
+	(void)u;
+	(void)group;
+	return INFINITY;
+}
+
+/* Costs from the start with the goals as dead ends (the search does not
+ * expand a goal it closed): O(n^2) Dijkstra. */
+static void dist_avoiding_goals(const tgraph *t, double *d)
+{
+	int done[MAXN] = { 0 };
+	uint32_t v, e, k, u;
+
+	for (v = 0; v < t->n; v++)
+		d[v] = INFINITY;
+	d[t->start] = 0;
+	for (;;) {
+		u = t->n;
+		for (v = 0; v < t->n; v++)
+			if (!done[v] && isfinite(d[v]) && (u == t->n || d[v] < d[u]))
+				u = v;
+		if (u == t->n)
+			return;
+		done[u] = 1;
+		for (k = 0; k < GROW_GOALS && gc.goals[k] != u; k++)
+			;
+		if (k < GROW_GOALS)
+			continue;
+		for (e = t->row[u]; e < t->row[u + 1]; e++)
+			if (d[u] + t->cost[e] < d[t->col[e]])
+				d[t->col[e]] = d[u] + t->cost[e];
+	}
+}
+
+static uint64_t run_grow(tgraph *t, int grow, hylo_real *cost)
+{
+	double d[MAXN];
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
+	hylo_budget b = no_budget();
+	hylo_outcome out;
+	hylo_reason r;
+	hylo_status st;
+	uint32_t k, e, want = 0, n_found;
+
+	dist_avoiding_goals(t, d);
+	for (k = 0; k < GROW_GOALS; k++) {
+		gc.open[k] = 1;
+		want += isfinite(d[gc.goals[k]]);
+	}
+	gc.t = t;
+	gc.grow = grow;
+	gc.n_exp = 0;
+	gc.phase = 0;
+	t->instrument = 0;
+	t->skip_closed = 0;
+	g.n_nodes = t->n;
+	g.expand = grow_expand;
+	g.heuristic = grow_h;
+	g.ctx = &gc;
+	g.found = grow ? grow_found : NULL;
+	g.group_key = grow ? grow_group_key : NULL;
+	st = hylo_search_run_goals(ws, &g, t->start, gc.goals, GROW_GOALS, want ? want : 1, INFINITY, &b,
+				   &out, &r);
+	if (st != HYLO_OK)
+		fail_msg("search: %s: %s", hylo_status_str(st), r.text);
+	n_found = hylo_search_n_found(ws);
+	assert_int_equal(n_found, want);
+	/* Every reachable goal, at its Floyd-Warshall cost, cheapest first. */
+	for (k = 0; k < n_found; k++) {
+		cost[k] = hylo_search_cost(ws, hylo_search_found(ws, k));
+		for (e = 0; e < GROW_GOALS && gc.goals[e] != hylo_search_found(ws, k); e++)
+			;
+		assert_true(e < GROW_GOALS);
+		assert_true(close_rel(cost[k], d[gc.goals[e]]));
+		if (k > 0)
+			assert_true(cost[k] >= cost[k - 1]);
+	}
+	/* With the heuristic grown, no node is expanded on a stale key: each
+	 * one's current f is at most the cost of the goal closed next. */
+	for (k = 0; grow && k < gc.n_exp; k++)
+		if (gc.exp_phase[k] < n_found && !(gc.exp_f[k] <= cost[gc.exp_phase[k]] * (1 + 1e-12)))
+			fail_msg("expansion %u: f %.17g above the next goal's cost %.17g", (unsigned)k,
+				 gc.exp_f[k], cost[gc.exp_phase[k]]);
+	return ws->stats.expansions;
+}
+
+/*
+ * 200 seeded graphs, three goals each: a heuristic that grows as goals close
+ * (towards the nearest goal still open) finds every goal at its optimal cost
+ * (goals are dead ends) in order, never expands a node whose current f exceeds the next goal's
+ * cost (the keys it took were current), and expands no more than the
+ * heuristic that stays the minimum over all goals.
+ */
+static void test_growing_heuristic(void **state)
+{
+	hylo_real c_grow[GROW_GOALS], c_fixed[GROW_GOALS];
+	uint64_t fewer = 0, multi = 0;
+	int i, k;
+
+	(void)state;
+	rng_state = 777;
+	for (i = 0; i < N_GRAPHS; i++) {
+		uint64_t e_grow, e_fixed;
+
+		gen_graph(&tg, i);
+		tg.start = (uint32_t)(rnd() % tg.n);
+		for (k = 0; k < GROW_GOALS; k++)
+			gc.goals[k] = (uint32_t)((tg.start + 1 + rnd() % (tg.n - 1)) % tg.n);
+		if (gc.goals[0] == gc.goals[1] || gc.goals[1] == gc.goals[2] || gc.goals[0] == gc.goals[2])
+			continue;
+		tg.goal = gc.goals[0];
+		e_fixed = run_grow(&tg, 0, c_fixed);
+		e_grow = run_grow(&tg, 1, c_grow);
+		for (k = 0; k < (int)hylo_search_n_found(ws); k++)
+			assert_true(c_grow[k] == c_fixed[k]);
+		assert_true(e_grow <= e_fixed);
+		fewer += e_grow < e_fixed;
+		multi += hylo_search_n_found(ws) >= 2;
+	}
+	assert_true(multi > 50);
+	assert_true(fewer > 10);
+}
+
 /* ---- hand-made graphs ---------------------------------------------------- */
 
 /* A small explicit graph for the targeted tests. */
@@ -507,7 +690,7 @@ static void add_edge(small_graph *sg, uint32_t a, uint32_t b, double c)
 static hylo_status run_small(small_graph *sg, uint32_t n, uint32_t start, uint32_t goal,
 			     hylo_outcome *out, hylo_reason *r)
 {
-	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
 	hylo_budget b = no_budget();
 
 	g.n_nodes = n;
@@ -780,7 +963,7 @@ static hylo_status chain_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t 
 
 static hylo_graph chain_graph(chain_ctx *c, uint32_t n)
 {
-	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
 
 	memset(c, 0, sizeof *c);
 	c->n = n;
@@ -1019,7 +1202,7 @@ static hylo_status fill_expand(void *ctx, hylo_search *s, uint32_t u, uint32_t *
 static void test_capacity_successors(void **state)
 {
 	fill_ctx f = { 0, 0 };
-	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
 	hylo_budget b = no_budget();
 	hylo_outcome out;
 	hylo_reason r;
@@ -1217,7 +1400,7 @@ static void test_bad_input(void **state)
  */
 static void test_determinism(void **state)
 {
-	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL };
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
 	hylo_budget b = no_budget();
 	hylo_outcome o1, o2;
 	hylo_reason r;
@@ -1258,6 +1441,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup(test_random_graphs, setup),
+		cmocka_unit_test_setup(test_growing_heuristic, setup),
 		cmocka_unit_test_setup(test_decrease_key, setup),
 		cmocka_unit_test_setup(test_tie_breaking, setup),
 		cmocka_unit_test_setup(test_infinite_heuristic, setup),

@@ -185,8 +185,10 @@ typedef struct {
 	uint32_t walk_len;
 	uint32_t walk_path[HYLO_MAX_WAYPOINTS];
 	hylo_real walk_cost[HYLO_MAX_WAYPOINTS];
-	uint32_t walk_heads[HYLO_MAX_SUCCESSORS];
-	hylo_real walk_costs[HYLO_MAX_SUCCESSORS];
+	/* successor lists built outside the search: the walk's steps, the
+	 * layered heuristic's predecessors */
+	uint32_t scratch_heads[HYLO_MAX_SUCCESSORS];
+	hylo_real scratch_costs[HYLO_MAX_SUCCESSORS];
 	/* scratch of one group's evaluation */
 	uint32_t eval_idx[HYLO_MAX_COMBOS];
 	/* alternatives: the search runs over `layers` copies of the graph of
@@ -194,6 +196,14 @@ typedef struct {
 	 * closed, cheapest first, stay until the next goal or map */
 	uint32_t layers, layer_stride;
 	uint8_t layer_mode[2];          /* travel mode of even and odd layers */
+	/* the layered heuristic (planner_heuristic.c): in h_node once h_layered */
+	hylo_search layer_search;       /* its searches */
+	hylo_real h_forward[HYLO_MAX_NODES]; /* bound-distances from the start, up to the cap */
+	int h_forward_valid;            /* computed for this goal */
+	const hylo_search *layered_forward;  /* while it runs: the alternatives' search */
+	hylo_real layered_cap;          /* paths dearer than this are not wanted */
+	hylo_real layered_within;       /* the goal's alternatives_within */
+	int h_layered;
 	uint32_t n_found;
 	uint32_t found[HYLO_MAX_ALTERNATIVES];
 } hylo_planner;

@@ -54,6 +54,21 @@ typedef hylo_status (*hylo_resolve_fn)(void *ctx, hylo_search *s, uint32_t u, ui
  * (h(u) <= c(u, v) + h(v)) for A* to return the optimum. */
 typedef hylo_real (*hylo_heuristic_fn)(void *ctx, uint32_t u);
 
+/*
+ * Called when a run towards several goals closed goal and goes on: the
+ * heuristic may then grow (towards the goals still open, never below what it
+ * was: it stays consistent towards each of them). Sets *grew to 1 when it did;
+ * the search then checks every key it takes against the heuristic's current
+ * value (a node's, and a deferred group's through group_key) and puts it back
+ * when it has grown.
+ */
+typedef hylo_status (*hylo_found_fn)(void *ctx, hylo_search *s, uint32_t goal, int *grew,
+                                     hylo_reason *r);
+
+/* The current key of the group that expand of node u deferred: a lower bound
+ * of its successors' f-values, +inf when none is wanted any more. */
+typedef hylo_real (*hylo_group_key_fn)(void *ctx, hylo_search *s, uint32_t u, uint32_t group);
+
 typedef struct {
 	uint32_t n_nodes;              /* node ids are 0 .. n_nodes-1, <= HYLO_MAX_NODES */
 	hylo_expand_fn expand;
@@ -61,6 +76,8 @@ typedef struct {
 	hylo_heuristic_fn heuristic;   /* NULL: Dijkstra */
 	hylo_real weight;              /* f = g + weight * h, >= 1 (1: the optimum) */
 	void *ctx;                     /* passed to expand, resolve and heuristic */
+	hylo_found_fn found;           /* NULL: the heuristic never changes */
+	hylo_group_key_fn group_key;   /* with found: re-checks deferred groups */
 } hylo_graph;
 
 typedef struct {
@@ -98,6 +115,7 @@ struct hylo_search {
 	hylo_real within;                    /* later goals: at most within * the first's cost */
 	uint32_t found[HYLO_MAX_SEARCH_GOALS];  /* goals closed, in order of cost */
 	uint32_t n_found;
+	int rekey;                           /* the heuristic grew: keys are checked when taken */
 	uint32_t heads[HYLO_MAX_SUCCESSORS]; /* scratch for expand */
 	hylo_real costs[HYLO_MAX_SUCCESSORS];
 };
@@ -151,8 +169,15 @@ hylo_real hylo_search_weight(const hylo_search *s);
  * it ran out of budget. */
 hylo_real hylo_search_min_key(const hylo_search *s);
 
-/** 1 when v has been expanded (its cost is final). */
-int hylo_search_closed(const hylo_search *s, uint32_t v);
+/* heap_pos[v] of a node expanded (closed): above any heap index. */
+#define HYLO_SEARCH_CLOSED (HYLO_NO_NODE - 1u)
+
+/** 1 when v has been expanded (its cost is final). Inline: expand callbacks
+ * ask it for every head. */
+static inline int hylo_search_closed(const hylo_search *s, uint32_t v)
+{
+	return s && v < s->n_nodes && s->heap_pos[v] == HYLO_SEARCH_CLOSED;
+}
 
 /** Best known cost from the start to v; +inf when v was not reached. */
 hylo_real hylo_search_cost(const hylo_search *s, uint32_t v);
