@@ -286,11 +286,15 @@ int main(int argc, char **argv)
 		goto fail;
 	}
 	canvas_close(&c);
-	if (!quiet)
-		printf("wrote %s (%ldx%ld, %s view, map %lld%s%s)\n", out, width, height,
+	if (!quiet) {
+		printf("wrote %s (%ldx%ld, %s view, map %lld%s%s", out, width, height,
 		       kind == VIEW_TOP ? "top" : kind == VIEW_PHASE ? "phase" : "3d",
 		       (long long)in.map->map_id, in.plan ? ", plan " : "",
 		       in.plan ? (in.plan->status == 0 ? "ok" : "without a path") : "");
+		if (in.n_alternatives > 1)
+			printf(", %d alternatives", in.n_alternatives);
+		printf(")\n");
+	}
 	rc = 0;
 	input_free(&in);
 	return rc;
