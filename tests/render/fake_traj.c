@@ -5,6 +5,12 @@
  *                                      the smoothed-path layer without Ipopt)
  *   fake_traj chasm OUT.log MAP_ID     a drive-fly-drive plan_t across the
  *                                      chasm of chasm_050.yaml, and its traj_t
+ *   fake_traj plan OUT.log K IN.log... the last plan of the logs again,
+ *                                      followed by K plan_alternative_t copies
+ *                                      of it (index 0 .. K - 1 of K)
+ *   fake_traj keep OUT.log LIST IN.log... the last plan of the logs again with
+ *                                      those of its alternatives whose index is
+ *                                      in LIST (e.g. 1,2; "-": none)
  * They are drawing inputs only: nothing here is a planner or smoother result.
  */
 #include <math.h>
@@ -13,10 +19,12 @@
 #include <string.h>
 #include <lcm/lcm.h>
 #include <lcm/eventlog.h>
+#include "hylo_plan_alternative_t.h"
 #include "hylo_plan_t.h"
 #include "hylo_traj_t.h"
 
 #define MAX_SAMPLES 4096
+#define MAX_ALTERNATIVES 64
 #define PER_SEGMENT 12
 
 static double t_s[MAX_SAMPLES], states[MAX_SAMPLES][16], inputs[MAX_SAMPLES][4];
@@ -84,12 +92,12 @@ static int publish_traj(lcm_t *lcm, const hylo_plan_t *p)
 	return hylo_traj_t_publish(lcm, "HYLO_TRAJ", &t);
 }
 
-static int from_logs(lcm_t *lcm, int n_logs, char **logs)
+/* The last plan_t of the logs, decoded into *last. 0, or 1 with a message. */
+static int last_plan(int n_logs, char **logs, hylo_plan_t *last)
 {
-	hylo_plan_t last;
-	int have = 0, i, rc;
+	int have = 0, i;
 
-	memset(&last, 0, sizeof last);
+	memset(last, 0, sizeof *last);
 	for (i = 0; i < n_logs; i++) {
 		lcm_eventlog_t *log = lcm_eventlog_create(logs[i], "r");
 		lcm_eventlog_event_t *ev;
@@ -100,18 +108,51 @@ static int from_logs(lcm_t *lcm, int n_logs, char **logs)
 		while ((ev = lcm_eventlog_read_next_event(log)) != NULL) {
 			if (strcmp(ev->channel, "HYLO_PLAN") == 0) {
 				if (have)
-					hylo_plan_t_decode_cleanup(&last);
-				have = hylo_plan_t_decode(ev->data, 0, ev->datalen, &last) >= 0;
+					hylo_plan_t_decode_cleanup(last);
+				have = hylo_plan_t_decode(ev->data, 0, ev->datalen, last) >= 0;
 			}
 			lcm_eventlog_free_event(ev);
 		}
 		lcm_eventlog_destroy(log);
 	}
-	if (!have || last.status != 0) {
+	if (!have || last->status != 0) {
+		if (have)
+			hylo_plan_t_decode_cleanup(last);
 		fprintf(stderr, "fake_traj: no plan with a path in the logs\n");
 		return 1;
 	}
+	return 0;
+}
+
+static int from_logs(lcm_t *lcm, int n_logs, char **logs)
+{
+	hylo_plan_t last;
+	int rc;
+
+	if (last_plan(n_logs, logs, &last) != 0)
+		return 1;
 	rc = publish_traj(lcm, &last);
+	hylo_plan_t_decode_cleanup(&last);
+	return rc != 0;
+}
+
+static int plan_with_copies(lcm_t *lcm, int k, int n_logs, char **logs)
+{
+	hylo_plan_t last;
+	hylo_plan_alternative_t a;
+	int i, rc;
+
+	if (last_plan(n_logs, logs, &last) != 0)
+		return 1;
+	rc = hylo_plan_t_publish(lcm, "HYLO_PLAN", &last);
+	memset(&a, 0, sizeof a);
+	a.request_id = last.request_id;
+	a.count = k;
+	a.plan = last;
+	for (i = 0; i < k && rc == 0; i++) {
+		a.index = i;
+		rc = hylo_plan_alternative_t_publish(lcm, "HYLO_PLAN_ALTERNATIVE", &a);
+	}
 	hylo_plan_t_decode_cleanup(&last);
 	return rc != 0;
 }
@@ -158,14 +199,66 @@ static int chasm(lcm_t *lcm, long long map_id)
 	return publish_traj(lcm, &p) != 0;
 }
 
+static int in_list(const char *list, int index)
+{
+	const char *p = list;
+
+	while (*p) {
+		char *end;
+		long v = strtol(p, &end, 10);
+		if (end == p)
+			return 0;
+		if (v == index)
+			return 1;
+		p = *end == ',' ? end + 1 : end;
+	}
+	return 0;
+}
+
+static int plan_keeping(lcm_t *lcm, const char *list, int n_logs, char **logs)
+{
+	static hylo_plan_alternative_t alts[MAX_ALTERNATIVES];
+	hylo_plan_t last;
+	int n = 0, i, rc;
+
+	if (last_plan(n_logs, logs, &last) != 0)
+		return 1;
+	for (i = 0; i < n_logs; i++) {
+		lcm_eventlog_t *log = lcm_eventlog_create(logs[i], "r");
+		lcm_eventlog_event_t *ev;
+		while (log && (ev = lcm_eventlog_read_next_event(log)) != NULL) {
+			if (strcmp(ev->channel, "HYLO_PLAN_ALTERNATIVE") == 0 && n < MAX_ALTERNATIVES &&
+			    hylo_plan_alternative_t_decode(ev->data, 0, ev->datalen, &alts[n]) >= 0) {
+				if (alts[n].request_id == last.request_id && in_list(list, alts[n].index))
+					n++;
+				else
+					hylo_plan_alternative_t_decode_cleanup(&alts[n]);
+			}
+			lcm_eventlog_free_event(ev);
+		}
+		if (log)
+			lcm_eventlog_destroy(log);
+	}
+	rc = hylo_plan_t_publish(lcm, "HYLO_PLAN", &last);
+	for (i = 0; i < n; i++) {
+		if (rc == 0)
+			rc = hylo_plan_alternative_t_publish(lcm, "HYLO_PLAN_ALTERNATIVE", &alts[i]);
+		hylo_plan_alternative_t_decode_cleanup(&alts[i]);
+	}
+	hylo_plan_t_decode_cleanup(&last);
+	return rc != 0;
+}
+
 int main(int argc, char **argv)
 {
 	char url[4200];
 	lcm_t *lcm;
 	int rc;
 
-	if (argc < 4 || (strcmp(argv[1], "traj") && strcmp(argv[1], "chasm"))) {
-		fprintf(stderr, "usage: fake_traj traj OUT.log IN.log... | fake_traj chasm OUT.log MAP_ID\n");
+	if (argc < 4 || (strcmp(argv[1], "traj") && strcmp(argv[1], "chasm") &&
+	                 ((strcmp(argv[1], "plan") && strcmp(argv[1], "keep")) || argc < 5))) {
+		fprintf(stderr, "usage: fake_traj traj OUT.log IN.log... | fake_traj chasm OUT.log MAP_ID"
+		        " | fake_traj plan OUT.log K IN.log... | fake_traj keep OUT.log LIST IN.log...\n");
 		return 2;
 	}
 	snprintf(url, sizeof url, "file://%s?mode=w", argv[2]);
@@ -174,8 +267,14 @@ int main(int argc, char **argv)
 		fprintf(stderr, "fake_traj: cannot write %s\n", argv[2]);
 		return 1;
 	}
-	rc = strcmp(argv[1], "traj") == 0 ? from_logs(lcm, argc - 3, argv + 3)
-	                                   : chasm(lcm, atoll(argv[3]));
+	if (strcmp(argv[1], "traj") == 0)
+		rc = from_logs(lcm, argc - 3, argv + 3);
+	else if (strcmp(argv[1], "plan") == 0)
+		rc = plan_with_copies(lcm, atoi(argv[3]), argc - 4, argv + 4);
+	else if (strcmp(argv[1], "keep") == 0)
+		rc = plan_keeping(lcm, argv[3], argc - 4, argv + 4);
+	else
+		rc = chasm(lcm, atoll(argv[3]));
 	lcm_destroy(lcm);
 	return rc;
 }

@@ -8,6 +8,9 @@
       --no-annotations (the map fitted into the image less a 10-pixel margin,
       centred): 4-pixel lines between waypoints, discs at start, goal and
       guard points. Computed here, independently of the renderer.
+  png_tools.py alternatives-mask PLANS.jsonl W H MAP_W MAP_H ORIGIN_X ORIGIN_Y OUT.png
+      the same for the lines of the plan's alternatives (index >= 1), 2 pixels
+      wide
 """
 import json
 import struct
@@ -80,50 +83,76 @@ def colours(path):
         print(f"{c[0]},{c[1]},{c[2]} {n}")
 
 
-def path_mask(plans, w, h, mw, mh, ox, oy, out):
-    plan = [json.loads(l) for l in open(plans) if l.strip()][-1]
-    pts = [(wp["state"][0], wp["state"][1]) for wp in plan["waypoints"]]
-    guards = [(wp["state"][0], wp["state"][1]) for wp in plan["waypoints"] if wp.get("guard")]
+def fit(w, h, mw, mh, ox, oy):
+    """World to image pixels (y down) of a top view rendered with
+    --no-annotations: the map fitted into the image less a 10-pixel margin,
+    centred."""
     margin = 10
     s = min((w - 2 * margin) / mw, (h - 2 * margin) / mh)
     px0 = margin + 0.5 * (w - 2 * margin - s * mw)
     py0 = margin + 0.5 * (h - 2 * margin - s * mh)
+    return lambda p: (px0 + s * (p[0] - ox), h - (py0 + s * (p[1] - oy)))
 
-    def to_px(p):  # image coordinates, y down, pixel centres at +0.5
-        return px0 + s * (p[0] - ox), h - (py0 + s * (p[1] - oy))
 
+def write_mask(out, w, h, segs, discs):
+    """Black where a pixel centre lies within r of a segment (a, b, r) or a
+    disc (c, r), white elsewhere."""
+    img = bytearray(b"\xff" * (w * h * 3))
+
+    def cover(x0, y0, x1, y1, inside):
+        for y in range(max(0, int(y0)), min(h, int(y1) + 2)):
+            for x in range(max(0, int(x0)), min(w, int(x1) + 2)):
+                if inside(x + 0.5, y + 0.5):
+                    img[3 * (y * w + x):3 * (y * w + x) + 3] = b"\x00\x00\x00"
+
+    for (ax, ay), (bx, by), r in segs:
+        def on_segment(cx, cy, ax=ax, ay=ay, bx=bx, by=by, r=r):
+            dx, dy = bx - ax, by - ay
+            n2 = dx * dx + dy * dy
+            t = 0 if n2 == 0 else max(0, min(1, ((cx - ax) * dx + (cy - ay) * dy) / n2))
+            ex, ey = ax + t * dx - cx, ay + t * dy - cy
+            return ex * ex + ey * ey <= r * r
+        cover(min(ax, bx) - r, min(ay, by) - r, max(ax, bx) + r, max(ay, by) + r, on_segment)
+    for (dx, dy), r in discs:
+        cover(dx - r, dy - r, dx + r, dy + r,
+              lambda cx, cy, dx=dx, dy=dy, r=r: (dx - cx) ** 2 + (dy - cy) ** 2 <= r * r)
+    write_png(out, w, h, img)
+
+
+def points(plan):
+    return [(wp["state"][0], wp["state"][1]) for wp in plan["waypoints"]]
+
+
+def path_mask(plans, w, h, mw, mh, ox, oy, out):
+    plan = [json.loads(l) for l in open(plans) if l.strip()][-1]
+    pts = points(plan)
+    guards = [(wp["state"][0], wp["state"][1]) for wp in plan["waypoints"] if wp.get("guard")]
+    to_px = fit(w, h, mw, mh, ox, oy)
     segs = [(to_px(a), to_px(b), 2.0) for a, b in zip(pts, pts[1:])]
     discs = [(to_px(pts[0]), 6.0), (to_px(pts[-1]), 6.0)] + [(to_px(g), 5.5) for g in guards]
-    img = bytearray(b"\xff" * (w * h * 3))
-    for y in range(h):
-        cy = y + 0.5
-        for x in range(w):
-            cx = x + 0.5
-            hit = False
-            for (ax, ay), (bx, by), r in segs:
-                dx, dy = bx - ax, by - ay
-                n2 = dx * dx + dy * dy
-                t = 0 if n2 == 0 else max(0, min(1, ((cx - ax) * dx + (cy - ay) * dy) / n2))
-                ex, ey = ax + t * dx - cx, ay + t * dy - cy
-                if ex * ex + ey * ey <= r * r:
-                    hit = True
-                    break
-            if not hit:
-                for (dx, dy), r in discs:
-                    if (dx - cx) ** 2 + (dy - cy) ** 2 <= r * r:
-                        hit = True
-                        break
-            if hit:
-                img[3 * (y * w + x):3 * (y * w + x) + 3] = b"\x00\x00\x00"
-    write_png(out, w, h, img)
+    write_mask(out, w, h, segs, discs)
+
+
+def alternatives_mask(plans, w, h, mw, mh, ox, oy, out):
+    """The lines of every alternative but the plan's own (index >= 1) of the
+    hylo-listen --json records, 2 pixels wide, no discs."""
+    alts = [r for r in (json.loads(l) for l in open(plans) if l.strip())
+            if r.get("type") == "alternative" and r["index"] >= 1]
+    assert alts, f"{plans} holds no alternative with index >= 1"
+    to_px = fit(w, h, mw, mh, ox, oy)
+    segs = []
+    for a in alts:
+        pts = points(a["plan"])
+        segs += [(to_px(p), to_px(q), 1.0) for p, q in zip(pts, pts[1:])]
+    write_mask(out, w, h, segs, [])
 
 
 if __name__ == "__main__":
     if len(sys.argv) == 3 and sys.argv[1] == "colours":
         colours(sys.argv[2])
-    elif len(sys.argv) == 10 and sys.argv[1] == "path-mask":
+    elif len(sys.argv) == 10 and sys.argv[1] in ("path-mask", "alternatives-mask"):
         a = sys.argv[2:]
-        path_mask(a[0], int(a[1]), int(a[2]), float(a[3]), float(a[4]), float(a[5]),
-                  float(a[6]), a[7])
+        mask = path_mask if sys.argv[1] == "path-mask" else alternatives_mask
+        mask(a[0], int(a[1]), int(a[2]), float(a[3]), float(a[4]), float(a[5]), float(a[6]), a[7])
     else:
         sys.exit(__doc__)

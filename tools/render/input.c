@@ -53,6 +53,9 @@ static int take(input_set *in, const input_options *o, const char *channel, cons
 		KEEP(in->goals, in->n_goals, hylo_goal_t, data, len);
 	} else if (channel_is(channel, o, "HYLO_PLAN")) {
 		KEEP(in->plans, in->n_plans, hylo_plan_t, data, len);
+	} else if (channel_is(channel, o, "HYLO_PLAN_ALTERNATIVE")) {
+		if (o->want_alternatives)
+			KEEP(in->alts, in->n_alts, hylo_plan_alternative_t, data, len);
 	} else if (channel_is(channel, o, "HYLO_TRAJ")) {
 		KEEP(in->trajs, in->n_trajs, hylo_traj_t, data, len);
 	} else if (channel_is(channel, o, "HYLO_BASELINE")) {
@@ -192,6 +195,42 @@ int input_listen(input_set *in, const input_options *o, const char *url, double 
 	return 0;
 }
 
+/* The alternatives of the selected plan: for each index the last message
+ * with the plan's request_id (they follow their plan; a log may repeat a
+ * request), all of the last one's count. */
+static int select_alternatives(input_set *in, char *err, size_t errlen)
+{
+	const hylo_plan_t *p = in->plan;
+	int i, count = -1;
+
+	for (i = in->n_alts - 1; i >= 0; i--) {
+		const hylo_plan_alternative_t *a = in->alts[i];
+		if (a->request_id != p->request_id)
+			continue;
+		if (count < 0) {
+			count = a->count;
+			if (count < 1 || count > INPUT_MAX_ALTERNATIVES) {
+				snprintf(err, errlen, "plan %lld comes with %d alternatives; hylo-render draws "
+				         "1 to %d (--no-alternatives leaves them out)",
+				         (long long)p->request_id, count, INPUT_MAX_ALTERNATIVES);
+				return -1;
+			}
+		}
+		if (a->count != count)
+			continue;   /* an earlier answer to the same request_id */
+		if (a->index < 0 || a->index >= count || a->plan.map_id != p->map_id) {
+			snprintf(err, errlen, "alternative with index %d of %d for plan %lld (map %lld) "
+			         "does not fit the plan (index 0 .. count - 1, map %lld)", a->index, count,
+			         (long long)p->request_id, (long long)a->plan.map_id, (long long)p->map_id);
+			return -1;
+		}
+		if (!in->alternative[a->index])
+			in->alternative[a->index] = a;
+	}
+	in->n_alternatives = count < 0 ? 0 : count;
+	return 0;
+}
+
 int input_select(input_set *in, const input_options *o, char *err, size_t errlen)
 {
 	int i;
@@ -255,7 +294,7 @@ int input_select(input_set *in, const input_options *o, char *err, size_t errlen
 			in->baseline = in->baselines[i];
 			break;
 		}
-	return 0;
+	return select_alternatives(in, err, errlen);
 }
 
 #define FREE_LIST(list, n, type)                    \
@@ -273,6 +312,7 @@ void input_free(input_set *in)
 	FREE_LIST(in->maps, in->n_maps, hylo_map_t);
 	FREE_LIST(in->goals, in->n_goals, hylo_goal_t);
 	FREE_LIST(in->plans, in->n_plans, hylo_plan_t);
+	FREE_LIST(in->alts, in->n_alts, hylo_plan_alternative_t);
 	FREE_LIST(in->trajs, in->n_trajs, hylo_traj_t);
 	FREE_LIST(in->baselines, in->n_baselines, hylo_traj_t);
 	memset(in, 0, sizeof *in);

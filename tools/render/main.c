@@ -24,8 +24,10 @@ static void usage(FILE *f)
 	fprintf(f,
 		"usage: hylo-render (--log FILE... | --lcm-url URL) --out PNG [options]\n"
 		"Draws the plan (channel HYLO_PLAN) on its map (HYLO_MAP), with the sampled\n"
-		"nodes of its goal (HYLO_GOAL), its smoothed trajectory (HYLO_TRAJ) and, in the\n"
-		"phase plane, a multi-phase baseline trajectory (HYLO_BASELINE).\n"
+		"nodes of its goal (HYLO_GOAL), its alternatives (HYLO_PLAN_ALTERNATIVE: other\n"
+		"mode sequences, drawn thin, numbered and listed with their predicted cost), its\n"
+		"smoothed trajectory (HYLO_TRAJ) and, in the phase plane, a multi-phase baseline\n"
+		"trajectory (HYLO_BASELINE).\n"
 		"\n"
 		"  --log FILE          LCM log to read; repeat for several (e.g. the scene's log and\n"
 		"                      the planner's output log)\n"
@@ -41,7 +43,8 @@ static void usage(FILE *f)
 		"  --height H          image height in pixels (default: 720)\n"
 		"  --edges             draw the graph's edges\n"
 		"  --no-nodes          do not draw the sampled nodes\n"
-		"  --no-path           do not draw the path\n"
+		"  --no-path           do not draw the path (its alternatives still are)\n"
+		"  --no-alternatives   do not draw or list the plan's alternatives\n"
 		"  --no-annotations    no title, legend, scale bar or axes\n"
 		"  --poses N           robot outlines along the smoothed trajectory (default: 8)\n"
 		"  --camera AZ,EL[,D]  3-D camera azimuth and elevation [deg] and distance [m]\n"
@@ -144,7 +147,7 @@ int main(int argc, char **argv)
 	int n_logs = 0, quiet = 0, i, rc = 1;
 	long width = 960, height = 720, lv;
 	double timeout_s = 10;
-	input_options io = {"", -1, 1};
+	input_options io = {"", -1, 1, 1};
 	view_options vo = {1, 0, 1, 1, 8, -60, 28, 0};
 	input_set in;
 	canvas c;
@@ -232,6 +235,8 @@ int main(int argc, char **argv)
 			vo.nodes = 0;
 		} else if (strcmp(a, "--no-path") == 0) {
 			vo.path = 0;
+		} else if (strcmp(a, "--no-alternatives") == 0) {
+			io.want_alternatives = 0;
 		} else if (strcmp(a, "--no-annotations") == 0) {
 			vo.annotations = 0;
 		} else if (strcmp(a, "--quiet") == 0) {
@@ -281,11 +286,15 @@ int main(int argc, char **argv)
 		goto fail;
 	}
 	canvas_close(&c);
-	if (!quiet)
-		printf("wrote %s (%ldx%ld, %s view, map %lld%s%s)\n", out, width, height,
+	if (!quiet) {
+		printf("wrote %s (%ldx%ld, %s view, map %lld%s%s", out, width, height,
 		       kind == VIEW_TOP ? "top" : kind == VIEW_PHASE ? "phase" : "3d",
 		       (long long)in.map->map_id, in.plan ? ", plan " : "",
 		       in.plan ? (in.plan->status == 0 ? "ok" : "without a path") : "");
+		if (in.n_alternatives > 1)
+			printf(", %d alternatives", in.n_alternatives);
+		printf(")\n");
+	}
 	rc = 0;
 	input_free(&in);
 	return rc;

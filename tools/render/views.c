@@ -13,6 +13,9 @@
 #define AMBOT_LENGTH_M 0.60   /* outline drawn along the smoothed trajectory */
 #define AMBOT_WIDTH_M 0.45    /* the track width B of docs/models.md */
 #define DRONE_ARM_M 0.35
+#define ALT_ROW_H 18          /* pixels per row of the alternatives' list */
+#define ALT_WIDTH_PX 2.0      /* alternatives' line width; the path is 3.5 to 4 */
+#define TAG_PX 15             /* side of an alternative's numbered tag */
 
 static const rgba_color BG = {0.97f, 0.97f, 0.97f, 1};
 static const rgba_color INK = {0.08f, 0.08f, 0.08f, 1};
@@ -38,6 +41,19 @@ static rgba_color mode_color(int mode)
 		{0.85f, 0.30f, 0.05f, 1},   /* di_pos */
 	};
 	return hylo_mode_valid(mode) ? c[mode] : c[0];
+}
+
+/* An alternative's colour: its mode's, a little lighter, so that it reads
+ * as secondary to the path (its width tells them apart) while keeping
+ * the mode and its contrast with the terrain. */
+static rgba_color alt_color(int mode)
+{
+	rgba_color c = mode_color(mode);
+
+	c.r += 0.15f * (1 - c.r);
+	c.g += 0.15f * (1 - c.g);
+	c.b += 0.15f * (1 - c.b);
+	return c;
 }
 
 static rgba_color with_alpha(rgba_color c, float a)
@@ -476,6 +492,175 @@ static void draw_path_3d(const hylo_map_t *m, const hylo_plan_t *p)
 	glEnd();
 }
 
+/* ---- alternatives ------------------------------------------------------------ */
+
+/* Where each alternative's numbered tag goes, in image pixels (y down). */
+typedef struct {
+	int index[INPUT_MAX_ALTERNATIVES];
+	double x[INPUT_MAX_ALTERNATIVES], y[INPUT_MAX_ALTERNATIVES];
+	int n;
+} alt_tags;
+
+/* Alternative i is drawn when it is not the plan itself (index 0), has
+ * arrived and has a path. */
+static const hylo_plan_t *drawn_alternative(const input_set *in, int i)
+{
+	const hylo_plan_alternative_t *a = i >= 1 && i < in->n_alternatives ? in->alternative[i] : NULL;
+
+	return a && plan_drawable(&a->plan) ? &a->plan : NULL;
+}
+
+/* Rows of the alternatives' list: one per alternative, the plan's own
+ * included, when there is one to draw (none: the picture of a plan
+ * without alternatives, byte for byte). */
+static int alternative_rows(const input_set *in, const view_options *o)
+{
+	int i;
+
+	if (!o->annotations || !plan_drawable(in->plan))
+		return 0;
+	for (i = 1; i < in->n_alternatives; i++)
+		if (drawn_alternative(in, i))
+			return in->n_alternatives;
+	return 0;
+}
+
+/* Waypoint k in the view's world coordinates (metres, or p and v). */
+static void view_point(const hylo_map_t *m, const hylo_plan_t *p, int k, int in_3d, double *v)
+{
+	if (in_3d) {
+		path_point_3d(m, p, k, v);
+	} else {
+		v[0] = p->state[k][0];
+		v[1] = p->state[k][1];
+		v[2] = 0;
+	}
+}
+
+static double distance_to_segment(const double *q, const double *a, const double *b)
+{
+	double d[3], e[3], n2 = 0, t = 0, r2 = 0;
+	int j;
+
+	for (j = 0; j < 3; j++) {
+		d[j] = b[j] - a[j];
+		n2 += d[j] * d[j];
+		t += (q[j] - a[j]) * d[j];
+	}
+	t = n2 > 0 ? t / n2 : 0;
+	t = t < 0 ? 0 : t > 1 ? 1 : t;
+	for (j = 0; j < 3; j++) {
+		e[j] = a[j] + t * d[j] - q[j];
+		r2 += e[j] * e[j];
+	}
+	return sqrt(r2);
+}
+
+/* The waypoint of alternative a farthest from the plan's path: its tag
+ * marks it where it differs most. */
+static int tag_waypoint(const hylo_map_t *m, const hylo_plan_t *plan, const hylo_plan_t *a,
+                        int in_3d)
+{
+	int k, j, best = 0;
+	double best_d = -1, q[3], u[3], w[3];
+
+	for (k = 0; k < a->n_waypoints; k++) {
+		double d = HUGE_VAL;
+		view_point(m, a, k, in_3d, q);
+		for (j = 0; j < plan->n_waypoints; j++) {
+			view_point(m, plan, j, in_3d, u);
+			view_point(m, plan, j + 1 < plan->n_waypoints ? j + 1 : j, in_3d, w);
+			d = fmin(d, distance_to_segment(q, u, w));
+		}
+		if (d > best_d) {
+			best_d = d;
+			best = k;
+		}
+	}
+	return best;
+}
+
+/* Adds a tag, moved right past any it would cover. */
+static void add_tag(alt_tags *t, int index, double x, double y)
+{
+	int j, moved = 1;
+
+	while (moved) {
+		moved = 0;
+		for (j = 0; j < t->n; j++)
+			if (fabs(t->x[j] - x) < TAG_PX + 1 && fabs(t->y[j] - y) < TAG_PX + 1) {
+				x = t->x[j] + TAG_PX + 2;
+				moved = 1;
+			}
+	}
+	t->index[t->n] = index;
+	t->x[t->n] = x;
+	t->y[t->n] = y;
+	t->n++;
+}
+
+/* The alternatives, dearest first so that cheaper ones lie on top. */
+static void draw_alternatives_2d(const frame *f, const input_set *in, alt_tags *tags)
+{
+	int i, k;
+
+	for (i = in->n_alternatives - 1; i >= 1; i--) {
+		const hylo_plan_t *p = drawn_alternative(in, i);
+		if (!p)
+			continue;
+		for (k = 0; k + 1 < p->n_waypoints; k++)
+			thick_line(fx(f, p->state[k][0]), fy(f, p->state[k][1]), fx(f, p->state[k + 1][0]),
+			           fy(f, p->state[k + 1][1]), ALT_WIDTH_PX, alt_color(segment_mode(p, k)));
+		k = tag_waypoint(in->map, in->plan, p, 0);
+		add_tag(tags, i, fx(f, p->state[k][0]), f->H - fy(f, p->state[k][1]));
+	}
+}
+
+/* Image pixel (y down) of world point v through the 3-D view's matrices
+ * and viewport (x0, y0, w, h) in an image of height H; 0 behind the camera. */
+static int project_3d(const double *proj, const double *view, const double *v, int y0, int w,
+                      int h, int H, double *px, double *py)
+{
+	double e[4], c[4];
+	int r;
+
+	for (r = 0; r < 4; r++)
+		e[r] = view[r] * v[0] + view[4 + r] * v[1] + view[8 + r] * v[2] + view[12 + r];
+	for (r = 0; r < 4; r++)
+		c[r] = proj[r] * e[0] + proj[4 + r] * e[1] + proj[8 + r] * e[2] + proj[12 + r] * e[3];
+	if (c[3] <= 0)
+		return 0;
+	*px = 0.5 * (c[0] / c[3] + 1) * w;
+	*py = H - (y0 + 0.5 * (c[1] / c[3] + 1) * h);
+	return 1;
+}
+
+static void draw_alternatives_3d(const hylo_map_t *m, const input_set *in, const double *proj,
+                                 const double *view, int y0, int w, int h, int H, alt_tags *tags)
+{
+	int i, k;
+	double a[3], b[3], px, py;
+
+	glLineWidth((float)ALT_WIDTH_PX);
+	for (i = in->n_alternatives - 1; i >= 1; i--) {
+		const hylo_plan_t *p = drawn_alternative(in, i);
+		if (!p)
+			continue;
+		glBegin(GL_LINES);
+		for (k = 0; k + 1 < p->n_waypoints; k++) {
+			path_point_3d(m, p, k, a);
+			path_point_3d(m, p, k + 1, b);
+			color(alt_color(segment_mode(p, k)));
+			glVertex3dv(a);
+			glVertex3dv(b);
+		}
+		glEnd();
+		path_point_3d(m, p, tag_waypoint(m, in->plan, p, 1), a);
+		if (project_3d(proj, view, a, y0, w, h, H, &px, &py))
+			add_tag(tags, i, px, py);
+	}
+}
+
 static void draw_traj_3d(const hylo_map_t *m, const hylo_traj_t *t, rgba_color c)
 {
 	int k;
@@ -519,10 +704,12 @@ static void draw_drones_3d(const hylo_map_t *m, const hylo_traj_t *t, int n)
 	}
 }
 
-static int render_3d(canvas *c, const input_set *in, const hylo_roadmap *rm, const view_options *o)
+static int render_3d(canvas *c, const input_set *in, const hylo_roadmap *rm, const view_options *o,
+                     alt_tags *tags)
 {
 	const hylo_map_t *m = in->map;
-	int top = o->annotations ? TITLE_H : 0, bottom = o->annotations ? LEGEND_H : 0;
+	int top = o->annotations ? TITLE_H : 0;
+	int bottom = (o->annotations ? LEGEND_H : 0) + alternative_rows(in, o) * ALT_ROW_H;
 	int ph = c->height - top - bottom;
 	double proj[16], view[16], eye[3], target[3], R, dist;
 	double w = m->nx * m->resolution_m, d = m->ny * m->resolution_m;
@@ -598,6 +785,7 @@ static int render_3d(canvas *c, const input_set *in, const hylo_roadmap *rm, con
 			glEnd();
 		}
 	}
+	draw_alternatives_3d(m, in, proj, view, bottom, c->width, ph, c->height, tags);
 	if (o->path && plan_drawable(in->plan))
 		draw_path_3d(m, in->plan);
 	if (in->traj) {
@@ -655,6 +843,53 @@ static void title(canvas *c, const input_set *in)
 		}
 	}
 	canvas_text(c, 8, 18, FONT_PX, t, INK);
+}
+
+/* An alternative's number (index + 1, as hylo-listen counts) in a box
+ * centred at (x, y). */
+static void tag_box(canvas *c, int x, int y, int index)
+{
+	char label[16];
+	int x0 = x - TAG_PX / 2, y0 = y - TAG_PX / 2;
+
+	snprintf(label, sizeof label, "%d", index + 1);
+	canvas_fill_rect(c, x0, y0, TAG_PX, TAG_PX, INK);
+	canvas_fill_rect(c, x0 + 1, y0 + 1, TAG_PX - 2, TAG_PX - 2, WHITE);
+	canvas_text(c, x - canvas_text_width(c, FONT_PX - 2, label) / 2, y + 4, FONT_PX - 2, label,
+	            INK);
+}
+
+/* One row per alternative above the legend strip: its number, predicted
+ * cost (and how much above the plan's) and mode sequence. */
+static void alternatives_list(canvas *c, const input_set *in, int rows)
+{
+	int i, k, y0 = c->height - LEGEND_H - rows * ALT_ROW_H;
+	char t[512];
+	size_t n;
+
+	canvas_fill_rect(c, 0, y0, c->width, rows * ALT_ROW_H, BG);
+	for (i = 0; i < rows; i++) {
+		const hylo_plan_t *p = i == 0 ? in->plan : drawn_alternative(in, i);
+		int y = y0 + i * ALT_ROW_H + ALT_ROW_H / 2;
+		tag_box(c, 8 + TAG_PX / 2, y, i);
+		if (!p) {
+			snprintf(t, sizeof t, "%s", in->alternative[i] ? "no path" : "not received");
+		} else {
+			snprintf(t, sizeof t, "predicted E = %.5g J", p->total_cost_j);
+			n = strlen(t);
+			if (i == 0)
+				snprintf(t + n, sizeof t - n, " (the plan)");
+			else if (in->plan->total_cost_j > 0)
+				snprintf(t + n, sizeof t - n, " (%+.1f%%)",
+				         100 * (p->total_cost_j / in->plan->total_cost_j - 1));
+			for (k = 0; k < p->n_modes; k++) {
+				n = strlen(t);
+				snprintf(t + n, sizeof t - n, "%s%s", k ? " > " : "   ",
+				         mode_label(p->mode_sequence[k]));
+			}
+		}
+		canvas_text(c, 8 + TAG_PX + 8, y + 5, FONT_PX - 1, t, INK);
+	}
 }
 
 static int map_has(const hylo_map_t *m, int cls)
@@ -775,18 +1010,21 @@ int view_render(canvas *c, view_kind kind, const input_set *in, const hylo_roadm
 {
 	const hylo_map_t *m = in->map;
 	frame f;
-	int ann = o->annotations;
+	int ann = o->annotations, rows = alternative_rows(in, o), i;
+	alt_tags tags;
 
 	memset(&f, 0, sizeof f);
+	tags.n = 0;
 	if (kind == VIEW_3D) {
-		if (render_3d(c, in, rm, o) != 0) {
+		if (render_3d(c, in, rm, o, &tags) != 0) {
 			snprintf(err, errlen, "image of %dx%d pixels is too small for the 3-D view",
 			         c->width, c->height);
 			return -1;
 		}
 	} else {
 		int phase = kind == VIEW_PHASE;
-		double l = ann && phase ? 48 : 10, b = (ann ? LEGEND_H : 0) + (ann && phase ? 36 : 0) + 10;
+		double l = ann && phase ? 48 : 10;
+		double b = (ann ? LEGEND_H : 0) + rows * ALT_ROW_H + (ann && phase ? 36 : 0) + 10;
 		double t = (ann ? TITLE_H : 0) + 10;
 		frame_fit(&f, c->width, c->height, l, b, 10, t, m->origin_x_m, m->origin_y_m,
 		          m->origin_x_m + m->nx * m->resolution_m, m->origin_y_m + m->ny * m->resolution_m);
@@ -808,6 +1046,7 @@ int view_render(canvas *c, view_kind kind, const input_set *in, const hylo_roadm
 			draw_nodes_2d(&f, rm);
 		if (phase && in->baseline)
 			draw_traj_2d(&f, in->baseline, 2.5, BASELINE);
+		draw_alternatives_2d(&f, in, &tags);
 		if (o->path && plan_drawable(in->plan))
 			draw_path_2d(&f, in->plan, phase ? 3.5 : 4.0);
 		if (in->traj) {
@@ -823,6 +1062,10 @@ int view_render(canvas *c, view_kind kind, const input_set *in, const hylo_roadm
 		canvas_fill_rect(c, 0, c->height - LEGEND_H, c->width, LEGEND_H, BG);
 		title(c, in);
 		legend(c, in, rm, o, kind);
+		for (i = 0; i < tags.n; i++)
+			tag_box(c, (int)lround(tags.x[i]), (int)lround(tags.y[i]), tags.index[i]);
+		if (rows)
+			alternatives_list(c, in, rows);
 		if (kind == VIEW_TOP)
 			scale_bar(c, &f);
 		if (kind == VIEW_PHASE)

@@ -7,6 +7,8 @@
  *          edges, graph path, smoothed path and multi-phase baseline;
  *   3d     perspective (Drivocopter): lit terrain mesh, ground and flight
  *          segments of the path, the drone at equal time steps.
+ * In each, the plan's alternatives (other mode sequences) are drawn thin
+ * under the path, tagged with their number, and listed above the legend.
  */
 #ifndef HYLO_RENDER_VIEWS_H
 #define HYLO_RENDER_VIEWS_H
