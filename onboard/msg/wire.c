@@ -145,6 +145,9 @@ hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
 	skip(&w, 8, "time_budget_ms");
 	get_count(&w, "max_expansions");
 	skip(&w, 8, "suboptimality");
+	if (need(&w, 1, "alternatives") && (int8_t)w.p[w.pos] < 0)
+		w.st = hylo_fail(r, HYLO_E_BAD_VALUE, "goal_t message: alternatives is %d, negative",
+				 (int)(int8_t)w.p[w.pos]);
 	skip(&w, 1, "alternatives");
 	skip(&w, 8, "alternatives_within");
 	return finish(&w);

@@ -294,6 +294,23 @@ static void test_alternatives(void **state)
 	assert_int_equal(p->status, HYLO_PLAN_T_STATUS_BAD_REQUEST);
 	assert_non_null(strstr(p->reason, "alternatives"));
 	assert_int_equal(n_alts, 0);
+	/* Negative on the wire: said as it is. */
+	{
+		hylo_goal_t msg;
+
+		g.request_id = 34;
+		g.alternatives = 0;
+		goal_msg(&g, &msg);
+		msg.alternatives = -1;
+		clear_received();
+		assert_int_equal(hylo_goal_t_publish(lcm, "HYLO_GOAL", &msg), 0);
+		pump();
+		assert_int_equal(n_received, 1);
+		p = received[0];
+		assert_int_equal(p->status, HYLO_PLAN_T_STATUS_BAD_REQUEST);
+		assert_non_null(strstr(p->reason, "alternatives is -1, negative"));
+		assert_int_equal(n_alts, 0);
+	}
 }
 
 /* Encodes goal g into a fresh buffer; returns its length. */
