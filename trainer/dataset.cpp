@@ -62,6 +62,32 @@ void write_all(int fd, const std::string &s, const std::string &what)
 	}
 }
 
+AppendFile::AppendFile(const std::string &path) : path_(path), fd_(open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644))
+{
+	if (fd_ < 0)
+		throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+}
+
+AppendFile::~AppendFile()
+{
+	if (fd_ >= 0)
+		::close(fd_);
+}
+
+void AppendFile::sync()
+{
+	if (fsync(fd_) != 0)
+		throw std::runtime_error("cannot sync " + path_ + ": " + std::strerror(errno));
+}
+
+void AppendFile::close()
+{
+	int fd = fd_;
+	fd_ = -1;
+	if (::close(fd) != 0)
+		throw std::runtime_error("cannot close " + path_ + ": " + std::strerror(errno));
+}
+
 std::string read_file(const std::string &path)
 {
 	std::ifstream f(path, std::ios::binary);
@@ -160,15 +186,12 @@ ResumePoint resume_point(const std::string &existing, const std::string &header)
 void write_meta(const std::string &path, const std::string &meta)
 {
 	std::string tmp = path + ".tmp";
-	int fd = open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-	if (fd < 0)
-		throw std::runtime_error("cannot write " + tmp + ": " + std::strerror(errno));
-	write_all(fd, meta, tmp);
-	if (fsync(fd) != 0) {
-		close(fd);
-		throw std::runtime_error("cannot sync " + tmp);
-	}
-	close(fd);
+	if (unlink(tmp.c_str()) != 0 && errno != ENOENT)
+		throw std::runtime_error("cannot remove " + tmp + ": " + std::strerror(errno));
+	AppendFile f(tmp);
+	f.write(meta);
+	f.sync();
+	f.close();
 	if (rename(tmp.c_str(), path.c_str()) != 0)
 		throw std::runtime_error("cannot rename " + tmp + " to " + path);
 }
@@ -177,6 +200,7 @@ void write_meta(const std::string &path, const std::string &meta)
 
 namespace {
 
+using internal::AppendFile;
 using internal::meta_differences;
 using internal::meta_text;
 using internal::read_file;
@@ -191,7 +215,7 @@ using internal::write_meta;
 // line (--relabel) gets only the other starts.
 std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
 				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
-				     uint64_t &converged)
+				     uint64_t &converged, uint64_t &errors)
 {
 	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
 		uint64_t i = lo + k;
@@ -202,18 +226,24 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
 					    : solve_bvp(opt.mode, robot, a, b, opt.solve);
 		} catch (const std::exception &e) {
-			s.status_text = std::string("error: ") + e.what();
+			s = Solution();
+			s.status_text = kErrorStatus + std::string(e.what());
 		}
 		return csv_row(opt.mode, i, a, b, s);
 	});
 	for (size_t k = 0; k < rows.size(); k++)
 		if (rows[k].empty())
 			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
-	// Count converged rows from their "converged" column.
-	size_t col = csv_column(opt.mode, "converged");
-	for (const auto &r : rows) {
-		std::vector<std::string> f = csv_fields(r);
+	// Count converged rows from their "converged" column; say each error.
+	size_t col = csv_column(opt.mode, "converged"), status = csv_column(opt.mode, "status");
+	for (size_t k = 0; k < rows.size(); k++) {
+		std::vector<std::string> f = csv_fields(rows[k]);
 		converged += col < f.size() && f[col] == "1";
+		if (status < f.size() && is_error_status(f[status])) {
+			errors++;
+			std::fprintf(stderr, "trainer: sample %llu: %s (kept as an error row: not a label, fit leaves it out)\n",
+				     static_cast<unsigned long long>(lo + k), f[status].c_str());
+		}
 	}
 	return rows;
 }
@@ -552,29 +582,27 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 		write_meta(meta_path, meta);
 	}
 	sum.resumed_from = next - lo;
-	int fd = open(sum.path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-	if (fd < 0)
-		throw std::runtime_error("cannot write " + sum.path + ": " + std::strerror(errno));
+	AppendFile out(sum.path);
 	if (next == lo && opt.shard == 1) {
 		struct stat fs;
-		if (fstat(fd, &fs) == 0 && fs.st_size == 0)
-			write_all(fd, header, sum.path);
+		if (fstat(out.fd(), &fs) == 0 && fs.st_size == 0)
+			out.write(header);
 	}
 	bool tty = isatty(STDERR_FILENO);
 	auto last_report = std::chrono::steady_clock::now();
 	for (uint64_t c = next; c < hi; c += static_cast<uint64_t>(opt.chunk)) {
 		uint64_t e = std::min(hi, c + static_cast<uint64_t>(opt.chunk));
-		uint64_t conv = 0;
-		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv);
+		uint64_t conv = 0, errs = 0;
+		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv, errs);
 		std::string text;
 		for (const auto &r : rows)
 			text += r + "\n";
-		write_all(fd, text, sum.path);
-		if (fsync(fd) != 0)
-			throw std::runtime_error("cannot sync " + sum.path);
+		out.write(text);
+		out.sync();
 		sum.done += e - c;
 		sum.converged += conv;
-		sum.rejected += (e - c) - conv;
+		sum.errors += errs;
+		sum.rejected += (e - c) - conv - errs;
 		auto now = std::chrono::steady_clock::now();
 		double el = std::chrono::duration<double>(now - t0).count();
 		double rate = sum.done / std::max(el, 1e-9);
@@ -592,7 +620,7 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 	}
 	if (opt.progress && tty)
 		std::fprintf(stderr, "\n");
-	close(fd);
+	out.close();
 	if (ro.relabel == straight && hi >= line.size()) {
 		std::remove(straight.c_str());
 		std::remove((straight + ".meta").c_str());

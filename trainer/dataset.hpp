@@ -47,8 +47,19 @@ struct GenOptions {
 	bool progress = true;
 };
 
+// A sample whose solve threw (a bug, an exhausted resource, Ipopt failing to
+// start) has no outcome: its row keeps the draw and a status beginning with
+// this, so that a run goes on past it, and fit leaves it out (it is neither a
+// cost nor an infeasible pair for the classifier).
+inline constexpr const char *kErrorStatus = "error: ";
+inline bool is_error_status(const std::string &status)
+{
+	return status.compare(0, 7, kErrorStatus) == 0;
+}
+
 struct GenSummary {
 	uint64_t done = 0, resumed_from = 0, converged = 0, rejected = 0;
+	uint64_t errors = 0;   // rows whose solve threw (is_error_status)
 	double seconds = 0;
 	std::string path;
 };
@@ -116,6 +127,24 @@ namespace internal {
 std::string read_file(const std::string &path);
 // Writes all of s to fd; throws std::runtime_error naming what.
 void write_all(int fd, const std::string &s, const std::string &what);
+// A file opened for appending rows (O_APPEND, created 0644), closed when it
+// goes out of scope, so that a write that throws does not leak it; sync()
+// and close() throw naming the file.
+class AppendFile {
+public:
+	explicit AppendFile(const std::string &path);
+	~AppendFile();
+	AppendFile(const AppendFile &) = delete;
+	AppendFile &operator=(const AppendFile &) = delete;
+	int fd() const { return fd_; }
+	void write(const std::string &s) { write_all(fd_, s, path_); }
+	void sync();
+	void close();
+
+private:
+	std::string path_;
+	int fd_;
+};
 // The .meta of a dataset generated with opt: the stream (robot, mode, seed,
 // robot file, draws, shard) and what its labels depend on.
 std::string meta_text(const RobotParams &robot, const GenOptions &opt);

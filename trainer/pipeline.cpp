@@ -26,6 +26,7 @@ struct Rows {
 	std::vector<double> states;   // per row: x1 then x2, sampled_dim(mode) each
 	std::vector<bool> feasible;
 	size_t n = 0;
+	size_t errors = 0;   // rows whose solve threw: read, never labels
 	std::string sha256;   // of the bytes read: the header line and the n rows
 };
 
@@ -59,7 +60,8 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 	size_t nr = 0;   // relative coordinates, f0, f1, ...
 	for (const auto &c : cols)
 		nr += c.size() > 1 && c[0] == 'f' && std::isdigit(static_cast<unsigned char>(c[1]));
-	const size_t i_cost = csv_column(mode, "cost_j"), i_conv = csv_column(mode, "converged");
+	const size_t i_cost = csv_column(mode, "cost_j"), i_conv = csv_column(mode, "converged"),
+		     i_status = csv_column(mode, "status");
 	const size_t i_x1 = csv_column(mode, "x1_0"), dim = static_cast<size_t>(sampled_dim(mode));
 	Rows r;
 	for (size_t lineno = 2; r.n < max_rows && std::getline(in, line); lineno++) {
@@ -84,6 +86,11 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 							    f[i_x1 + k] + "'");
 			r.states.push_back(x);
 		}
+		r.n++;
+		if (is_error_status(f[i_status])) {
+			r.errors++;
+			continue;
+		}
 		std::vector<double> feat = features_of_relative(mode, rel);
 		bool conv = f[i_conv] == "1";
 		double cost = std::strtod(f[i_cost].c_str(), nullptr);
@@ -93,7 +100,6 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 			r.x_conv.insert(r.x_conv.end(), feat.begin(), feat.end());
 			r.cost.push_back(cost);
 		}
-		r.n++;
 	}
 	std::streamoff end = in.tellg();
 	r.sha256 = sha256_hex(end < 0 ? text : text.substr(0, static_cast<size_t>(end)));
@@ -218,7 +224,8 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		{"robot file", "trainer/params/" + robot.robot + ".yaml"},   // location-independent
 		{"robot file sha256", sha256_file(robot.path)},
 		{"dataset sha256", rows.sha256},   // the whole file unless rows were appended since
-		{"samples", std::to_string(rows.n) + " (" + std::to_string(rows.cost.size()) + " converged)"},
+		{"samples", std::to_string(rows.n) + " (" + std::to_string(rows.cost.size()) + " converged" +
+				    (rows.errors ? ", " + std::to_string(rows.errors) + " errors left out" : "") + ")"},
 		{"seed", std::to_string(g.seed)},
 		{"held-out errors", buf},
 		{"svr", "C " + format_double(rep.C) + ", gamma " + format_double(rep.gamma) + ", epsilon " +
@@ -250,6 +257,9 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	   << ",\"feasibility_accuracy\":" << (have_classifier ? format_double(crep.accuracy) : "null")
 	   << "}\n";
 	write_text(g.out_dir + "/" + g.mode + ".fit.json", js.str());
+	if (rows.errors)
+		std::fprintf(stderr, "trainer: fit %s %s: %zu rows whose solve ended in an error (status 'error: ...') "
+				     "left out\n", robot.robot.c_str(), g.mode.c_str(), rows.errors);
 	std::printf("fit %s %s: %zu of %zu samples converged; %zu SVs; held-out %s; feasibility %s; %.1f s\n",
 		    robot.robot.c_str(), g.mode.c_str(), rows.cost.size(), rows.n, rep.n_sv, buf,
 		    have_classifier ? format_double(crep.accuracy).c_str() : "none", rep.fit_seconds);
@@ -372,6 +382,10 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 			    static_cast<unsigned long long>(s.resumed_from),
 			    static_cast<unsigned long long>(s.converged),
 			    static_cast<unsigned long long>(s.rejected), s.seconds);
+		if (s.errors)
+			std::fprintf(stderr, "trainer: gen %s %s: %llu samples ended in an error, not an outcome "
+					     "(see above; their rows are not labels)\n",
+				     robot.robot.c_str(), opt.gen.mode.c_str(), static_cast<unsigned long long>(s.errors));
 	}
 	if (stage == "repair") {
 		RepairOptions ro;

@@ -23,13 +23,13 @@
 namespace hylo::trainer {
 namespace {
 
+using internal::AppendFile;
 using internal::meta_differences;
 using internal::meta_text;
 using internal::read_file;
 using internal::resume_point;
 using internal::ResumePoint;
 using internal::same_stream;
-using internal::write_all;
 using internal::write_meta;
 
 // A label lowered by more than this fraction counts as lowered.
@@ -120,7 +120,7 @@ std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uin
 		s = solve_bvp(mode, robot, a, b, opt.gen.solve);
 	} catch (const std::exception &e) {
 		s = Solution();
-		s.status_text = std::string("error: ") + e.what();
+		s.status_text = kErrorStatus + std::string(e.what());
 	}
 	// csv_row's result columns, then the path.
 	std::vector<std::string> f = csv_fields(csv_row(mode, i, a, b, s));
@@ -179,12 +179,10 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 	} else {
 		write_meta(meta_path, meta);
 	}
-	int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-	if (fd < 0)
-		throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
+	AppendFile out(path);
 	struct stat fs;
-	if (fstat(fd, &fs) == 0 && fs.st_size == 0)
-		write_all(fd, header, path);
+	if (fstat(out.fd(), &fs) == 0 && fs.st_size == 0)
+		out.write(header);
 	const uint64_t first = next;
 	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
 		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
@@ -196,14 +194,13 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 				throw std::runtime_error("the process solving sample " + std::to_string(c + k) + " failed");
 			text += rows[k] + "\n";
 		}
-		write_all(fd, text, path);
-		if (fsync(fd) != 0)
-			throw std::runtime_error("cannot sync " + path);
+		out.write(text);
+		out.sync();
 		if (opt.gen.progress)
 			std::fprintf(stderr, "%s: %llu/%llu rows solved again\n", path.c_str(),
 				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
 	}
-	close(fd);
+	out.close();
 	return n - first;
 }
 
@@ -407,13 +404,11 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		return a;
 	};
 
-	int fd = open(work.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-	if (fd < 0)
-		throw std::runtime_error("cannot write " + work + ": " + std::strerror(errno));
+	AppendFile work_file(work);
 	if (next == 0) {
 		struct stat fs;
-		if (fstat(fd, &fs) == 0 && fs.st_size == 0)
-			write_all(fd, header + "\n", work);
+		if (fstat(work_file.fd(), &fs) == 0 && fs.st_size == 0)
+			work_file.write(header + "\n");
 	}
 	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
 		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
@@ -450,15 +445,14 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				throw std::runtime_error("the process repairing sample " + std::to_string(c + k) + " failed");
 			text += rows[k] + "\n";
 		}
-		write_all(fd, text, work);
-		if (fsync(fd) != 0)
-			throw std::runtime_error("cannot sync " + work);
+		work_file.write(text);
+		work_file.sync();
 		sum.repaired_now += e - c;
 		if (opt.gen.progress)
 			std::fprintf(stderr, "%s: %llu/%llu rows repaired\n", work.c_str(),
 				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
 	}
-	close(fd);
+	work_file.close();
 	sum.warm_cpu_s = children_cpu_s() - cpu0;
 
 	// Done: the repaired rows, then the input's past n, replace the dataset.

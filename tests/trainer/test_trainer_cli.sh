@@ -169,6 +169,36 @@ if [ -s "$T/first/di_di_neg.h" ] && cmp -s "$T/first/di_di_neg.h" "$T/cut/di_di_
   tap_ok "--stage fit --samples 200 fits the first 200 rows and names their hash"; else
   tap_not_ok "--stage fit --samples 200 fits the first 200 rows and names their hash" "$(grep -E 'samples|dataset' "$T/first/di_di_neg.h" | head -2)"; fi
 
+# Rows whose solve threw (status "error: ..."): read, never labels. A fit
+# with three such rows gives the model of a fit on a copy without them.
+mkdir -p "$T/errrows" "$T/noerrrows"
+cp "$T/pipe/di_neg.csv.meta" "$T/errrows/"; cp "$T/pipe/di_neg.csv.meta" "$T/noerrrows/"
+python3 - "$T/pipe/di_neg.csv" "$T/errrows/di_neg.csv" "$T/noerrrows/di_neg.csv" <<'PY'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+head, data = rows[0], rows[1:]
+ci, st, cost, t = (head.index(c) for c in ("converged", "status", "cost_j", "T_s"))
+bad = {8, 48, 118}
+with open(sys.argv[2], "w") as e, open(sys.argv[3], "w") as n:
+    e.write(",".join(head) + "\n"); n.write(",".join(head) + "\n")
+    for k, r in enumerate(data):
+        if k in bad:
+            r = list(r); r[ci] = "0"; r[cost] = "0"; r[t] = "0"; r[st] = "error: injected by the test"
+            e.write(",".join(r) + "\n")
+        else:
+            e.write(",".join(r) + "\n"); n.write(",".join(r) + "\n")
+PY
+"$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/errrows" > /dev/null 2> "$T/errrows.log"
+"$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/noerrrows" > /dev/null 2>&1
+strip() { grep -v -E 'dataset sha256|samples:' "$1"; }
+if [ -s "$T/errrows/di_di_neg.h" ] && [ -s "$T/noerrrows/di_di_neg.h" ] &&
+   cmp -s <(strip "$T/errrows/di_di_neg.h") <(strip "$T/noerrrows/di_di_neg.h") &&
+   grep -q "samples: 300 (.* converged, 3 errors left out)" "$T/errrows/di_di_neg.h" &&
+   grep -q "3 rows whose solve ended in an error" "$T/errrows.log"; then
+  tap_ok "rows whose solve ended in an error are left out of the fit (regression and classifier), and said so"; else
+  tap_not_ok "rows whose solve ended in an error are left out of the fit (regression and classifier), and said so" \
+    "$(grep 'samples:' "$T/errrows/di_di_neg.h"; cat "$T/errrows.log"; diff <(strip "$T/errrows/di_di_neg.h") <(strip "$T/noerrrows/di_di_neg.h") | head -5)"; fi
+
 # Bad datasets: a clear error and no header.
 mkdir -p "$T/bad" "$T/badmodels"
 cp "$T/pipe/di_neg.csv.meta" "$T/bad/"
