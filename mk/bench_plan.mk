@@ -13,7 +13,7 @@ BENCH_TARGETS += $(BENCH_PLAN)
 # algorithm hylo's search replaced, on the same roadmap (tools/bench/bench_scenes.cpp).
 BENCH_SCENES := $(BUILD)/bench/bin/bench_scenes
 
-$(BENCH_SCENES): tools/bench/bench_scenes.cpp tools/scene/planner_view.hpp $(BUILD)/obj/tools/scene/scene.o \
+$(BENCH_SCENES): tools/bench/bench_scenes.cpp tools/scene/planner_view.hpp tools/scene/committed.hpp $(BUILD)/obj/tools/scene/scene.o \
 		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@

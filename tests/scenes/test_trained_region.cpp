@@ -10,29 +10,24 @@
 #include <vector>
 
 #include "hylo/planner.h"
-#include "node/registry.h"
 #include "tests/tap.hpp"
+#include "tools/scene/committed.hpp"
 #include "tools/scene/planner_view.hpp"
 
 int main(int argc, char **argv)
 {
-	hylo_robot robots[HYLO_MAX_ROBOTS];
-	hylo_reason r;
-	hylo_planner_config cfg{};
-	cfg.robots = robots;
-	cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &r);
-	const size_t size = hylo_planner_size(&cfg);
-	std::vector<double> mem(size / sizeof(double) + 1);
-	auto *pl = reinterpret_cast<hylo_planner *>(mem.data());
+	std::unique_ptr<hylo::scene::CommittedPlanner> committed;
+	try {
+		committed.reset(new hylo::scene::CommittedPlanner);
+	} catch (const std::exception &e) {
+		check(false, "a planner with every committed model", e.what());
+		return 1;
+	}
+	hylo_planner *pl = committed->get();
 	std::unique_ptr<hylo_plan> plan(new hylo_plan);
-	check(hylo_planner_init(pl, size, &cfg) == HYLO_OK, "a planner with every committed model",
-	      hylo_planner_reason(pl));
 	std::vector<std::string> scenes(argv + 1, argv + argc);
 	if (scenes.empty())
-		for (const auto &e : std::filesystem::directory_iterator("scenes"))
-			if (e.path().extension() == ".yaml")
-				scenes.push_back(e.path().string());
-	std::sort(scenes.begin(), scenes.end());
+		scenes = hylo::scene::committed_scenes();
 	check(scenes.size() >= 8, "the committed scenes", std::to_string(scenes.size()) + " scene files");
 	for (const std::string &path : scenes) {
 		const hylo::scene::Scene sc = hylo::scene::load(path);

@@ -36,7 +36,7 @@
 #include "hylo/features.h"
 #include "hylo/planner.h"
 #include "hylo/region.h"
-#include "node/registry.h"
+#include "tools/scene/committed.hpp"
 #include "tools/scene/planner_view.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
@@ -310,23 +310,11 @@ int run(int argc, char **argv)
 		else
 			scenes.push_back(a);
 	}
-	if (scenes.empty()) {
-		for (const auto &e : std::filesystem::directory_iterator("scenes"))
-			if (e.path().extension() == ".yaml")
-				scenes.push_back(e.path().string());
-		std::sort(scenes.begin(), scenes.end());
-	}
+	if (scenes.empty())
+		scenes = hylo::scene::committed_scenes();
 
-	hylo_robot robots[HYLO_MAX_ROBOTS];
-	hylo_reason reason;
-	hylo_planner_config cfg{};
-	cfg.robots = robots;
-	cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &reason);
-	const size_t size = hylo_planner_size(&cfg);
-	std::vector<double> mem(size / sizeof(double) + 1);
-	auto *pl = reinterpret_cast<hylo_planner *>(mem.data());
-	if (hylo_planner_init(pl, size, &cfg) != HYLO_OK)
-		throw std::runtime_error(std::string("planner: ") + hylo_planner_reason(pl));
+	hylo::scene::CommittedPlanner committed;
+	hylo_planner *pl = committed.get();
 	std::unique_ptr<hylo_plan> plan(new hylo_plan);
 	std::map<std::string, ModelEdges> models;
 	for (const std::string &path : scenes) {

@@ -26,7 +26,7 @@
 #include <time.h>
 
 #include "hylo/planner.h"
-#include "node/registry.h"
+#include "tools/scene/committed.hpp"
 #include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
 
@@ -103,25 +103,10 @@ using hylo::scene::goal_of;
 using hylo::scene::map_view;
 
 struct Bench {
-	hylo_robot robots[HYLO_MAX_ROBOTS];
-	std::vector<double> mem;
-	hylo_planner *pl_ = nullptr;
+	hylo::scene::CommittedPlanner committed{now_ms};
+	hylo_planner *pl_ = committed.get();
 	std::unique_ptr<hylo_plan> plan{new hylo_plan};
-	size_t size = 0;
-
-	Bench()
-	{
-		hylo_reason r;
-		hylo_planner_config cfg{};
-		cfg.robots = robots;
-		cfg.n_robots = hylo_registry_robots(robots, HYLO_MAX_ROBOTS, &r);
-		cfg.clock = now_ms;
-		size = hylo_planner_size(&cfg);
-		mem.resize(size / sizeof(double) + 1);
-		pl_ = reinterpret_cast<hylo_planner *>(mem.data());
-		if (hylo_planner_init(pl_, size, &cfg) != HYLO_OK)
-			throw std::runtime_error(std::string("planner: ") + hylo_planner_reason(pl_));
-	}
+	size_t size = committed.size();
 
 	void new_map(const Scene &sc)
 	{
