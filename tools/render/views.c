@@ -464,21 +464,30 @@ static void path_point_3d(const hylo_map_t *m, const hylo_plan_t *p, int k, doub
 	v[2] = p->mode[k] == HYLO_MODE_FLIGHT ? p->state[k][2] : surface_at(m, v[0], v[1]) + 0.15;
 }
 
-static void draw_path_3d(const hylo_map_t *m, const hylo_plan_t *p)
+/* The segments of plan p in 3-D, each in colour_of its mode. */
+static void path_lines_3d(const hylo_map_t *m, const hylo_plan_t *p, rgba_color (*colour_of)(int mode))
 {
 	int k;
 	double a[3], b[3];
 
-	glLineWidth(4);
 	glBegin(GL_LINES);
 	for (k = 0; k + 1 < p->n_waypoints; k++) {
 		path_point_3d(m, p, k, a);
 		path_point_3d(m, p, k + 1, b);
-		color(mode_color(segment_mode(p, k)));
+		color(colour_of(segment_mode(p, k)));
 		glVertex3dv(a);
 		glVertex3dv(b);
 	}
 	glEnd();
+}
+
+static void draw_path_3d(const hylo_map_t *m, const hylo_plan_t *p)
+{
+	int k;
+	double a[3];
+
+	glLineWidth(4);
+	path_lines_3d(m, p, mode_color);
 	glPointSize(9);
 	glBegin(GL_POINTS);
 	for (k = 0; k < p->n_waypoints; k++) {
@@ -638,23 +647,15 @@ static int project_3d(const double *proj, const double *view, const double *v, i
 static void draw_alternatives_3d(const hylo_map_t *m, const input_set *in, const double *proj,
                                  const double *view, int y0, int w, int h, int H, alt_tags *tags)
 {
-	int i, k;
-	double a[3], b[3], px, py;
+	int i;
+	double a[3], px, py;
 
 	glLineWidth((float)ALT_WIDTH_PX);
 	for (i = in->n_alternatives - 1; i >= 1; i--) {
 		const hylo_plan_t *p = drawn_alternative(in, i);
 		if (!p)
 			continue;
-		glBegin(GL_LINES);
-		for (k = 0; k + 1 < p->n_waypoints; k++) {
-			path_point_3d(m, p, k, a);
-			path_point_3d(m, p, k + 1, b);
-			color(alt_color(segment_mode(p, k)));
-			glVertex3dv(a);
-			glVertex3dv(b);
-		}
-		glEnd();
+		path_lines_3d(m, p, alt_color);
 		path_point_3d(m, p, tag_waypoint(m, in->plan, p, 1), a);
 		if (project_3d(proj, view, a, y0, w, h, H, &px, &py))
 			add_tag(tags, i, px, py);
