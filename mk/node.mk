@@ -79,9 +79,9 @@ HYLO_LISTEN := $(BUILD)/bin/hylo-listen
 
 $(BUILD)/obj/tools/listen/%.o: tools/listen/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) -I$(LCM_GEN_DIR)/c -c $< -o $@
+	$(CC) $(NODE_CFLAGS) $(DEP_FLAGS) -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c -c $< -o $@
 
-$(HYLO_LISTEN): $(BUILD)/obj/tools/listen/hylo_listen.o $(MSG_OBJS)
+$(HYLO_LISTEN): $(BUILD)/obj/tools/listen/hylo_listen.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) $^ $(LCM_LIBS) -lm -o $@
 

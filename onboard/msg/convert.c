@@ -54,6 +54,18 @@ void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 	g->alternatives_within = msg->alternatives_within;
 }
 
+const char *hylo_msg_plan_status_name(int8_t status)
+{
+	/* Indexed by plan_t.STATUS_* (msgs/plan_t.lcm). */
+	static const char *const names[] = {
+		"ok", "no map", "no path", "bad request", "over capacity", "budget exhausted",
+		"map replaced", "no model", "not proven optimal", "superseded", "unknown map",
+		"queue full"
+	};
+
+	return status >= 0 && status < (int)(sizeof names / sizeof *names) ? names[status] : "unknown";
+}
+
 int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome)
 {
 	if (status == HYLO_OK) {

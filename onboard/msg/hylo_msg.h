@@ -47,6 +47,10 @@ typedef struct {
 /** plan_t.STATUS_* for a plan's status and outcome. */
 int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome);
 
+/** Name of a plan_t.STATUS_* value ("ok", "no path", ...; "unknown" for any
+ * other), as the node logs it and hylo-listen prints it. */
+const char *hylo_msg_plan_status_name(int8_t status);
+
 /**
  * Fills msg from plan (utime as given). msg's arrays point into plan and
  * buf, which must outlive msg. The plan's reason becomes msg->reason.

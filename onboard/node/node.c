@@ -7,18 +7,6 @@
 
 #include "node/node.h"
 
-static const char *const status_names[] = {
-	"ok", "no map", "no path", "bad request", "over capacity", "budget exhausted",
-	"map replaced", "no model", "not proven optimal", "superseded", "unknown map",
-	"queue full"
-};
-
-static const char *status_name(int8_t st)
-{
-	return st >= 0 && st < (int)(sizeof status_names / sizeof *status_names) ? status_names[st]
-										 : "?";
-}
-
 static int64_t utime_now(void)
 {
 	struct timeval tv;
@@ -90,7 +78,7 @@ static void log_request(hylo_node *node, const hylo_plan *plan)
 	fprintf(node->log,
 		"request %" PRId64 ": %s, cost %.6g J, %u nodes, %" PRIu64 " edges evaluated, "
 		"%.2f ms",
-		plan->request_id, status_name(st), plan->total_cost, (unsigned)plan->n_nodes,
+		plan->request_id, hylo_msg_plan_status_name(st), plan->total_cost, (unsigned)plan->n_nodes,
 		plan->n_edges_evaluated, plan->plan_ms);
 	if (st != HYLO_PLAN_T_STATUS_OK)
 		fprintf(node->log, " (%s)", plan->reason.text);
@@ -131,7 +119,7 @@ static void answer_now(hylo_node *node, int64_t request_id, int8_t status, int64
 	else
 		node->n_refused++;
 	if (node->log) {
-		fprintf(node->log, "request %" PRId64 ": %s (%s)\n", request_id, status_name(status),
+		fprintf(node->log, "request %" PRId64 ": %s (%s)\n", request_id, hylo_msg_plan_status_name(status),
 			reason);
 		fflush(node->log);
 	}
@@ -183,7 +171,7 @@ static void map_event(hylo_node *node, int64_t map_id, int8_t status, const char
 	s.reason = (char *)reason;
 	publish_status_msg(node, &s);
 	if (node->log && (status != HYLO_PLAN_T_STATUS_OK || node->verbose)) {
-		fprintf(node->log, "map %" PRId64 ": %s%s%s\n", map_id, status_name(status),
+		fprintf(node->log, "map %" PRId64 ": %s%s%s\n", map_id, hylo_msg_plan_status_name(status),
 			*reason ? ", " : "", reason);
 		fflush(node->log);
 	}

@@ -17,15 +17,12 @@
 #include "hylo_node_status_t.h"
 #include "hylo_plan_alternative_t.h"
 #include "hylo_plan_t.h"
+#include "hylo_msg.h"
 #include "hylo_traj_t.h"
 
 static volatile sig_atomic_t stop_requested;
 static int json, waypoints, stats;
 static long count;
-static const char *status_names[] = { "ok", "no map", "no path", "bad request", "over capacity",
-				      "budget exhausted", "map replaced", "no model",
-				      "not proven optimal", "superseded", "unknown map",
-				      "queue full" };
 static const char *event_names[] = { "periodic", "map", "stop" };
 static const char *mode_names[] = { "none", "ground", "marine", "flight", "di_neg", "di_pos" };
 
@@ -37,7 +34,7 @@ static void on_signal(int sig)
 
 static const char *status_str(int s)
 {
-	return s >= 0 && s < (int)(sizeof status_names / sizeof *status_names) ? status_names[s] : "unknown";
+	return hylo_msg_plan_status_name((int8_t)s);
 }
 
 static const char *mode_str(int m)
