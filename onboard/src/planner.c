@@ -835,6 +835,7 @@ static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan,
 	pl->h_layered = 0;
 	pl->h_forward_valid = 0;
 	pl->layered_within = within;
+	pl->deadline = deadline;
 	if (pl->use_heuristic)
 		st = hylo_planner_heuristic(pl, &unlimited);
 	if (st != HYLO_OK)

@@ -395,19 +395,34 @@ static hylo_status expand_layered(void *ctx, hylo_search *s, uint32_t u, uint32_
 	return predecessors(pl, &moves, &switches, v, heads, costs, cap, n);
 }
 
+/* The budget left until the goal's deadline (none: no limit). 0 when it
+ * has passed. */
+static int budget_left(const hylo_planner *pl, hylo_budget *b)
+{
+	memset(b, 0, sizeof *b);
+	if (!isfinite(pl->deadline))
+		return 1;
+	b->clock = pl->cfg.clock;
+	b->clock_ctx = pl->cfg.clock_ctx;
+	b->time_budget_ms = pl->deadline - hylo_planner_now(pl);
+	return b->time_budget_ms > 0;
+}
+
 /* h_node for every layered node towards the goal copies fwd has not closed,
- * for paths costing at most cap. */
-static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hylo_real cap)
+ * for paths costing at most cap; *done = 0 (h_node unchanged, still a valid
+ * heuristic) when the goal's time budget ran out first. */
+static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hylo_real cap,
+				   int *done)
 {
 	hylo_search *s = &pl->layer_search;
 	const hylo_roadmap *rm = &pl->roadmap;
 	uint32_t src = layered_source(pl), u;
-	hylo_budget unlimited;
-	hylo_outcome outcome;
+	hylo_budget budget;
+	hylo_outcome outcome = HYLO_NO_PATH;
 	hylo_graph g;
 	hylo_status st = HYLO_OK;
 
-	memset(&unlimited, 0, sizeof unlimited);
+	*done = 0;
 	memset(&g, 0, sizeof g);
 	/* Room for slightly different rounding of the same sums in the search. */
 	pl->layered_cap = cap * (1 + 1e-9) + 1e-9;
@@ -418,23 +433,24 @@ static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hyl
 	 * reaches. The forward one is the same for every goal copy closed (the
 	 * cap is the first one's). */
 	g.n_nodes = src + 2;
-	if (!pl->h_forward_valid) {
+	if (!pl->h_forward_valid && budget_left(pl, &budget)) {
 		g.expand = expand_forward;
-		st = hylo_search_run(s, &g, rm->n_nodes, src + 1, &unlimited, &outcome, &pl->reason);
-		for (u = 0; st == HYLO_OK && u < src; u++)
+		st = hylo_search_run(s, &g, rm->n_nodes, src + 1, &budget, &outcome, &pl->reason);
+		for (u = 0; st == HYLO_OK && outcome == HYLO_NO_PATH && u < src; u++)
 			pl->h_forward[u] = hylo_search_cost(s, u);
-		pl->h_forward_valid = st == HYLO_OK;
+		pl->h_forward_valid = st == HYLO_OK && outcome == HYLO_NO_PATH;
 	}
 	g.expand = expand_layered;
-	if (st == HYLO_OK)
-		st = hylo_search_run(s, &g, src, src + 1, &unlimited, &outcome, &pl->reason);
+	if (st == HYLO_OK && pl->h_forward_valid && budget_left(pl, &budget))
+		st = hylo_search_run(s, &g, src, src + 1, &budget, &outcome, &pl->reason);
 	pl->layered_forward = NULL;
-	if (st != HYLO_OK)
+	if (st != HYLO_OK || !pl->h_forward_valid || outcome != HYLO_NO_PATH)
 		return st;
 	pl->h_valid = 0;   /* h_node is indexed by layer now */
 	for (u = 0; u < src; u++)
 		pl->h_node[u] = hylo_search_cost(s, u);
 	pl->h_layered = 1;
+	*done = 1;
 	return HYLO_OK;
 }
 
@@ -448,10 +464,9 @@ hylo_status hylo_planner_found(void *ctx, hylo_search *s, uint32_t goal, int *gr
 	*grew = 0;
 	if (!pl->use_heuristic)
 		return HYLO_OK;
-	st = layer_heuristic(pl, s, pl->layered_within *
-					hylo_search_cost(s, hylo_search_found(s, 0)));
+	st = layer_heuristic(pl, s, pl->layered_within * hylo_search_cost(s, hylo_search_found(s, 0)),
+			     grew);
 	if (st != HYLO_OK && r != &pl->reason)
 		*r = pl->reason;
-	*grew = st == HYLO_OK;
 	return st;
 }

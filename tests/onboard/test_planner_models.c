@@ -368,6 +368,50 @@ static void test_anytime(void **state)
 	assert_int_equal(hylo_planner_init(planner, planner_bytes, &cfg), HYLO_OK);
 }
 
+/* Alternatives under a time budget: the budget also bounds the layered
+ * heuristic's searches (one that runs out leaves the heuristic as it was).
+ * Every budget gives a prefix of the unlimited run's alternatives, each at
+ * its exact cost, or none; some budgets cut the list short. */
+static void test_anytime_alternatives(void **state)
+{
+	hylo_planner_config cfg = config(fake_clock);
+	hylo_goal g = tm_river_goal();
+	hylo_real full[HYLO_MAX_ALTERNATIVES];
+	uint32_t n_full, k;
+	int budget, shorter = 0, complete = 0;
+	tu_map m;
+
+	(void)state;
+	tm_small_river(&m);
+	assert_int_equal(hylo_planner_init(planner, planner_bytes, &cfg), HYLO_OK);
+	set_map(&m);
+	g.alternatives = 3;
+	g.alternatives_within = 1.5;
+	g.time_budget_ms = 0;
+	hylo_planner_plan(planner, &g, plan);
+	assert_int_equal(plan->outcome, HYLO_FOUND);
+	n_full = plan->n_alternatives;
+	assert_true(n_full >= 2);
+	memcpy(full, plan->alternative_cost, sizeof full);
+	for (budget = 1; budget <= 2000 && !(shorter && complete); budget += 3) {
+		g.time_budget_ms = budget;
+		hylo_planner_plan(planner, &g, plan);
+		assert_int_equal(plan->status, HYLO_OK);
+		if (plan->outcome != HYLO_FOUND)
+			continue;
+		assert_true(plan->n_alternatives >= 1 && plan->n_alternatives <= n_full);
+		for (k = 0; k < plan->n_alternatives; k++)
+			assert_true(fabs(plan->alternative_cost[k] - full[k]) <= 1e-9 * full[k]);
+		shorter |= plan->n_alternatives < n_full;
+		complete |= plan->n_alternatives == n_full;
+	}
+	assert_true(shorter);
+	assert_true(complete);
+	tu_map_free(&m);
+	cfg = config(NULL);
+	assert_int_equal(hylo_planner_init(planner, planner_bytes, &cfg), HYLO_OK);
+}
+
 /* ---- alternatives -------------------------------------------------------- */
 
 /* The graph's edges, every cost computed once: heads and costs of node u
@@ -607,6 +651,7 @@ int main(void)
 		cmocka_unit_test(test_optimal_every_robot),
 		cmocka_unit_test(test_bounds_match_envelope),
 		cmocka_unit_test(test_anytime),
+		cmocka_unit_test(test_anytime_alternatives),
 		cmocka_unit_test(test_alternatives),
 		cmocka_unit_test(test_sizing),
 	};

@@ -203,6 +203,7 @@ typedef struct {
 	const hylo_search *layered_forward;  /* while it runs: the alternatives' search */
 	hylo_real layered_cap;          /* paths dearer than this are not wanted */
 	hylo_real layered_within;       /* the goal's alternatives_within */
+	double deadline;                /* the goal's, on the planner's clock [ms]; +inf: none */
 	int h_layered;
 	uint32_t n_found;
 	uint32_t found[HYLO_MAX_ALTERNATIVES];
