@@ -430,11 +430,16 @@ private:
 				index.push_back(k);
 				changes.push_back(a.mode_changes);
 			}
-		const int planned = std::max(pd->planned, 1);
-		if (pd->planned == 0)
+		if (pd->received.empty()) {   // as a plan without alternatives: no report
 			std::fprintf(stderr, "hylo-smooth: request %lld: no alternative arrived within %g s; "
 				     "smoothing the plan alone\n", id, o_.alternatives_wait_s);
-		else if (planned > static_cast<int>(paths.size()))
+			hylo::traj_t t = answer(p);
+			t.utime = now_us();
+			out_.publish(o_.prefix + "HYLO_TRAJ", &t);
+			return finished_one();
+		}
+		const int planned = pd->planned;
+		if (planned > static_cast<int>(paths.size()))
 			std::fprintf(stderr, "hylo-smooth: request %lld: %d of %d alternatives did not arrive within %g s; "
 				     "smoothing the %zu received\n", id, planned - static_cast<int>(paths.size()), planned,
 				     o_.alternatives_wait_s, paths.size());

@@ -94,7 +94,7 @@ for what in reported orders chosen exact k1 lone; do
     k1)       name="K = 1 gives the plan's own trajectory, as --alternatives 1 does, and no report" ;;
     lone)     name="a plan whose alternatives never come is smoothed alone after the wait" ;;
   esac
-  if [ "${line#* }" != "${line#* True}" ]; then tap_ok "$name"; else
+  if [ "${line#"$what True"}" != "$line" ]; then tap_ok "$name"; else
     tap_not_ok "$name" "${line:-$(cat "$T/check")}"; fi
 done
 if grep -q "no alternative arrived within 0.5 s; smoothing the plan alone" "$T/lone.err"; then
