@@ -13,7 +13,8 @@ writes to build/gen/lcm/python at build time.
     .venv/bin/python tools/hylo_client.py SCENE --lcm-url memq:// --json
 
 Exit codes: 0 a plan arrived (whatever its status), 1 no plan before the
-timeout or an unusable scene, 2 usage error.
+timeout, no trajectory within --trajectory's wait, or an unusable scene, 2
+usage error.
 """
 import argparse
 import json
