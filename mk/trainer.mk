@@ -93,5 +93,7 @@ $(HYLO_SMOOTH): $(BUILD)/obj/trainer/smooth_main.o $(TRAINER_LIB)
 ALL_TARGETS += $(HYLO_SMOOTH)
 tests/trainer/test_smooth.sh: $(HYLO_SMOOTH) $(TRAINER)
 TESTS += tests/trainer/test_smooth.sh
+tests/trainer/test_alternatives.sh: $(HYLO_SMOOTH) $(TRAINER) $(BUILD)/bin/hylo-scene $(BUILD)/bin/hylo-planner $(BUILD)/bin/hylo-listen
+TESTS += tests/trainer/test_alternatives.sh
 tests/trainer/test_fallback.sh: $(HYLO_SMOOTH) $(BUILD)/bin/hylo-scene $(BUILD)/bin/hylo-planner $(BUILD)/bin/hylo-listen
 TESTS += tests/trainer/test_fallback.sh

@@ -1,6 +1,7 @@
 #include "trainer/smoother.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -409,75 +410,6 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 	return s;
 }
 
-std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan)
-{
-	const int F = mode_number("flight"), G = mode_number("ground");
-	std::vector<std::vector<Waypoint>> out;
-	for (size_t i = 0; i < plan.size(); i++) {
-		// i: a landing's hover (flight) followed by the ground run [i + 1, j]
-		// and the next takeoff's hover j + 1.
-		if (plan[i].mode != F || i + 1 >= plan.size() || plan[i + 1].mode != G)
-			continue;
-		size_t j = i + 1;
-		while (j + 1 < plan.size() && plan[j + 1].mode == G)
-			j++;
-		// Each flight must keep its other end: run one's takeoff hover (before
-		// i) and run two's landing hover (after j + 1).
-		if (j + 2 >= plan.size() || plan[j + 1].mode != F || plan[j + 2].mode != F || i == 0 ||
-		    plan[i - 1].mode != F)
-			continue;
-		std::vector<Waypoint> alt(plan.begin(), plan.begin() + static_cast<std::ptrdiff_t>(i));
-		// The joined leg: waypoints at most 8 m apart along the line, speeds
-		// of a 3 m/s^2 ramp up to 8 m/s from and to the ends' (a guess only;
-		// a 50 m leg guessed at rest was guessed at 50 s).
-		const Waypoint &a = plan[i - 1], &b = plan[j + 2];
-		const double d[3] = {b.state[0] - a.state[0], b.state[1] - a.state[1], b.state[2] - a.state[2]};
-		const double L = norm3(d[0], d[1], d[2]);
-		const double va = norm3(a.state[3], a.state[4], a.state[5]), vb = norm3(b.state[3], b.state[4], b.state[5]);
-		const int n = static_cast<int>(std::ceil(L / 8));
-		for (int q = 1; q < n; q++) {
-			double f = static_cast<double>(q) / n, sa = f * L, sb = L - sa;
-			double v = std::min({8.0, std::sqrt(va * va + 6 * sa), std::sqrt(vb * vb + 6 * sb)});
-			Waypoint w;
-			w.mode = F;
-			for (int k = 0; k < 3; k++) {
-				w.state[k] = a.state[k] + f * d[k];
-				w.state[3 + k] = v * d[k] / L;
-			}
-			alt.push_back(w);
-		}
-		alt.insert(alt.end(), plan.begin() + static_cast<std::ptrdiff_t>(j + 2), plan.end());
-		out.push_back(std::move(alt));
-	}
-	return out;
-}
-
-MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypoint> &plan,
-			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales, bool *from_straightened)
-{
-	bool straight = false;
-	MultiPhaseSolution best = smooth_plan(robot, plan, map, costs, opt, T_scales, &straight);
-	double seconds = best.solve_seconds, rejected = best.rejected_cost;
-	for (const std::vector<Waypoint> &alt : flown_over(plan)) {
-		bool alt_straight = false;
-		MultiPhaseSolution s = smooth_plan(robot, alt, map, costs, opt, T_scales, &alt_straight);
-		seconds += s.solve_seconds;
-		rejected = std::min(rejected, s.rejected_cost);
-		if (s.converged && (!best.converged || s.cost < best.cost)) {
-			best = std::move(s);
-			straight = alt_straight;
-		} else if (!s.converged && !best.converged) {
-			best.rejection += "; flown over: " + s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")");
-		}
-	}
-	best.solve_seconds = seconds;
-	best.rejected_cost = rejected;
-	if (from_straightened)
-		*from_straightened = best.converged && straight;
-	return best;
-}
-
 const char *method_name(SmoothMethod m)
 {
 	switch (m) {
@@ -767,7 +699,7 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 		}
 	};
 	bool straight = false;
-	if (step(SmoothMethod::Full, [&] { return smooth_best(robot, plan, map, costs, opt, {}, &straight); })) {
+	if (step(SmoothMethod::Full, [&] { return smooth_plan(robot, plan, map, costs, opt, {}, &straight); })) {
 		if (straight)
 			r.method = SmoothMethod::Straightened;
 		return r;
@@ -796,6 +728,39 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 		return r;
 	r.failure = r.rejections.back().substr(std::string(method_name(SmoothMethod::GraphPath)).size() + 2);
 	return r;
+}
+
+AlternativesChoice smooth_alternatives(const RobotParams &robot, const std::vector<PlanAlternative> &alternatives,
+				       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
+				       const AlternativesBudget &budget)
+{
+	AlternativesChoice c;
+	const auto t0 = std::chrono::steady_clock::now();
+	int smoothed = 0;
+	for (const PlanAlternative &a : alternatives) {
+		AlternativeOutcome o;
+		const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+		char why[128] = "";
+		if (smoothed >= std::max(1, budget.max_count))
+			std::snprintf(why, sizeof why, "not smoothed: %d alternative%s smoothed already (the count budget)",
+				      smoothed, smoothed == 1 ? "" : "s");
+		else if (smoothed > 0 && budget.seconds > 0 && elapsed >= budget.seconds)
+			std::snprintf(why, sizeof why, "not smoothed: %.1f s spent already, budget %.4g s", elapsed,
+				      budget.seconds);
+		if (why[0]) {
+			o.skipped = why;
+		} else {
+			o.smoothed = true;
+			o.result = smooth_with_fallbacks(robot, a.plan, map, costs, opt);
+			smoothed++;
+			const int k = static_cast<int>(c.outcomes.size());
+			if (o.result.ok && (c.chosen < 0 ||
+					    o.result.solution.cost < c.outcomes[static_cast<size_t>(c.chosen)].result.solution.cost))
+				c.chosen = k;
+		}
+		c.outcomes.push_back(std::move(o));
+	}
+	return c;
 }
 
 SolveOptions smoothing_solve_options()

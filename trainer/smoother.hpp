@@ -81,20 +81,6 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
 			       const std::vector<double> &T_scales = {}, bool *from_straightened = nullptr);
 
-// The plan's neighbours in mode sequence: for each ground run between two
-// flights, the plan with that run flown over instead (the landing, the drive
-// and the takeoff removed, the two flights joined), one plan per such run.
-// Near the crossover between flying over and driving through, sequences
-// differ by less than the SVR's error, so the planner's choice is checked
-// exactly (docs/smoothing.md).
-std::vector<std::vector<Waypoint>> flown_over(const std::vector<Waypoint> &plan);
-
-// The cheapest converged smoothing (smooth_plan) of the plan and of each
-// flown_over() neighbour; the plan's own when none converges.
-MultiPhaseSolution smooth_best(const RobotParams &robot, const std::vector<Waypoint> &plan,
-			       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
-			       const std::vector<double> &T_scales = {}, bool *from_straightened = nullptr);
-
 // How far a trajectory leaves its map's domain: for every knot and
 // midpoint, a ground (marine) state's distance from the nearest ground
 // (water) cell, a flight's depth below the terrain under it; the worst over
@@ -132,8 +118,7 @@ struct SmoothResult {
 
 // A trajectory for the plan, from the first step of the chain that gives
 // one whose every phase replays:
-//   full / straightened  smooth_best (the plan, its straightened copy, its
-//                        flown-over neighbours)
+//   full / straightened  smooth_plan (the plan, then its straightened copy)
 //   finer mesh           the plan with twice the segments per edge and four
 //                        mesh refinements of the phases whose replay disagrees
 //                        (skipped when a full solution replayed but left the
@@ -153,6 +138,44 @@ struct SmoothResult {
 // names the edge, its mode and why.
 SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<Waypoint> &plan,
 				   const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt);
+
+// One of a goal's alternatives (plan_alternative_t): the best graph path of
+// one mode sequence.
+struct PlanAlternative {
+	int index = 0;                  // graph rank: 0 is the plan itself, cheapest predicted
+	double predicted_j = 0;
+	std::vector<Waypoint> plan;
+};
+
+// How many alternatives hylo-smooth smooths (--alternatives,
+// --alternatives-budget): the first (cheapest predicted) always; each next
+// one only while fewer than max_count were smoothed and, with seconds > 0,
+// fewer than seconds of wall time have passed since the first began.
+struct AlternativesBudget {
+	int max_count = 8;
+	double seconds = 0;             // 0: no time limit
+};
+
+// What became of one alternative.
+struct AlternativeOutcome {
+	bool smoothed = false;          // false: the budget ran out before it (skipped says which)
+	std::string skipped;
+	SmoothResult result;            // smoothed: smooth_with_fallbacks of its path
+};
+
+struct AlternativesChoice {
+	std::vector<AlternativeOutcome> outcomes;   // one per alternative, in the order given
+	int chosen = -1;   // the one whose trajectory is cheapest (lowest energy; a tie: the earlier); -1: none ok
+};
+
+// Smooths the alternatives in the order given (cheapest predicted first),
+// each with smooth_with_fallbacks, within the budget, and picks the cheapest
+// smoothed trajectory: the graph's ranking is only as good as its models, and
+// their error differs between mode sequences (docs/smoothing.md,
+// "Alternatives").
+AlternativesChoice smooth_alternatives(const RobotParams &robot, const std::vector<PlanAlternative> &alternatives,
+				       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
+				       const AlternativesBudget &budget);
 
 // The graph path step alone: every edge of the plan solved on its own and
 // the solutions joined in time (switches as in smoothing_problem: a guard

@@ -3,7 +3,8 @@
 # on the committed models in its quick form (plans only): on the same graph,
 # the energy-optimal plan must swim less than the shortest-distance plan and
 # cost less, and the shortest plan must be no longer (within the 1% of its
-# heading tie-break; else the two plans did not share their graph). Prints TAP.
+# heading tie-break; else the two plans did not share their graph); the
+# energy plan's alternatives are listed by graph rank. Prints TAP.
 set -u
 cd "$(dirname "$0")/../.."
 . tests/tap.sh
@@ -53,6 +54,13 @@ for s in res:
           f"{n}: the energy plan costs less ({e['predicted_j']:.1f} J vs {d['predicted_j']:.1f} J predicted)")
     print("PASS" if d["length_m"] <= 1.01 * e["length_m"] else "FAIL",
           f"{n}: the shortest plan is no longer, within its 1% tie-break ({d['length_m']:.1f} m vs {e['length_m']:.1f} m)")
+    alts = s["alternatives"]
+    seqs = [e["sequence"]] + [a["sequence"] for a in alts]
+    pred = [e["predicted_j"]] + [a["predicted_j"] for a in alts]
+    print("PASS" if alts and [a["rank"] for a in alts] == list(range(2, len(alts) + 2))
+          and len(set(seqs)) == len(seqs) and pred == sorted(pred) and pred[-1] <= 1.25 * pred[0] * (1 + 1e-6)
+          else "FAIL", f"{n}: the energy plan's alternatives are listed by graph rank, distinct sequences, "
+          f"within 1.25 times its prediction ({list(zip(seqs, pred))})")
 PY
   while read -r verdict rest; do
     tap_check "$rest" test "$verdict" = PASS

@@ -246,36 +246,54 @@ void wall_gates(const RobotParams &drivo)
 		ok = ok && st[i].mode == s[i].mode && st[i].guard == s[i].guard &&
 		     (i == 1 || i == 4 || std::equal(s[i].state, s[i].state + 6, st[i].state));
 	check(ok, "straightened: inner waypoints on the line between each run's ends, the rest kept");
-	// Flown over: the drive between two flights (waypoints 4-8: landing
-	// hover, drive, takeoff hover) removed and the flights joined.
-	std::vector<Waypoint> dfdfd = {wp(G, 2, 0, false), wp(G, 6, 0, true),	wp(F, 6, 7, true),  wp(F, 9, 3, false),
-				       wp(F, 12, 1, true),  wp(G, 12, 0, true), wp(G, 14, 0, false), wp(G, 15, 0, true),
-				       wp(F, 15, 1, true),  wp(F, 17, 3, false), wp(F, 18, 1, true), wp(G, 18, 0, true)};
-	std::vector<std::vector<Waypoint>> alts = flown_over(dfdfd);
-	ok = alts.size() == 1 && alts[0].size() == 7 && flown_over(plan).empty() && flown_over(alts[0]).empty();
-	if (ok) {
-		const size_t kept[] = {0, 1, 2, 3, 9, 10, 11};
-		for (size_t i = 0; i < 7; i++)
-			ok = ok && alts[0][i].mode == dfdfd[kept[i]].mode &&
-			     std::equal(dfdfd[kept[i]].state, dfdfd[kept[i]].state + 6, alts[0][i].state);
-		MultiPhaseProblem f = smoothing_problem(drivo, alts[0], m, TakeoffLanding{100, 40});
-		// Drive, then the flight cut at the wall x = 8; it lands on the last waypoint.
-		ok = ok && f.phases.size() == 3 && f.phases[2].mode == "flight" && f.switch_cost == 140;
-	}
-	check(ok, "flown over: DFDFD gives one DFD neighbour, its flights joined; DFD gives none");
-	// A joined leg over 8 m gets waypoints at most 8 m apart, speeds along it
-	// on a 3 m/s^2 ramp from the ends: 10 m from (9, 2, 3) to (19, 2, 3) at
-	// rest gets one, at x = 14 and sqrt(6 * 5) m/s.
-	dfdfd[9].state[0] = 19;
-	alts = flown_over(dfdfd);
-	ok = alts.size() == 1 && alts[0].size() == 8;
-	if (ok) {
-		const Waypoint &w = alts[0][4];
-		ok = w.mode == F && !w.guard && w.state[0] == 14 && w.state[1] == 2 && w.state[2] == 3 &&
-		     std::fabs(w.state[3] - std::sqrt(30.0)) < 1e-12 && w.state[4] == 0 && w.state[5] == 0 &&
-		     alts[0][5].state[0] == 19;
-	}
-	check(ok, "flown over: a joined leg of 10 m gets a waypoint at its middle at sqrt(6 * 5) m/s");
+}
+
+// smooth_alternatives on the double integrator from (0.8, 0.2) to (-0.8, 0):
+// a path that crosses p = 0 three times, given first (as if the graph had
+// ranked it first), and the direct one crossing once. The smoothed direct
+// path is cheaper and is chosen; a count budget of 1 smooths the first alone.
+void alternatives_choice(const RobotParams &di)
+{
+	const int N = mode_number("di_neg"), P = mode_number("di_pos");
+	auto w = [](int mode, double p, double v, bool guard) {
+		Waypoint x;
+		x.mode = mode;
+		x.state[0] = p;
+		x.state[1] = v;
+		x.guard = guard;
+		return x;
+	};
+	PlanAlternative thrice{0, 2.0, {w(P, 0.8, 0.2, false), w(P, 0.4, -0.6, false), w(P, 0, -0.6, true),
+					  w(N, 0, -0.6, true), w(N, -0.2, 0, false), w(N, 0, 0.6, true),
+					  w(P, 0, 0.6, true), w(P, 0.2, 0, false), w(P, 0, -0.6, true),
+					  w(N, 0, -0.6, true), w(N, -0.8, 0, false)}};
+	PlanAlternative once{1, 2.5, {w(P, 0.8, 0.2, false), w(P, 0.4, -0.6, false), w(P, 0, -0.8, true),
+				       w(N, 0, -0.8, true), w(N, -0.4, -0.6, false), w(N, -0.8, 0, false)}};
+	TerrainGrid plane;   // scenes/di.yaml: the phase plane [-1, 1]^2, all "ground"
+	plane.nx = plane.ny = 40;
+	plane.resolution_m = 0.05;
+	plane.origin_x_m = plane.origin_y_m = -1;
+	plane.terrain.assign(1600, 1);
+	plane.height_m.assign(1600, 0.0f);
+	AlternativesChoice c = smooth_alternatives(di, {thrice, once}, plane, {}, {}, {});
+	bool ok = c.outcomes.size() == 2 && c.outcomes[0].smoothed && c.outcomes[1].smoothed &&
+		  c.outcomes[0].result.ok && c.outcomes[1].result.ok;
+	std::string costs = ok ? fmt(c.outcomes[0].result.solution.cost) + " (three crossings) vs " +
+					 fmt(c.outcomes[1].result.solution.cost) + " (one)"
+			       : "not both smoothed";
+	std::printf("# alternatives: %s\n", costs.c_str());
+	for (const AlternativeOutcome &o : c.outcomes)
+		for (const std::string &r : o.result.rejections)
+			std::printf("# rejected %s\n", r.c_str());
+	check(ok && c.chosen == 1 && c.outcomes[1].result.solution.cost < c.outcomes[0].result.solution.cost,
+	      "alternatives: the cheapest smoothed is chosen, not the first given", costs);
+	AlternativesBudget one;
+	one.max_count = 1;
+	c = smooth_alternatives(di, {thrice, once}, plane, {}, {}, one);
+	check(c.outcomes.size() == 2 && c.outcomes[0].smoothed && !c.outcomes[1].smoothed && c.chosen == 0 &&
+		      c.outcomes[1].skipped.find("count budget") != std::string::npos,
+	      "alternatives: a count budget of 1 smooths the first alone and says why not the rest",
+	      c.outcomes.size() == 2 ? c.outcomes[1].skipped : "");
 }
 
 }  // namespace
@@ -294,5 +312,6 @@ int main(int argc, char **argv)
 	di_case(di, 0.7, -0.1, -0.5, 0.2);
 	shore_crossing(ambot);
 	bad_problems(di);
+	alternatives_choice(di);
 	return tap_finish();
 }

@@ -91,7 +91,7 @@ PY
       replay) name="$n: the smoothed trajectory replays (CVODE) with its cost" ;;
       ends)   name="$n: starts at the start, ends at the goal, switches on p = 0" ;;
     esac
-    if [ "${line#* }" != "${line#* True}" ]; then tap_ok "$name"; else
+    if [ "${line#"$what True"}" != "$line" ]; then tap_ok "$name"; else
       tap_not_ok "$name" "${line:-$(cat "$T/$n.check")}"; fi
   done
 }

@@ -151,6 +151,35 @@ struct Planner {
 	}
 };
 
+// One alternative of a plan: the best graph path of one mode sequence.
+struct Alternative {
+	std::vector<Waypoint> path;
+	std::string letters;   // "DFD" (Drivocopter) or the sequence's mode names
+	double predicted = 0;
+	std::unique_ptr<hylo_plan> plan;
+};
+
+std::vector<Waypoint> waypoints(const hylo_plan &p);
+std::string letters(const hylo_plan &p);
+
+// The planner's alternatives after plan_on with goal.alternatives = K, graph
+// rank order (the first is the plan).
+std::vector<Alternative> alternatives_of(Planner &pl)
+{
+	std::vector<Alternative> out;
+	for (uint32_t k = 0; k < pl.plan->n_alternatives; k++) {
+		Alternative a;
+		a.plan.reset(new hylo_plan(*pl.plan));
+		if (hylo_planner_alternative(pl.pl(), k, a.plan.get()) != HYLO_OK)
+			throw std::runtime_error(std::string("alternative: ") + hylo_planner_reason(pl.pl()));
+		a.path = waypoints(*a.plan);
+		a.letters = letters(*a.plan);
+		a.predicted = a.plan->total_cost;
+		out.push_back(std::move(a));
+	}
+	return out;
+}
+
 std::vector<Waypoint> waypoints(const hylo_plan &p)
 {
 	std::vector<Waypoint> w(p.n_waypoints);
@@ -513,6 +542,9 @@ hylo_robot committed_robot(const std::string &name)
 	throw std::runtime_error(name + ": no committed models in onboard/models/");
 }
 
+// The energy plan's alternatives on the Ambot scenes.
+constexpr uint32_t kAmbotAlternatives = 3;
+
 std::string ambot_study(const Options &opt, std::string &md)
 {
 	RobotParams ambot = load_robot(robot_file("ambot"));
@@ -536,7 +568,12 @@ std::string ambot_study(const Options &opt, std::string &md)
 	      "between equally short paths broken, within 1%, towards nodes that face along the path). "
 	      "Energies: the SVR's prediction of the plan's edges, the exact cost of the graph path "
 	      "(every edge solved on its own by collocation) and the smoothed trajectory of the plan's "
-	      "mode sequence (multi-phase collocation, CVODE replay).\n\n"
+	      "mode sequence (multi-phase collocation, CVODE replay). Below them the energy plan's "
+	      "alternatives (goal.alternatives = " + std::to_string(kAmbotAlternatives) + ": the best graph "
+	      "path of each of the next cheapest distinct mode sequences within 1.25 times the plan's "
+	      "prediction), smoothed as `hylo-smooth` does (its fallback chain; the step named when not the "
+	      "full optimization), without the exact graph-path cost; hylo's result is the cheapest smoothed "
+	      "of the energy plan and its alternatives.\n\n"
 	      "| scene | plan | sequence | predicted [J] | graph path, exact [J] | smoothed [J] | length [m] | "
 	      "water [m] (smoothed) |\n|---|---|---|---|---|---|---|---|\n";
 	std::string js = "[";
@@ -545,8 +582,10 @@ std::string ambot_study(const Options &opt, std::string &md)
 		Scene sc = hylo::scene::load(std::string("scenes/") + scenes[s] + ".yaml");
 		hylo_goal g = goal_of(sc);
 		Planner pe, ps;
-		pe.plan_on(*energy, sc, g);
 		ps.plan_on(shortest, sc, g);
+		g.alternatives = kAmbotAlternatives;
+		pe.plan_on(*energy, sc, g);
+		const std::vector<Alternative> alts = alternatives_of(pe);
 		std::fprintf(stderr, "ambot %s: evaluating the energy and the shortest plan (exact edges, smoothing)\n",
 			     scenes[s]);
 		PlanResult e = evaluate(ambot, *energy, *pe.plan, sc, !opt.quick);
@@ -559,8 +598,46 @@ std::string ambot_study(const Options &opt, std::string &md)
 				      r.exact, r.smoothed, r.length, r.water, r.smoothed_water);
 			md += row;
 		}
+		// The energy plan's alternatives, smoothed as hylo-smooth does.
+		std::string aj;
+		size_t best = 0;   // graph rank - 1 of hylo's result
+		double best_j = e.smoothed;
+		for (size_t k = 1; k < alts.size(); k++) {
+			PlanResult a = evaluate(ambot, *energy, *alts[k].plan, sc, false);
+			std::string how = "";
+			if (!opt.quick) {
+				SmoothResult sm = smooth_with_fallbacks(ambot, alts[k].path, grid_of(sc), TakeoffLanding{},
+									SmoothOptions());
+				if (sm.ok) {
+					a.smoothed = sm.solution.cost;
+					a.smoothed_error = sm.solution.replay_error;
+					if (sm.method != SmoothMethod::Full)
+						how = std::string(" (") + method_name(sm.method) + ")";
+					if (!(a.smoothed >= best_j) || !std::isfinite(best_j)) {
+						best = k;
+						best_j = a.smoothed;
+					}
+				}
+			}
+			char row[512];
+			std::snprintf(row, sizeof row, "| | alternative %zu | %s | %.1f | | %.1f%s | %.1f | %.1f |\n", k + 1,
+				      a.sequence.c_str(), a.predicted, a.smoothed, how.c_str(), a.length, a.water);
+			md += row;
+			aj += std::string(k > 1 ? ", " : "") + "{\"rank\": " + std::to_string(k + 1) +
+			      ", \"sequence\": \"" + a.sequence + "\", \"predicted_j\": " + num(a.predicted) +
+			      ", \"smoothed_j\": " + num(a.smoothed) + ", \"method\": \"" +
+			      (how.empty() ? "full" : how.substr(2, how.size() - 3)) + "\", \"length_m\": " +
+			      num(a.length) + ", \"water_m\": " + num(a.water) + "}";
+		}
+		if (!opt.quick) {
+			char row[256];
+			std::snprintf(row, sizeof row, "| | **hylo** | %s | | | **%.1f** (rank %zu) | | |\n",
+				      sequence(best ? *alts[best].plan : *pe.plan).c_str(), best_j, best + 1);
+			md += row;
+		}
 		js += std::string(s ? "," : "") + "\n  {\"scene\": \"" + scenes[s] + "\", \"energy_plan\": " +
-		      plan_json(e) + ",\n   \"shortest_plan\": " + plan_json(d) + "}";
+		      plan_json(e) + ",\n   \"shortest_plan\": " + plan_json(d) + ",\n   \"alternatives\": [" + aj +
+		      "],\n   \"result_rank\": " + std::to_string(best + 1) + ", \"result_j\": " + num(best_j) + "}";
 	}
 	return js + "\n]";
 }
@@ -693,16 +770,19 @@ private:
 
 struct ChasmItem {
 	size_t chasm;
-	int seq;   // index into the sequences; -1: hylo's plan
+	int seq;   // index into the sequences; -1: hylo's alternative `rank`
 	double lambda;
-	int flown = -1;   // hylo: -1 its plan, k its k-th flown_over() neighbour
+	int rank = 0;   // hylo: the planner's alternative of this graph rank (0: its plan)
 };
+
+// The planner's alternatives per chasm (hylo-smooth smooths them all and
+// publishes the cheapest).
+constexpr uint32_t kChasmAlternatives = 3;
 
 std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
 		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
-		      const std::vector<std::string> &plan_seq, const std::vector<std::vector<std::string>> &flown_seq,
-		      const std::vector<double> &predicted, const std::vector<double> &plan_s, const TakeoffLanding &tl,
-		      std::string &md);
+		      const std::vector<std::vector<Alternative>> &alts, const std::vector<double> &plan_s,
+		      const TakeoffLanding &tl, std::string &md);
 
 // Per fixed sequence of chasm c, its cheapest converged record (empty: none).
 std::vector<std::vector<double>> best_fixed(const std::vector<ChasmItem> &items,
@@ -845,11 +925,8 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 	using Item = ChasmItem;
 	std::vector<Scene> scenes;
 	std::vector<Chasm> chasms;
-	std::vector<std::vector<Waypoint>> plans;
-	std::vector<std::string> plan_seq;
-	std::vector<std::vector<std::vector<Waypoint>>> flown;   // flown_over() of each plan
-	std::vector<std::vector<std::string>> flown_seq;
-	std::vector<double> predicted, plan_s;
+	std::vector<std::vector<Alternative>> alts;   // the planner's alternatives of each chasm
+	std::vector<double> plan_s;
 	std::vector<Item> items;
 	for (size_t c = 0; c < widths.size(); c++) {
 		char path[64];
@@ -857,21 +934,18 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 		scenes.push_back(hylo::scene::load(path));
 		chasms.push_back(chasm_of(scenes.back()));
 		Planner pl;
+		hylo_goal g = goal_of(scenes.back());
+		g.alternatives = kChasmAlternatives;
 		auto t0 = std::chrono::steady_clock::now();
-		pl.plan_on(*svr, scenes.back(), goal_of(scenes.back()));
+		pl.plan_on(*svr, scenes.back(), g);
 		plan_s.push_back(seconds_since(t0));
-		plans.push_back(waypoints(*pl.plan));
-		plan_seq.push_back(letters(*pl.plan));
-		predicted.push_back(pl.plan->total_cost);
-		std::fprintf(stderr, "drivocopter %s: hylo plans %s, %.1f J predicted (%.2f s)\n", path,
-			     plan_seq.back().c_str(), predicted.back(), plan_s.back());
-		items.push_back({c, -1, 0});
-		flown.push_back(flown_over(plans.back()));
-		flown_seq.emplace_back();
-		for (size_t k = 0; k < flown.back().size(); k++) {
+		alts.push_back(alternatives_of(pl));
+		for (size_t k = 0; k < alts.back().size(); k++) {
+			std::fprintf(stderr, "drivocopter %s: hylo's alternative %zu: %s, %.1f J predicted\n", path, k + 1,
+				     alts.back()[k].letters.c_str(), alts.back()[k].predicted);
 			items.push_back({c, -1, 0, static_cast<int>(k)});
-			flown_seq.back().push_back(letters(flown.back()[k]));
 		}
+		std::fprintf(stderr, "drivocopter %s: planned in %.2f s\n", path, plan_s.back());
 		for (size_t q = 0; q < seqs.size(); q++)
 			for (double l : lambdas) {
 				items.push_back({c, static_cast<int>(q), l});
@@ -892,17 +966,15 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 				mine.push_back(i);
 		auto r = parallel_records(mine.size(), 9, opt.jobs, [&](size_t j) {
 			const Item &it = items[mine[j]];
-			std::string what = it.seq >= 0 ? seqs[static_cast<size_t>(it.seq)]
-					   : "hylo " + plan_seq[it.chasm] + " " + num(predicted[it.chasm]);
-			if (it.flown >= 0)
-				what += " flown over " + std::to_string(it.flown) + " " +
-					flown_seq[it.chasm][static_cast<size_t>(it.flown)];
+			// hylo's plan keeps its key of before (the alternatives' first).
+			const Alternative *a = it.seq >= 0 ? nullptr : &alts[it.chasm][static_cast<size_t>(it.rank)];
+			std::string what = a ? "hylo " + std::string(it.rank ? "alternative " + std::to_string(it.rank) + " " : "") +
+						       a->letters + " " + num(a->predicted)
+					     : seqs[static_cast<size_t>(it.seq)];
 			return log.solve(robot_sha, widths[it.chasm], what, it.lambda, [&] {
 				std::vector<Waypoint> w =
-					it.seq >= 0 ? sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)],
-								    it.lambda)
-					: it.flown < 0 ? plans[it.chasm]
-						       : flown[it.chasm][static_cast<size_t>(it.flown)];
+					a ? a->path
+					  : sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)], it.lambda);
 				return smooth_record(robot, w, scenes[it.chasm], tl);
 			});
 		});
@@ -910,8 +982,7 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 			rec[mine[j]] = r[j];
 		md = head_md;
 		js = "{\"chasms\": " +
-		     table_one(widths, done, seqs, lambdas.size(), items, rec, plan_seq, flown_seq, predicted, plan_s,
-			       tl, md);
+		     table_one(widths, done, seqs, lambdas.size(), items, rec, alts, plan_s, tl, md);
 		checkpoint(md, js + ", \"crossover\": null}");
 	}
 	if (!opt.quick)
@@ -923,9 +994,8 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 // The table of study 3 for the first `done` chasms; returns its JSON.
 std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
 		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
-		      const std::vector<std::string> &plan_seq, const std::vector<std::vector<std::string>> &flown_seq,
-		      const std::vector<double> &predicted, const std::vector<double> &plan_s, const TakeoffLanding &tl,
-		      std::string &md)
+		      const std::vector<std::vector<Alternative>> &alts, const std::vector<double> &plan_s,
+		      const TakeoffLanding &tl, std::string &md)
 {
 	md += "\n## 3. Drivocopter: fixed mode sequences against hylo (the paper's Table I)\n\n"
 	      "Each chasm scene (`scenes/chasm_*.yaml`: platforms 6 m high, start and goal on them 10 m "
@@ -935,14 +1005,17 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	      num(tl.landing_j) + " J) included, every switch point free on its whole platform or floor, "
 	      "flights cut at each wall into phases that meet 0.5 m above its top (the planner's flight "
 	      "clearance); switch points placed at the walls initially (" + std::to_string(placements) +
-	      " placement). hylo: the planner's plan with the committed "
-	      "SVR models (its sequence and predicted cost), smoothed by the same multi-phase solver from the "
-	      "plan; `hylo-smooth` also smooths the plan with each drive between two flights flown over "
-	      "instead (`flown_over()`) and keeps the cheapest: that is hylo's result. Smoothing options: "
-	      "flight segments of at most 40 ms, replay tolerance 0.05 (knot to knot for flight), up to 1,000 "
-	      "Ipopt iterations per solve. Costs in J; best fixed sequence in bold.\n\n"
+	      " placement). hylo: the planner's alternatives with the committed "
+	      "SVR models (goal.alternatives = " + std::to_string(kChasmAlternatives) + ": the best graph path "
+	      "of each of the cheapest distinct mode sequences predicted within 1.25 times the best; sequence "
+	      "and predicted cost), each smoothed by the same multi-phase solver from its path; the cheapest "
+	      "smoothed one is hylo's result, as `hylo-smooth` publishes it, and rank is the graph's rank of "
+	      "its sequence (1: the plan). Smoothing options: flight segments of at most 40 ms, replay "
+	      "tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt iterations per solve. Costs in J; "
+	      "best fixed sequence in bold.\n\n"
 	      "| width [m] | F | DF | DFD | FDF | DFDF | DFDFD | hylo plan (predicted) | plan smoothed | "
-	      "flown over | hylo | vs best |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+	      "other alternatives (predicted) smoothed | hylo | rank | vs best |\n"
+	      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 	std::string js = "[";
 	std::vector<std::string> best_seq(done);
 	for (size_t c = 0; c < done; c++) {
@@ -950,28 +1023,23 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		std::vector<double> best;
 		for (const std::vector<double> &r : best_rec)
 			best.push_back(cost_of(r));
-		const std::vector<double> *hylo = nullptr;   // the plan smoothed
-		std::vector<const std::vector<double> *> flown;   // its flown_over() neighbours smoothed
-		for (size_t i = 0; i < items.size(); i++) {
-			if (items[i].chasm != c || items[i].seq >= 0)
-				continue;
-			if (items[i].flown < 0)
-				hylo = &rec[i];
-			else
-				flown.push_back(&rec[i]);
-		}
+		std::vector<const std::vector<double> *> smoothed(alts[c].size());   // each alternative smoothed, by rank
+		for (size_t i = 0; i < items.size(); i++)
+			if (items[i].chasm == c && items[i].seq < 0)
+				smoothed[static_cast<size_t>(items[i].rank)] = &rec[i];
+		const std::vector<double> *hylo = smoothed[0];   // the plan smoothed
+		const std::string &plan_seq = alts[c][0].letters;
 		const size_t qb = cheapest(best);
 		best_seq[c] = seqs[qb];
-		// hylo's result: the cheapest converged of the plan and its neighbours.
-		const std::vector<double> *res = hylo;
-		std::string res_seq = plan_seq[c];
-		for (size_t k = 0; k < flown.size(); k++)
-			if (std::isfinite((*flown[k])[0]) && !((*flown[k])[0] >= (*res)[0])) {
-				res = flown[k];
-				res_seq = flown_seq[c][k];
-			}
+		// hylo's result: the cheapest converged alternative (the earlier on a tie).
+		size_t rank = 0;
+		for (size_t k = 1; k < smoothed.size(); k++)
+			if (std::isfinite((*smoothed[k])[0]) && !((*smoothed[k])[0] >= (*smoothed[rank])[0]))
+				rank = k;
+		const std::vector<double> *res = smoothed[rank];
+		const std::string &res_seq = alts[c][rank].letters;
 		const double hs = (*res)[0];
-		auto own = std::find(seqs.begin(), seqs.end(), plan_seq[c]);
+		auto own = std::find(seqs.begin(), seqs.end(), plan_seq);
 		double seq_best = own == seqs.end() ? NAN : best[static_cast<size_t>(own - seqs.begin())];
 		double rel = (hs - best[qb]) / best[qb], seq_rel = (seq_best - best[qb]) / best[qb];
 		auto cost = [](double v) { return std::isfinite(v) ? num(std::round(v * 10) / 10) : std::string("failed"); };
@@ -981,15 +1049,18 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 			std::snprintf(cell, sizeof cell, q == qb ? " **%.1f** |" : " %.1f |", best[q]);
 			md += std::isfinite(best[q]) ? cell : " failed |";
 		}
-		std::string fl;
-		for (size_t k = 0; k < flown.size(); k++)
-			fl += std::string(k ? ", " : "") + flown_seq[c][k] + " " + cost((*flown[k])[0]);
+		std::string others;
+		for (size_t k = 1; k < smoothed.size(); k++) {
+			char pred[32];
+			std::snprintf(pred, sizeof pred, " (%.1f) ", alts[c][k].predicted);
+			others += std::string(k > 1 ? ", " : "") + alts[c][k].letters + pred + cost((*smoothed[k])[0]);
+		}
 		char pct[32] = "", tail[512];
 		if (std::isfinite(hs))   // "0.00%" rather than "-0.00%" for a rounding-level difference
 			std::snprintf(pct, sizeof pct, "%+.2f%%", std::fabs(rel) < 5e-5 ? 0.0 : 100 * rel);
-		std::snprintf(tail, sizeof tail, " %s (%.1f) | %s | %s | %s | %s |\n", plan_seq[c].c_str(), predicted[c],
-			      cost((*hylo)[0]).c_str(), fl.empty() ? "none" : fl.c_str(),
-			      std::isfinite(hs) ? (res_seq + " " + cost(hs)).c_str() : "failed", pct);
+		std::snprintf(tail, sizeof tail, " %s (%.1f) | %s | %s | %s | %zu | %s |\n", plan_seq.c_str(),
+			      alts[c][0].predicted, cost((*hylo)[0]).c_str(), others.empty() ? "none" : others.c_str(),
+			      std::isfinite(hs) ? (res_seq + " " + cost(hs)).c_str() : "failed", rank + 1, pct);
 		md += tail;
 		js += std::string(c ? "," : "") + "\n  {\"scene\": \"chasm_" + std::to_string(widths[c]) +
 		      "\", \"width_m\": " + std::to_string(widths[c]) + ", \"fixed\": {";
@@ -1006,15 +1077,17 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 				js += std::string(k > 5 ? ", " : "") + num(r[k]);
 			js += "]}";
 		}
-		std::string fj;
-		for (size_t k = 0; k < flown.size(); k++)
-			fj += std::string(k ? ", " : "") + "{\"sequence\": \"" + flown_seq[c][k] +
-			      "\", \"smoothed_j\": " + num((*flown[k])[0]) + "}";
-		js += "},\n   \"best_fixed\": \"" + seqs[qb] + "\", \"hylo\": {\"sequence\": \"" + plan_seq[c] +
-		      "\", \"predicted_j\": " + num(predicted[c]) + ", \"plan_s\": " + num(plan_s[c]) +
+		std::string aj;
+		for (size_t k = 0; k < smoothed.size(); k++)
+			aj += std::string(k ? ", " : "") + "{\"rank\": " + std::to_string(k + 1) + ", \"sequence\": \"" +
+			      alts[c][k].letters + "\", \"predicted_j\": " + num(alts[c][k].predicted) +
+			      ", \"smoothed_j\": " + num((*smoothed[k])[0]) + "}";
+		js += "},\n   \"best_fixed\": \"" + seqs[qb] + "\", \"hylo\": {\"sequence\": \"" + plan_seq +
+		      "\", \"predicted_j\": " + num(alts[c][0].predicted) + ", \"plan_s\": " + num(plan_s[c]) +
 		      ", \"smoothed_j\": " + num((*hylo)[0]) + ", \"sequence_fixed_j\": " + num(seq_best) +
-		      ", \"sequence_vs_best\": " + num(seq_rel) + ", \"flown_over\": [" + fj +
-		      "], \"result_sequence\": \"" + res_seq + "\", \"result_j\": " + num(hs) + ", \"T_s\": " +
+		      ", \"sequence_vs_best\": " + num(seq_rel) + ", \"alternatives\": [" + aj +
+		      "], \"result_rank\": " + std::to_string(rank + 1) + ", \"result_sequence\": \"" + res_seq +
+		      "\", \"result_j\": " + num(hs) + ", \"T_s\": " +
 		      num((*res)[1]) + ", \"replay_error\": " + num((*res)[2]) + ", \"flight_clearance_m\": " +
 		      num((*res)[3]) + ", \"result_vs_best\": " + num(rel) + "}}";
 	}

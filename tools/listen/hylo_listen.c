@@ -1,6 +1,7 @@
 /*
  * hylo-listen: prints the plans (<prefix>HYLO_PLAN, and their alternatives on
- * <prefix>HYLO_PLAN_ALTERNATIVE) and trajectories (<prefix>HYLO_TRAJ) seen
+ * <prefix>HYLO_PLAN_ALTERNATIVE) and trajectories (<prefix>HYLO_TRAJ, and what
+ * the smoother made of each alternative on <prefix>HYLO_TRAJ_ALTERNATIVE) seen
  * on the bus, as text or as JSON lines. See --help.
  * Exit codes: 0 after --count messages or a signal or the end of a file://
  * log, 1 when --timeout passes with nothing received or LCM fails, 2 usage.
@@ -18,6 +19,7 @@
 #include "hylo_plan_alternative_t.h"
 #include "hylo_plan_t.h"
 #include "hylo_msg.h"
+#include "hylo_traj_alternative_t.h"
 #include "hylo_traj_t.h"
 
 static volatile sig_atomic_t stop_requested;
@@ -254,6 +256,51 @@ static void on_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 	received++;
 }
 
+/* What the smoother made of an alternative (traj_alternative_t), after the traj_t. */
+static void on_traj_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
+				const hylo_traj_alternative_t *a, void *u)
+{
+	int k;
+
+	(void)rbuf;
+	(void)ch;
+	(void)u;
+	if (json) {
+		printf("{\"type\":\"traj_alternative\",\"request_id\":%lld,\"map_id\":%lld,\"index\":%d,"
+		       "\"count\":%d,\"planned\":%d,\"mode_changes\":%d,\"mode_sequence\":[",
+		       (long long)a->request_id, (long long)a->map_id, a->index, a->count, a->planned,
+		       a->mode_changes);
+		for (k = 0; k < a->n_modes; k++)
+			printf("%s\"%s\"", k ? "," : "", mode_str(a->mode_sequence[k]));
+		printf("],\"predicted_j\":");
+		jnum(a->predicted_j);
+		printf(",\"status\":");
+		jstr(status_str(a->status));
+		printf(",\"reason\":");
+		jstr(a->reason);
+		printf(",\"method\":");
+		jstr(a->status == HYLO_PLAN_T_STATUS_OK ? method_str(a->method) : "none");
+		printf(",\"smoothed_j\":");
+		jnum(a->smoothed_j);
+		printf(",\"gap_j\":");
+		jnum(a->gap_j);
+		printf(",\"chosen\":%d}\n", a->chosen);
+	} else {
+		printf("  smoothed alternative %d of %d for traj %lld (graph rank %d): ", a->index + 1, a->planned,
+		       (long long)a->request_id, a->index + 1);
+		for (k = 0; k < a->n_modes; k++)
+			printf("%s%s", k ? " > " : "", mode_str(a->mode_sequence[k]));
+		printf(", predicted %.6g J, ", a->predicted_j);
+		if (a->status == HYLO_PLAN_T_STATUS_OK)
+			printf("smoothed %.6g J (%s)", a->smoothed_j, method_str(a->method));
+		else
+			printf("%s: %s", status_str(a->status), a->reason);
+		printf("%s\n", a->chosen ? ", chosen" : "");
+	}
+	fflush(stdout);
+	received++;
+}
+
 static void on_plan(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_plan_t *msg, void *u)
 {
 	(void)rbuf;
@@ -323,7 +370,8 @@ static void usage(FILE *f)
 	fprintf(f,
 		"usage: hylo-listen [options]\n"
 		"Prints every plan (<prefix>HYLO_PLAN), its alternatives when the goal asked for\n"
-		"them (<prefix>HYLO_PLAN_ALTERNATIVE) and smoothed trajectory (<prefix>HYLO_TRAJ).\n"
+		"them (<prefix>HYLO_PLAN_ALTERNATIVE), smoothed trajectory (<prefix>HYLO_TRAJ) and\n"
+		"what the smoother made of each alternative (<prefix>HYLO_TRAJ_ALTERNATIVE).\n"
 		"\n"
 		"  --lcm-url URL        LCM provider (default: $LCM_DEFAULT_URL, else LCM's default)\n"
 		"  --channel-prefix P   prefix of the channel names (default: none)\n"
@@ -342,7 +390,7 @@ int main(int argc, char **argv)
 {
 	const char *url = NULL, *prefix = "";
 	double timeout_s = 0;
-	char ch_plan[160], ch_alternative[160], ch_traj[160], ch_status[160];
+	char ch_plan[160], ch_alternative[160], ch_traj[160], ch_traj_alternative[160], ch_status[160];
 	struct sigaction sa;
 	struct timespec last, now;
 	lcm_t *lcm;
@@ -389,6 +437,7 @@ int main(int argc, char **argv)
 	snprintf(ch_plan, sizeof ch_plan, "%sHYLO_PLAN", prefix);
 	snprintf(ch_alternative, sizeof ch_alternative, "%sHYLO_PLAN_ALTERNATIVE", prefix);
 	snprintf(ch_traj, sizeof ch_traj, "%sHYLO_TRAJ", prefix);
+	snprintf(ch_traj_alternative, sizeof ch_traj_alternative, "%sHYLO_TRAJ_ALTERNATIVE", prefix);
 	snprintf(ch_status, sizeof ch_status, "%sHYLO_STATUS", prefix);
 	lcm = lcm_create(url);
 	if (!lcm) {
@@ -401,6 +450,7 @@ int main(int argc, char **argv)
 		hylo_plan_t_subscribe(lcm, ch_plan, on_plan, NULL);
 		hylo_plan_alternative_t_subscribe(lcm, ch_alternative, on_alternative, NULL);
 		hylo_traj_t_subscribe(lcm, ch_traj, on_traj, NULL);
+		hylo_traj_alternative_t_subscribe(lcm, ch_traj_alternative, on_traj_alternative, NULL);
 	}
 	memset(&sa, 0, sizeof sa);
 	sa.sa_handler = on_signal;
