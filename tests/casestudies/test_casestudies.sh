@@ -14,7 +14,10 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 
 "$CS" --help > "$T/help" 2>&1
-tap_check "--help lists every option" grep -q -- "--study.*--out.*--jobs.*--quick" <(tr '\n' ' ' < "$T/help")
+tap_check "--help lists every option" grep -q -- "--study.*--out.*--jobs.*--quick.*--widths" <(tr '\n' ' ' < "$T/help")
+
+"$CS" --study drivocopter --widths 40,20 > "$T/out" 2>&1; rc=$?
+tap_check "--widths below the narrowest chasm: exit 2 naming the value" test "$rc" = 2 -a -n "$(grep -- "--widths: '20'" "$T/out")"
 
 "$CS" --study nope > "$T/out" 2>&1; rc=$?
 tap_check "an unknown study: exit 2 and says which" test "$rc" = 2 -a -n "$(grep "unknown study 'nope'" "$T/out")"

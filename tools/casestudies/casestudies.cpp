@@ -60,6 +60,7 @@ using hylo::scene::Scene;
 
 const char *kUsage =
 	"usage: hylo-casestudies [--study di|ambot|drivocopter|all] [--out DIR] [--jobs N] [--quick]\n"
+	"                        [--widths W,...]\n"
 	"  The paper's case studies (docs/results.md explains each).\n"
 	"  --study S   which study to run (default all); the others' last results\n"
 	"              (DIR/results/<study>.{md,json}) are kept in the combined files\n"
@@ -68,6 +69,10 @@ const char *kUsage =
 	"  --quick     a check: the DI convergence on 3 spacings instead of 10, Ambot\n"
 	"              plans without exact edge costs or smoothing, the Drivocopter\n"
 	"              sequences on the 30 m chasm from one switch placement, no crossover\n"
+	"  --widths W,... the Drivocopter study on these chasm widths [m, >= 30] instead of\n"
+	"              30-110: a committed scene where there is one, else the 30 m chasm\n"
+	"              widened (floor inserted at its middle); no crossover. For scenes\n"
+	"              nobody tuned on: write them to another --out\n"
 	"  The Drivocopter study ends by locating the crossover from flying over to driving\n"
 	"  through to the metre (the two sequences solved on chasms widened in between).\n"
 	"  It logs each finished solve to DIR/results/drivocopter.solves\n"
@@ -78,6 +83,7 @@ struct Options {
 	std::string study = "all", out = "docs";
 	int jobs = 2;
 	bool quick = false;
+	std::vector<int> widths;   // the Drivocopter study's chasms; empty: the committed 30-110 m
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0)
@@ -922,6 +928,8 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 	std::vector<int> widths = {30, 50, 70, 90, 110};
 	if (opt.quick)
 		widths = {30};
+	if (!opt.widths.empty())
+		widths = opt.widths;
 	using Item = ChasmItem;
 	std::vector<Scene> scenes;
 	std::vector<Chasm> chasms;
@@ -931,7 +939,13 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 	for (size_t c = 0; c < widths.size(); c++) {
 		char path[64];
 		std::snprintf(path, sizeof path, "scenes/chasm_%03d.yaml", widths[c]);
-		scenes.push_back(hylo::scene::load(path));
+		if (access(path, R_OK) == 0) {
+			scenes.push_back(hylo::scene::load(path));
+		} else {
+			// Not committed: the 30 m chasm widened (--widths).
+			Scene base = hylo::scene::load("scenes/chasm_030.yaml");
+			scenes.push_back(widened(base, chasm_of(base), widths[c] - 30.0));
+		}
 		chasms.push_back(chasm_of(scenes.back()));
 		Planner pl;
 		hylo_goal g = goal_of(scenes.back());
@@ -985,7 +999,7 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 		     table_one(widths, done, seqs, lambdas.size(), items, rec, alts, plan_s, tl, md);
 		checkpoint(md, js + ", \"crossover\": null}");
 	}
-	if (!opt.quick)
+	if (!opt.quick && opt.widths.empty())
 		js += ", \"crossover\": " +
 		      crossover(opt, robot, tl, widths, scenes, chasms, seqs, items, rec, log, robot_sha, md);
 	return js + "}";
@@ -1171,6 +1185,15 @@ int run(int argc, char **argv)
 				throw std::invalid_argument("--jobs: needs a positive integer");
 		} else if (a == "--quick") {
 			opt.quick = true;
+		} else if (a == "--widths") {
+			std::stringstream in(value());
+			for (std::string w; std::getline(in, w, ',');) {
+				char *end = nullptr;
+				long v = std::strtol(w.c_str(), &end, 10);
+				if (w.empty() || *end || v < 30 || v > 400)
+					throw std::invalid_argument("--widths: '" + w + "' is not a whole number of metres in 30..400");
+				opt.widths.push_back(static_cast<int>(v));
+			}
 		} else {
 			throw std::invalid_argument("unknown argument '" + a + "'");
 		}
