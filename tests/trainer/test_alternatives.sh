@@ -15,13 +15,7 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 SCENE=tests/trainer/scenes/di_alternatives.yaml
 
-# plan NAME SCENE-ARGS...: map + goal log, plan log, and their concatenation.
-plan() {
-  local n=$1; shift
-  "$B/bin/hylo-scene" $SCENE --goal "$@" --lcm-url "file://$T/$n.in.log?mode=w" &&
-  "$B/bin/hylo-planner" --lcm-url "file://$T/$n.in.log?speed=0" --out-url "file://$T/$n.plan.log?mode=w" 2>/dev/null &&
-  cat "$T/$n.in.log" "$T/$n.plan.log" > "$T/$n.all.log"
-}
+. tests/trainer/plan_logs.sh
 # smooth NAME LOG ARGS...: hylo-smooth on LOG, its output as JSON lines in NAME.json.
 smooth() {
   local n=$1 log=$2; shift 2
@@ -30,8 +24,8 @@ smooth() {
   "$B/bin/hylo-listen" --lcm-url "file://$T/$n.traj.log?speed=0" --json > "$T/$n.json"
 }
 
-plan k3
-plan k1 --alternatives 0
+plan_logs k3 "$SCENE"
+plan_logs k1 "$SCENE" --alternatives 0
 "$B/bin/hylo-listen" --lcm-url "file://$T/k3.plan.log?speed=0" --json > "$T/k3.plan.json"
 if smooth k3 k3.all.log; then tap_ok "K = 3: hylo-smooth smooths the plan and its alternatives, exits 0"
 else tap_not_ok "K = 3: hylo-smooth smooths the plan and its alternatives, exits 0" "$(cat "$T/k3.err")"; fi

@@ -27,12 +27,7 @@ for f in "$T"/many/*.yaml; do "$B/bin/hylo-scene" "$f" --check > /dev/null 2>> "
 if [ -z "$bad" ] && [ "$(ls "$T"/many/*.yaml | wc -l)" -eq 18 ]; then tap_ok "generator: 12 Ambot and 6 Drivocopter scenes pass hylo-scene --check"
 else tap_not_ok "generator: 12 Ambot and 6 Drivocopter scenes pass hylo-scene --check" "$bad $(cat "$T/check.err")"; fi
 
-# plan NAME SCENE: map + goal log and plan log, concatenated into NAME.all.log.
-plan() {
-  "$B/bin/hylo-scene" "$2" --goal --lcm-url "file://$T/$1.in.log?mode=w" &&
-  "$B/bin/hylo-planner" --lcm-url "file://$T/$1.in.log?speed=0" --out-url "file://$T/$1.plan.log?mode=w" 2>/dev/null &&
-  cat "$T/$1.in.log" "$T/$1.plan.log" > "$T/$1.all.log"
-}
+. tests/trainer/plan_logs.sh
 # smooth NAME OUT [hylo-smooth options]: NAME's plan smoothed into OUT.json (+ .out, .err).
 smooth() {
   local n=$1 o=$2; shift 2
@@ -96,7 +91,7 @@ field() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).readli
 # --- the full optimization forced to fail --------------------------------
 # Generated Ambot scene, seed 2: a lake crossed by a swim (ground -> marine -> ground).
 S="$T/a/gen_ambot_2.yaml"
-plan g2 "$S"
+plan_logs g2 "$S"
 seq=$("$B/bin/hylo-listen" --lcm-url "file://$T/g2.plan.log?speed=0" --json | python3 -c "import json,sys; print(' '.join(json.loads(sys.stdin.readline())['mode_sequence']))")
 if [ "$seq" = "ground marine ground" ]; then tap_ok "gen_ambot_2 plans ground -> marine -> ground"
 else tap_not_ok "gen_ambot_2 plans ground -> marine -> ground" "$seq"; fi
@@ -142,7 +137,7 @@ else tap_not_ok "no step can solve it: status no path, the reason names the edge
 
 # --- the issue's lake scene --------------------------------------------------
 S=tests/trainer/scenes/lake_bridge.yaml
-plan lake "$S"
+plan_logs lake "$S"
 smooth lake lake
 status=$(field lake status); method=$(field lake method); reason=$(field lake reason)
 sed 's/^/# /' "$T/lake.out" "$T/lake.err"

@@ -12,13 +12,7 @@ B=${BUILD:-build}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 
-# plan NAME SCENE-ARGS...: map + goal log, plan log, and their concatenation.
-plan() {
-  local n=$1; shift
-  "$B/bin/hylo-scene" scenes/di.yaml --goal "$@" --lcm-url "file://$T/$n.in.log?mode=w" &&
-  "$B/bin/hylo-planner" --lcm-url "file://$T/$n.in.log?speed=0" --out-url "file://$T/$n.plan.log?mode=w" 2>/dev/null &&
-  cat "$T/$n.in.log" "$T/$n.plan.log" > "$T/$n.all.log"
-}
+. tests/trainer/plan_logs.sh
 smooth() {
   local n=$1; shift
   "$B/bin/hylo-smooth" --lcm-url "file://$T/$n.all.log?speed=0" --out-url "file://$T/$n.traj.log?mode=w" "$@"
@@ -53,7 +47,7 @@ PY
 
 case_check() {
   local n=$1 a0=$2 a1=$3 b0=$4 b1=$5; shift 5
-  plan "$n" "$@"
+  plan_logs "$n" scenes/di.yaml "$@"
   if smooth "$n" --compare-graph > "$T/$n.out" 2> "$T/$n.err"; then
     tap_ok "$n: hylo-smooth reads the plan log and exits 0"
   else
@@ -112,7 +106,7 @@ else tap_not_ok "deterministic: a second run gives the same trajectory"; fi
 if grep -q '"status":"no map"' "$T/nomap.json" && grep -q "map 1 of the plan was not received" "$T/nomap.err"; then
   tap_ok "a plan whose map was not received gets a traj_t with status no map"
 else tap_not_ok "a plan whose map was not received gets a traj_t with status no map" "$(cat "$T/nomap.json" "$T/nomap.err")"; fi
-plan bad --start di_pos:2,0
+plan_logs bad scenes/di.yaml --start di_pos:2,0
 smooth bad 2> "$T/bad.err" > /dev/null
 traj_json bad > "$T/bad.json"
 if grep -q '"status":"bad request"' "$T/bad.json" && grep -q "no path to smooth" "$T/bad.err"; then
