@@ -320,9 +320,7 @@ int run(int argc, char **argv)
 	for (const std::string &path : scenes) {
 		const hylo::scene::Scene sc = hylo::scene::load(path);
 		const hylo_map_view v = hylo::scene::map_view(sc);
-		hylo_goal there = hylo::scene::goal_of(sc), back = there;
-		std::swap(back.start_mode, back.goal_mode);
-		std::swap_ranges(back.start, back.start + HYLO_XS_DIM, back.goal);
+		const hylo_goal there = hylo::scene::goal_of(sc), back = hylo::scene::way_back(there);
 		for (const hylo_goal *g : {&there, &back}) {
 			hylo_planner_set_map(pl, &v);   // a fresh cache: this goal's edges alone
 			hylo_planner_plan(pl, g, plan.get());

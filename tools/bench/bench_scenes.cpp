@@ -101,6 +101,7 @@ void write_json(const char *path)
 
 using hylo::scene::goal_of;
 using hylo::scene::map_view;
+using hylo::scene::way_back;
 
 struct Bench {
 	hylo::scene::CommittedPlanner committed{now_ms};
@@ -257,15 +258,6 @@ hylo_goal nearby_goal(Bench &b, const hylo_goal &g)
 			return n;
 	}
 	throw std::runtime_error("no nearby goal is valid");
-}
-
-hylo_goal way_back(const hylo_goal &g)
-{
-	hylo_goal n = g;
-	std::swap(n.start_mode, n.goal_mode);
-	for (int k = 0; k < HYLO_XS_DIM; k++)
-		std::swap(n.start[k], n.goal[k]);
-	return n;
 }
 
 void bench_scene(Bench &b, const std::string &path)

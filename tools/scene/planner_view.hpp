@@ -4,6 +4,9 @@
 #ifndef HYLO_TOOLS_PLANNER_VIEW_HPP
 #define HYLO_TOOLS_PLANNER_VIEW_HPP
 
+#include <algorithm>
+#include <utility>
+
 #include "hylo/planner.h"
 #include "tools/scene/scene.hpp"
 
@@ -57,6 +60,15 @@ inline hylo_goal goal_of(const Scene &sc)
 	q.alternatives = static_cast<uint32_t>(g.alternatives);
 	q.alternatives_within = g.alternatives_within;
 	return q;
+}
+
+// The same goal the other way: start and goal (modes and states) swapped.
+inline hylo_goal way_back(const hylo_goal &g)
+{
+	hylo_goal b = g;
+	std::swap(b.start_mode, b.goal_mode);
+	std::swap_ranges(b.start, b.start + HYLO_XS_DIM, b.goal);
+	return b;
 }
 
 }  // namespace hylo::scene
