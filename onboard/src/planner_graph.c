@@ -730,18 +730,18 @@ hylo_real hylo_planner_greedy_walk(hylo_planner *pl, double deadline)
 			return INFINITY;
 		/* Candidates: heads below u's heuristic, and switch heads at it. */
 		o.h_below = switched ? hu : nextafter(hu, INFINITY);
-		if (successors(pl, &o, u, pl->scratch_heads, pl->scratch_costs, HYLO_MAX_SUCCESSORS, &n) != HYLO_OK)
+		if (successors(pl, &o, u, pl->walk_heads, pl->walk_costs, HYLO_MAX_SUCCESSORS, &n) != HYLO_OK)
 			return INFINITY;
 		for (k = 0; k < n; k++) {
-			uint32_t v = pl->scratch_heads[k], vi = rm->node_pos[v];
+			uint32_t v = pl->walk_heads[k], vi = rm->node_pos[v];
 			hylo_real hv = hylo_planner_h(pl, v);
 			int sw = ui < rm->n_positions && rm->pos[ui].twin == vi;
 
 			if (!(hv < hu || (sw && !switched && hv <= hu)))
 				continue;
-			if (pl->scratch_costs[k] + hv < best) {
-				best = pl->scratch_costs[k] + hv;
-				best_c = pl->scratch_costs[k];
+			if (pl->walk_costs[k] + hv < best) {
+				best = pl->walk_costs[k] + hv;
+				best_c = pl->walk_costs[k];
 				best_v = v;
 				best_switch = sw;
 			}

@@ -72,6 +72,29 @@ static int open_copies(const hylo_planner *pl, const copies *cp, uint32_t i, uin
 	return any;
 }
 
+/* Appends the copies open_copies marked in open[] of the nodes of
+ * position p, node c's with cost lb[c]. */
+static hylo_status push_open(hylo_planner *pl, const copies *cp, const hylo_position *p,
+			     const uint8_t *open, const hylo_real *lb, uint32_t *heads, hylo_real *costs,
+			     uint32_t cap, uint32_t *n)
+{
+	uint32_t c, k, m = *n;
+
+	for (c = 0; c < p->n_combos; c++)
+		for (k = 0; k < cp->n_off; k++) {
+			if (!(open[c] & (1u << k)))
+				continue;
+			if (m >= cap)
+				return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
+						 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
+						 HYLO_MAX_SUCCESSORS);
+			heads[m] = p->node_base + c + cp->off[k];
+			costs[m++] = lb[c];
+		}
+	*n = m;
+	return HYLO_OK;
+}
+
 /* The switch edges into node v (position j) from j's guard twin. */
 static hylo_status switch_predecessors(hylo_planner *pl, const copies *cp, uint32_t v,
 				       uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
@@ -103,7 +126,6 @@ static hylo_status position_predecessors(hylo_planner *pl, const copies *cp, uin
 	hylo_real lb[HYLO_MAX_COMBOS];
 	uint8_t open[HYLO_MAX_COMBOS];
 	hylo_pair_bound pb;
-	uint32_t c, k;
 
 	if (!open_copies(pl, cp, i, open))
 		return HYLO_OK;
@@ -112,17 +134,7 @@ static hylo_status position_predecessors(hylo_planner *pl, const copies *cp, uin
 	else
 		hylo_planner_pair_bound_into(pl, i, j, a, &pb);
 	hylo_planner_bounds_into(&pb, i, cj, head, lb);
-	if (*n + p->n_combos * cp->n_off > cap)
-		return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
-				 "the heuristic: more than HYLO_MAX_SUCCESSORS = %d predecessors",
-				 HYLO_MAX_SUCCESSORS);
-	for (c = 0; c < p->n_combos; c++)
-		for (k = 0; k < cp->n_off; k++)
-			if (open[c] & (1u << k)) {
-				heads[*n] = p->node_base + c + cp->off[k];
-				costs[(*n)++] = lb[c];
-			}
-	return HYLO_OK;
+	return push_open(pl, cp, p, open, lb, heads, costs, cap, n);
 }
 
 /* The edges into node v (position j, not the start's), from the copies
@@ -338,9 +350,10 @@ static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t u, uint32_
 			continue;
 		hylo_planner_pair_bound(pl, i, j, &pb);
 		hylo_planner_bounds_from(&pb, c, tail, j, lb);
-		for (c2 = 0; c2 < rm->pos[j].n_combos && st == HYLO_OK; c2++)
-			if ((open[c2] & 1u) && isfinite(lb[c2]))
-				st = push(pl, &moves, rm->pos[j].node_base + c2, lb[c2], heads, costs, cap, n);
+		for (c2 = 0; c2 < rm->pos[j].n_combos; c2++)
+			if (!isfinite(lb[c2]))
+				open[c2] = 0;   /* no such edge */
+		st = push_open(pl, &moves, &rm->pos[j], open, lb, heads, costs, cap, n);
 	}
 	if (st != HYLO_OK || i >= rm->n_positions || rm->pos[i].twin == HYLO_NO_POSITION)
 		return st;

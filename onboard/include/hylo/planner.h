@@ -185,10 +185,8 @@ typedef struct {
 	uint32_t walk_len;
 	uint32_t walk_path[HYLO_MAX_WAYPOINTS];
 	hylo_real walk_cost[HYLO_MAX_WAYPOINTS];
-	/* successor lists built outside the search: the walk's steps, the
-	 * layered heuristic's predecessors */
-	uint32_t scratch_heads[HYLO_MAX_SUCCESSORS];
-	hylo_real scratch_costs[HYLO_MAX_SUCCESSORS];
+	uint32_t walk_heads[HYLO_MAX_SUCCESSORS];
+	hylo_real walk_costs[HYLO_MAX_SUCCESSORS];
 	/* scratch of one group's evaluation */
 	uint32_t eval_idx[HYLO_MAX_COMBOS];
 	/* alternatives: the search runs over `layers` copies of the graph of
@@ -198,13 +196,13 @@ typedef struct {
 	uint8_t layer_mode[2];          /* travel mode of even and odd layers */
 	/* the layered heuristic (planner_heuristic.c): in h_node once h_layered */
 	hylo_search layer_search;       /* its searches */
-	hylo_real h_forward[HYLO_MAX_NODES]; /* bound-distances from the start, up to the cap */
+	hylo_real h_forward[HYLO_MAX_NODES]; /* every node copy's bound-distance from the start */
 	int h_forward_valid;            /* computed for this goal */
 	const hylo_search *layered_forward;  /* while it runs: the alternatives' search */
 	hylo_real layered_cap;          /* paths dearer than this are not wanted */
 	hylo_real layered_within;       /* the goal's alternatives_within */
 	double deadline;                /* the goal's, on the planner's clock [ms]; +inf: none */
-	int h_layered;
+	int h_layered;                  /* h_node holds the layered heuristic (indexed by copy) */
 	uint32_t n_found;
 	uint32_t found[HYLO_MAX_ALTERNATIVES];
 } hylo_planner;
