@@ -113,7 +113,7 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	// issue #35's three more (starts: 3; planar_strategy_guesses).
 	if ((opt.mode == "ground" || opt.mode == "marine") && opt.solve.strategy_starts)
 		m << "starts: 3\n";
-	m << "params_sha256: " << sha256_file(robot.path) << "\n";
+	m << "params_sha256: " << robot.labels_sha256 << "\n";
 	// What else a label depends on: the solver's settings and the numerics.
 	m << solve_options_text(opt.solve) << numerics_description();
 	return m.str();

@@ -4,11 +4,15 @@
 #include <cmath>
 #include <cstdlib>
 #include <dirent.h>
+#include <fstream>
+#include <sstream>
 #include <unistd.h>
 #include <set>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
+
+#include "trainer/sha256.hpp"
 
 namespace hylo::trainer {
 namespace {
@@ -23,6 +27,30 @@ const std::map<std::string, std::vector<std::string>> kRequired = {
 	{"di_neg", {"rho"}},
 	{"di_pos", {"rho"}},
 };
+
+// The file's text without its top-level body block (the "body:" line and
+// the indented or blank lines after it).
+std::string without_body(const std::string &path)
+{
+	std::ifstream f(path, std::ios::binary);
+	std::ostringstream ss;
+	ss << f.rdbuf();
+	const std::string text = ss.str();
+	std::string out;
+	bool in_body = false;
+	for (size_t i = 0; i < text.size();) {
+		size_t e = text.find('\n', i);
+		e = e == std::string::npos ? text.size() : e + 1;
+		const std::string line = text.substr(i, e - i);
+		const bool top = !line.empty() && line[0] != ' ' && line[0] != '\t' && line[0] != '\n' && line[0] != '#';
+		if (top)
+			in_body = line.compare(0, 5, "body:") == 0;
+		if (!in_body)
+			out += line;
+		i = e;
+	}
+	return out;
+}
 
 struct Reader {
 	std::string path;
@@ -175,13 +203,21 @@ RobotParams load_robot(const std::string &path)
 	}
 	if (!root || !root.IsMap())
 		throw ParamError(path + ":1: a robot file must be a YAML mapping");
-	rd.only(root, "the robot file", {"robot", "g", "modes"});
+	rd.only(root, "the robot file", {"robot", "g", "body", "modes"});
 	RobotParams rp;
 	rp.path = path;
 	rp.robot = rd.need(root, "robot", "the robot file").as<std::string>();
 	rp.g = rd.number(rd.need(root, "g", "the robot file"), "g");
 	if (!(rp.g > 0))
 		rd.fail(root["g"], "g must be > 0");
+	if (YAML::Node b = root["body"]) {
+		rd.only(b, "the body", {"radius_m"});
+		YAML::Node r = rd.need(b, "radius_m", "the body");
+		rp.body_radius_m = rd.number(r, "body.radius_m");
+		if (!(rp.body_radius_m >= 0 && rp.body_radius_m < 100))
+			rd.fail(r, "body.radius_m must be in [0, 100) m");
+	}
+	rp.labels_sha256 = sha256_hex(without_body(path));
 	YAML::Node modes = rd.need(root, "modes", "the robot file");
 	if (!modes.IsMap() || modes.size() == 0)
 		rd.fail(modes, "modes must be a non-empty mapping");

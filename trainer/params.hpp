@@ -37,6 +37,14 @@ struct ModeParams {
 struct RobotParams {
 	std::string robot, path;
 	double g = 9.81;
+	// body: {radius_m: R}: the robot's size, a disc (ground, marine) or a
+	// sphere (flight, every attitude) of radius R around its position [m];
+	// 0 (no body key): a point. Trajectories keep it clear of what the mode
+	// cannot touch (docs/smoothing.md, "Clearance").
+	double body_radius_m = 0;
+	// SHA-256 of the file without its body block: what every label depends
+	// on (the body changes no label, so datasets and models outlive it).
+	std::string labels_sha256;
 	std::map<std::string, ModeParams> modes;
 	const ModeParams &mode(const std::string &name) const;   // throws ParamError
 };

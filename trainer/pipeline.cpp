@@ -185,7 +185,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	g.shard = g.shards = 1;
 	std::string path = dataset_path(g);
 	std::string meta = slurp(path + ".meta");
-	if (meta.find("params_sha256: " + sha256_file(robot.path)) == std::string::npos ||
+	if (meta.find("params_sha256: " + robot.labels_sha256) == std::string::npos ||
 	    meta.find("robot: " + robot.robot + "\n") == std::string::npos)
 		throw std::invalid_argument(path + " was generated from another robot file than " + robot.path);
 	Rows rows = read_dataset(path, g.mode, g.samples);
@@ -222,7 +222,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		      rep.median_rel_error, rep.p95_rel_error, rep.max_rel_error, rep.mae);
 	m.provenance = {
 		{"robot file", "trainer/params/" + robot.robot + ".yaml"},   // location-independent
-		{"robot file sha256", sha256_file(robot.path)},
+		{"robot file sha256", robot.labels_sha256},
 		{"dataset sha256", rows.sha256},   // the whole file unless rows were appended since
 		{"samples", std::to_string(rows.n) + " (" + std::to_string(rows.cost.size()) + " converged" +
 				    (rows.errors ? ", " + std::to_string(rows.errors) + " errors left out" : "") + ")"},
@@ -334,7 +334,7 @@ int region_stage(const RobotParams &robot, const PipelineOptions &opt)
 	if (rows.n != n || rows.sha256 != sha)
 		throw std::invalid_argument(path + ": its first " + std::to_string(n) + " rows are not those " +
 					    header + " was fitted on (dataset sha256 " + sha + ")");
-	if (provenance_value(text, "robot file sha256", header) != sha256_file(robot.path))
+	if (provenance_value(text, "robot file sha256", header) != robot.labels_sha256)
 		throw std::invalid_argument(header + " was fitted from another robot file than " + robot.path);
 	const TrainedRegion r = checked_region(robot.mode(mode), rows, path);
 	write_text(header, header_with_region(text, r.bounded, r.min, r.max));

@@ -35,7 +35,7 @@ for h in onboard/models/*_*.h; do
   rows=$(sed -n 's/^ \* samples: \([0-9]*\).*/\1/p' "$h")
   if [ -f "$ds" ] && [ -n "$rows" ] &&
      [ "$want_ds" = "$(head -n $((rows + 1)) "$ds" | sha256sum | cut -d' ' -f1)" ] &&
-     [ "$want_rf" = "$(sha256sum "trainer/params/$robot.yaml" | cut -d' ' -f1)" ]; then
+     [ "$want_rf" = "$(awk '/^[^ \t#]/ { body = /^body:/ } !body' "trainer/params/$robot.yaml" | sha256sum | cut -d' ' -f1)" ]; then
     tap_ok "$base.h: provenance matches $ds and trainer/params/$robot.yaml"; else
     tap_not_ok "$base.h: provenance matches $ds and trainer/params/$robot.yaml" "dataset ${want_ds:-none}"; fi
 done

@@ -69,15 +69,18 @@ cp trainer/params/di.yaml "$T/params/good.yaml"
 sed 's/rho: 0.1}/rho: 0.1, bogus: 2}/' trainer/params/di.yaml | sed '0,/bogus/s//bogus/' > "$T/params/unknown.yaml"
 sed 's/{rho: 0.1}/{}/' trainer/params/di.yaml > "$T/params/missing.yaml"
 sed 's/rho: 0.1}/rho: -3}/' trainer/params/di.yaml > "$T/params/badvalue.yaml"
-expect_fail "parameter file: unknown key names file, key and line" 2 "unknown.yaml:6: unknown key 'bogus'" \
+expect_fail "parameter file: unknown key names file, key and line" 2 "unknown.yaml:9: unknown key 'bogus'" \
   env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot unknown --solve -0.5,0 -0.3,0
-expect_fail "parameter file: missing key names file, key and line" 2 "missing.yaml:6: missing key 'rho'" \
+expect_fail "parameter file: missing key names file, key and line" 2 "missing.yaml:9: missing key 'rho'" \
   env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot missing --solve -0.5,0 -0.3,0
-expect_fail "parameter file: bad value names file, key and line" 2 "badvalue.yaml:6: di_neg.rho must be > 0" \
+expect_fail "parameter file: bad value names file, key and line" 2 "badvalue.yaml:9: di_neg.rho must be > 0" \
   env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot badvalue --solve -0.5,0 -0.3,0
+sed 's/^  radius_m: 0$/  radius_m: -0.2/' trainer/params/di.yaml > "$T/params/badbody.yaml"
+expect_fail "parameter file: a negative body radius names file, key and line" 2 "badbody.yaml:6: body.radius_m must be in" \
+  env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot badbody --solve -0.5,0 -0.3,0
 sed 's/^\(    params: {rho: 0.1}\)$/\1\n    solver: {refinements: 2.5}/' trainer/params/di.yaml > "$T/params/badsolver.yaml"
 expect_fail "parameter file: bad solver setting names file, key and line" 2 \
-  "badsolver.yaml:7: refinements must be an integer in .0, 5." \
+  "badsolver.yaml:10: refinements must be an integer in .0, 5." \
   env HYLO_PARAMS_DIR="$T/params" "$TR" --mode di_neg --robot badsolver --solve -0.5,0 -0.3,0
 
 "$TR" --mode di_neg --robot di --solve -0.5,0 -0.3,0 --json --trajectory > "$T/solve.json"
@@ -210,6 +213,18 @@ head -8 "$T/pipe/di_neg.csv" > "$T/bad/di_neg.csv"
 expect_fail "too few samples for the folds: clear error" 2 "too few" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
 cp "$T/pipe/di_neg.csv" "$T/bad/"; sed -i 's/params_sha256: .*/params_sha256: 0000/' "$T/bad/di_neg.csv.meta"
 expect_fail "a dataset from another robot file: clear error" 2 "another robot file" "$TR" --mode di_neg --robot di --stage fit --out "$T/bad" --quiet
+# The body changes no label: a dataset outlives a new body radius, not a new parameter.
+mkdir -p "$T/bodyparams" "$T/body"
+cp "$T/pipe/di_neg.csv" "$T/pipe/di_neg.csv.meta" "$T/body/"
+sed 's/^  radius_m: .*/  radius_m: 0.5/' trainer/params/di.yaml > "$T/bodyparams/di.yaml"
+if ! cmp -s trainer/params/di.yaml "$T/bodyparams/di.yaml" &&
+   env HYLO_PARAMS_DIR="$T/bodyparams" "$TR" --mode di_neg --robot di --stage fit --out "$T/body" --quiet > /dev/null 2>&1 &&
+   [ -f "$T/body/di_di_neg.h" ]; then
+  tap_ok "a robot file whose body changed still fits its dataset (params_sha256 leaves the body out)"; else
+  tap_not_ok "a robot file whose body changed still fits its dataset (params_sha256 leaves the body out)"; fi
+sed 's/rho: 0.1/rho: 0.2/' trainer/params/di.yaml > "$T/bodyparams/di.yaml"
+expect_fail "a robot file whose parameters changed does not fit the dataset" 2 "another robot file" \
+  env HYLO_PARAMS_DIR="$T/bodyparams" "$TR" --mode di_neg --robot di --stage fit --out "$T/body" --quiet
 if ls "$T/bad"/*.h > /dev/null 2>&1; then tap_not_ok "no header written from bad data"; else tap_ok "no header written from bad data"; fi
 
 # --stage repair (trainer/repair.hpp; the stage itself: test_repair).
