@@ -1,4 +1,5 @@
 #include "hylo/map.h"
+#include "hylo/clearance.h"
 
 #include <math.h>
 #include <string.h>
@@ -24,6 +25,7 @@ static void map_mark_empty(hylo_map *m)
 	m->n_ground = 0;
 	m->n_water = 0;
 	m->n_obstacle = 0;
+	m->inflation = 0;
 }
 
 static int real_finite(hylo_real x)
@@ -176,14 +178,15 @@ hylo_real hylo_map_height(const hylo_map *m, hylo_real x, hylo_real y)
 	return m->height[y0 * m->nx + x0];
 }
 
-/* 1 when a cell of class-based mode qualifies (ground, marine, di). */
-static int cell_ok(const hylo_map *m, hylo_mode mode, int32_t c)
+int hylo_map_cell_clear(const hylo_map *m, hylo_mode mode, int32_t c)
 {
 	switch (mode) {
 	case HYLO_MODE_GROUND:
-		return m->terrain[c] == HYLO_TERRAIN_GROUND;
+		return m->inflation > 0 ? m->clear[c] && m->terrain[c] == HYLO_TERRAIN_GROUND
+					: m->terrain[c] == HYLO_TERRAIN_GROUND;
 	case HYLO_MODE_MARINE:
-		return m->terrain[c] == HYLO_TERRAIN_WATER;
+		return m->inflation > 0 ? m->clear[c] && m->terrain[c] == HYLO_TERRAIN_WATER
+					: m->terrain[c] == HYLO_TERRAIN_WATER;
 	case HYLO_MODE_DI_NEG:
 	case HYLO_MODE_DI_POS:
 		return m->terrain[c] != HYLO_TERRAIN_OBSTACLE;
@@ -192,9 +195,19 @@ static int cell_ok(const hylo_map *m, hylo_mode mode, int32_t c)
 	}
 }
 
+hylo_real hylo_map_flight_floor(const hylo_map *m, int32_t c)
+{
+	return m->inflation > 0 ? m->floor[c] : (hylo_real)m->height[c] + HYLO_AIR_CLEARANCE_M;
+}
+
+hylo_real hylo_map_flight_top(const hylo_map *m)
+{
+	return m->ceiling - m->inflation;
+}
+
 static int flight_ok(const hylo_map *m, int32_t c, hylo_real zlo, hylo_real zhi)
 {
-	return zlo >= (hylo_real)m->height[c] + HYLO_AIR_CLEARANCE_M && zhi <= m->ceiling;
+	return zlo >= hylo_map_flight_floor(m, c) && zhi <= hylo_map_flight_top(m);
 }
 
 static int side_ok(hylo_mode mode, hylo_real x)
@@ -227,7 +240,7 @@ int hylo_domain_contains(const hylo_map *m, hylo_mode mode, hylo_point p)
 		return 1;
 	}
 	for (k = 0; k < s.n; k++)
-		if (cell_ok(m, mode, s.idx[k]))
+		if (hylo_map_cell_clear(m, mode, s.idx[k]))
 			return 1;
 	return 0;
 }
@@ -251,7 +264,7 @@ static int walk_ground(seg_walk *w, const int32_t *c, int n)
 	for (k = 0; k < n; k++) {
 		int ok;
 
-		if (!cell_ok(w->m, HYLO_MODE_GROUND, c[k]))
+		if (!hylo_map_cell_clear(w->m, HYLO_MODE_GROUND, c[k]))
 			continue;
 		ok = !w->started;
 		for (j = 0; j < w->prev_n && !ok; j++)
@@ -312,7 +325,7 @@ static int walk_piece(seg_walk *w, hylo_real t0, hylo_real t1)
 		return 1;
 	}
 	for (k = 0; k < n; k++)
-		if (cell_ok(m, w->mode, c[k]))
+		if (hylo_map_cell_clear(m, w->mode, c[k]))
 			return 1;
 	return 0;
 }

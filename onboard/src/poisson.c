@@ -1,3 +1,4 @@
+#include "hylo/clearance.h"
 #include "hylo/internal/poisson.h"
 
 #include <math.h>
@@ -148,16 +149,15 @@ static int ps_cell_relevant(const ps_ctx *c, int32_t ix, int32_t cell, hylo_real
 
 	switch (c->mode) {
 	case HYLO_MODE_GROUND:
-		return m->terrain[cell] == HYLO_TERRAIN_GROUND;
 	case HYLO_MODE_MARINE:
-		return m->terrain[cell] == HYLO_TERRAIN_WATER;
+		return hylo_map_cell_clear(m, c->mode, cell);
 	case HYLO_MODE_DI_NEG:
-		return m->terrain[cell] != HYLO_TERRAIN_OBSTACLE && x0 <= 0;
+		return hylo_map_cell_clear(m, c->mode, cell) && x0 <= 0;
 	case HYLO_MODE_DI_POS:
-		return m->terrain[cell] != HYLO_TERRAIN_OBSTACLE && x0 + m->resolution >= 0;
+		return hylo_map_cell_clear(m, c->mode, cell) && x0 + m->resolution >= 0;
 	case HYLO_MODE_FLIGHT:
-		*zlo = (hylo_real)m->height[cell] + HYLO_AIR_CLEARANCE_M;
-		*zhi = m->ceiling;
+		*zlo = hylo_map_flight_floor(m, cell);
+		*zhi = hylo_map_flight_top(m);
 		return *zlo <= *zhi;
 	default:
 		return 0;

@@ -13,7 +13,9 @@
  *            boundary h is the largest height of the touching cells;
  *   di_neg:  non-OBSTACLE cells with x <= 0 (x is p, y is v);
  *   di_pos:  non-OBSTACLE cells with x >= 0.
- * Points outside the map's rectangle belong to no domain.
+ * Points outside the map's rectangle belong to no domain. hylo_map_inflate
+ * (hylo/clearance.h) shrinks the ground, marine and flight domains to the
+ * points that keep a clearance from every hazard.
  */
 #ifndef HYLO_MAP_H
 #define HYLO_MAP_H
@@ -67,6 +69,12 @@ typedef struct {
 	uint32_t n_ground, n_water, n_obstacle; /* cell counts per class */
 	int8_t terrain[HYLO_MAX_CELLS];
 	float height[HYLO_MAX_CELLS];
+	/* hylo_map_inflate (hylo/clearance.h): the clearance r the domains keep
+	 * (0: the plain domains), per cell whether it is a clear ground or
+	 * water cell, and the lowest flight height over it. */
+	hylo_real inflation;
+	uint8_t clear[HYLO_MAX_CELLS];
+	hylo_real floor[HYLO_MAX_CELLS];
 } hylo_map;
 
 /**
