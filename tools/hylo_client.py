@@ -157,11 +157,17 @@ def print_trajectory(t, smoothed, as_json):
         print(json.dumps({
             "type": "traj", "request_id": t.request_id, "status": STATUS[t.status],
             "reason": t.reason, "energy_j": t.energy_j, "method": method(t.method),
-            "n_samples": t.n_samples, "duration_s": t.t_s[-1] if t.n_samples else 0}))
+            "n_samples": t.n_samples, "duration_s": t.t_s[-1] if t.n_samples else 0,
+            "safe": bool(t.safe), "min_clearance_m": t.min_clearance_m, "margin_m": t.margin_m,
+            "clearance_t_s": t.clearance_t_s, "clearance_xyz": list(t.clearance_xyz)}))
     else:
         print("trajectory %d: %s, %.6g J over %.4g s (%s)" % (
             t.request_id, STATUS[t.status], t.energy_j, t.t_s[-1] if t.n_samples else 0,
             method(t.method) if t.status == 0 else t.reason))
+        if t.status == 0:
+            print("  %s: clearance %.3g m beyond the body (margin %.3g m) at t = %.3g s%s" % (
+                "safe" if t.safe else "NOT SAFE", t.min_clearance_m, t.margin_m, t.clearance_t_s,
+                "" if t.safe else "; " + t.reason))
     for a in smoothed:
         ok = a.status == 0
         if as_json:

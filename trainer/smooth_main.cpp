@@ -27,6 +27,8 @@
 #include "hylo/plan_t.hpp"
 #include "hylo/traj_alternative_t.hpp"
 #include "hylo/traj_t.hpp"
+#include "hylo/clearance.h"
+#include "trainer/clearance.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/smoother.hpp"
@@ -75,6 +77,10 @@ void usage(FILE *out)
 		"                        itself is always smoothed\n"
 		"  --alternatives-wait S wait at most S seconds after the plan for its\n"
 		"                        alternatives, then smooth those received (default: 2)\n"
+		"  --margin M            clearance the trajectory must keep beyond the robot's\n"
+		"                        body from every hazard of its mode, in metres\n"
+		"                        (default: 0.1; docs/smoothing.md, \"Clearance\");\n"
+		"                        traj_t.safe says whether it does\n"
 		"  --compare-graph       also solve every edge of the plan on its own and print\n"
 		"                        the exact cost of the graph path (slow)\n"
 		"  --ipopt-option NAME=VALUE\n"
@@ -101,6 +107,7 @@ struct Options {
 	std::vector<IpoptOption> ipopt_options, full_ipopt_options;
 	AlternativesBudget budget;
 	double alternatives_wait_s = 2;
+	double margin_m = HYLO_DEFAULT_MARGIN_M;   // the clearance check's margin beyond the body
 };
 
 // The sampled path of a plan_t.
@@ -160,6 +167,7 @@ public:
 		g.terrain = m->terrain;
 		g.height_m = m->height_m;
 		g.max_step_m = m->max_step_m;
+		g.ceiling_m = m->ceiling_m;
 		if (maps_.size() >= 8)   // a few recent maps: plans name theirs
 			maps_.erase(maps_.begin());
 		maps_[m->map_id] = {m->robot, std::move(g)};
@@ -362,11 +370,23 @@ private:
 		t.method = static_cast<int8_t>(res.method);
 		t.gap_j = gap_of(res);
 		t.reason = reason_of(res, tried);
+		const ClearanceCheck c = check_clearance(s, maps_.at(p.map_id).grid, r.body_radius_m, o_.margin_m);
+		t.safe = c.safe;
+		t.body_radius_m = c.body_radius_m;
+		t.margin_m = c.margin_m;
+		t.min_clearance_m = c.min_clearance_m;
+		t.clearance_t_s = c.t_s;
+		t.clearance_xyz[0] = c.x_m;
+		t.clearance_xyz[1] = c.y_m;
+		t.clearance_xyz[2] = c.z_m;
+		if (!c.safe)
+			t.reason += "; " + c.text();
 		if (!o_.quiet) {
 			std::printf("request %lld: %s; predicted %.6g J, smoothed %.6g J (replay %.6g J, error %.2g), "
-				    "T %.4g s, %.2f s to solve, method %s, gap %.4g J\n",
+				    "T %.4g s, %.2f s to solve, method %s, gap %.4g J; %s\n",
 				    static_cast<long long>(p.request_id), sequence_of(s.modes).c_str(), p.total_cost_j, s.cost,
-				    s.replay_cost, s.replay_error, s.T, res.seconds, method_name(res.method), t.gap_j);
+				    s.replay_cost, s.replay_error, s.T, res.seconds, method_name(res.method), t.gap_j,
+				    c.text().c_str());
 			if (o_.compare)
 				std::printf("request %lld: graph path, every edge solved exactly: %.6g J\n",
 					    static_cast<long long>(p.request_id), graph_path_cost(r, wps, costs, solve_options()));
@@ -547,7 +567,8 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			    a == "--full-ipopt-option";
 		bool number = a == "--request-id" || a == "--segments-per-edge" || a == "--alternatives";
 		bool seconds = a == "--alternatives-budget" || a == "--alternatives-wait";
-		if (!text && !number && !seconds) {
+		bool metres = a == "--margin";
+		if (!text && !number && !seconds && !metres) {
 			std::fprintf(stderr, "hylo-smooth: unknown option '%s' (see --help)\n", a.c_str());
 			return false;
 		}
@@ -570,6 +591,15 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			continue;
 		}
 		char *end = nullptr;
+		if (metres) {
+			double x = std::strtod(v, &end);
+			if (!*v || *end != '\0' || !std::isfinite(x) || x < 0 || x > 10) {
+				std::fprintf(stderr, "hylo-smooth: %s wants metres in [0, 10], not '%s'\n", a.c_str(), v);
+				return false;
+			}
+			o.margin_m = x;
+			continue;
+		}
 		if (seconds) {
 			double x = std::strtod(v, &end);
 			if (!*v || *end != '\0' || !std::isfinite(x) || x < 0) {

@@ -33,6 +33,7 @@ struct TerrainGrid {
 	std::vector<int8_t> terrain;   // map_t TERRAIN_*: 0 obstacle, 1 ground, 2 water
 	std::vector<float> height_m;
 	double max_step_m = 0.2;       // map_t max_step_m: a larger height step is a wall
+	double ceiling_m = 1e4;        // map_t ceiling_m [m]
 };
 
 // Flights keep this high above the terrain [m]; the onboard planner's

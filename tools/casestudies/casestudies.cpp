@@ -217,6 +217,7 @@ TerrainGrid grid_of(const Scene &sc)
 	g.terrain = sc.terrain;
 	g.height_m = sc.height_m;
 	g.max_step_m = sc.max_step_m;
+	g.ceiling_m = sc.ceiling_m;
 	return g;
 }
 

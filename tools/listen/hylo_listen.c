@@ -197,6 +197,16 @@ static void print_traj(const hylo_traj_t *t)
 		jstr(method_str(t->method));
 		printf(",\"gap_j\":");
 		jnum(t->gap_j);
+		printf(",\"safe\":%s,\"body_radius_m\":", t->safe ? "true" : "false");
+		jnum(t->body_radius_m);
+		printf(",\"margin_m\":");
+		jnum(t->margin_m);
+		printf(",\"min_clearance_m\":");
+		jnum(t->min_clearance_m);
+		printf(",\"clearance_t_s\":");
+		jnum(t->clearance_t_s);
+		printf(",\"clearance_xyz\":");
+		jrow(t->clearance_xyz, 3, 0);
 		printf(",\"t_s\":[");
 		for (k = 0; k < t->n_samples; k++) {
 			if (k)
@@ -222,7 +232,10 @@ static void print_traj(const hylo_traj_t *t)
 	       t->n_samples > 0 ? t->t_s[t->n_samples - 1] : 0.0);
 	if (t->status == HYLO_PLAN_T_STATUS_OK && t->method != HYLO_TRAJ_T_METHOD_FULL)
 		printf(", fallback %s (up to %.4g J above the optimum)", method_str(t->method), t->gap_j);
-	if (t->status != HYLO_PLAN_T_STATUS_OK)
+	if (t->status == HYLO_PLAN_T_STATUS_OK)
+		printf(", %s: clearance %.3g m (margin %.3g m) at t = %.3g s", t->safe ? "safe" : "NOT SAFE",
+		       t->min_clearance_m, t->margin_m, t->clearance_t_s);
+	if (t->status != HYLO_PLAN_T_STATUS_OK || !t->safe)
 		printf(": %s", t->reason);
 	putchar('\n');
 }
