@@ -140,9 +140,9 @@ TESTS += $(NODE_SCRIPT_TESTS)
 # Message-to-plan latency benchmark (tools/bench/bench_node.cpp).
 BENCH_NODE := $(BUILD)/bench/bin/bench_node
 
-$(BENCH_NODE): tools/bench/bench_node.cpp $(BUILD)/obj/tools/scene/scene.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB) | $(HYLO_PLANNER_SYNTH)
+$(BENCH_NODE): tools/bench/bench_node.cpp tools/bench/results.hpp $(BUILD)/obj/tools/scene/scene.o $(NODE_OBJS) $(NODE_MSG_OBJS) $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_synth.o $(MSG_OBJS) $(ONBOARD_LIB) | $(HYLO_PLANNER_SYNTH)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter-out $<,$^) $(YAML_LIBS) $(LCM_LIBS) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) $(LCM_LIBS) -lm -o $@
 
 BENCH_TARGETS += $(BENCH_NODE)
 

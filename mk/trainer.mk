@@ -82,7 +82,7 @@ model-pictures: venv-report $(TRAINER) $(BUILD)/bin/hylo-cost
 
 # Trainer solve-time benchmark (tools/bench/bench_trainer.cpp).
 BENCH_TRAINER := $(BUILD)/bench/bin/bench_trainer
-$(BENCH_TRAINER): tools/bench/bench_trainer.cpp $(TRAINER_LIB)
+$(BENCH_TRAINER): tools/bench/bench_trainer.cpp tools/bench/results.hpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 BENCH_TARGETS += $(BENCH_TRAINER)

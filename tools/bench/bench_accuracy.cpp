@@ -36,6 +36,7 @@
 #include "hylo/features.h"
 #include "hylo/planner.h"
 #include "hylo/region.h"
+#include "tools/bench/results.hpp"
 #include "tools/scene/committed.hpp"
 #include "tools/scene/planner_view.hpp"
 #include "trainer/collocation.hpp"
@@ -216,35 +217,6 @@ bool held_out(const hylo_svr_model *m, double out[3])
 	return p && std::sscanf(p, "held-out errors: median %lf, p95 %lf, max %lf", &out[0], &out[1], &out[2]) == 3;
 }
 
-struct Row {
-	std::string name, unit, reference;
-	double value, reference_value;
-};
-
-void write_json(const std::string &path, const std::vector<Row> &rows)
-{
-	std::ofstream out(path);
-	out << "[\n";
-	for (size_t i = 0; i < rows.size(); i++) {
-		const Row &r = rows[i];
-		char buf[700];
-		if (!r.reference.empty() && std::isfinite(r.reference_value))
-			std::snprintf(buf, sizeof buf,
-				      "  {\"name\": \"%s\", \"value\": %.6g, \"unit\": \"%s\", \"reference\": \"%s\", "
-				      "\"reference_value\": %.6g, \"ratio\": %.6g}",
-				      r.name.c_str(), r.value, r.unit.c_str(), r.reference.c_str(), r.reference_value,
-				      r.value > 0 ? r.reference_value / r.value : 0.0);
-		else
-			std::snprintf(buf, sizeof buf,
-				      "  {\"name\": \"%s\", \"value\": %.6g, \"unit\": \"%s\", \"reference\": null, "
-				      "\"reference_value\": null, \"ratio\": null}",
-				      r.name.c_str(), std::isfinite(r.value) ? r.value : 0.0, r.unit.c_str());
-		out << buf << (i + 1 < rows.size() ? ",\n" : "\n");
-	}
-	out << "]\n";
-	if (!out)
-		throw std::runtime_error("cannot write " + path);
-}
 
 // Edge length and climb angle (flight: of the displacement) for the CSV.
 void write_csv(const std::string &path, const std::vector<std::pair<std::string, Edge>> &edges)
@@ -359,7 +331,7 @@ int run(int argc, char **argv)
 	std::fflush(stdout);
 	solve_all(todo, params, todo_robot, jobs);
 
-	std::vector<Row> rows;
+	std::vector<BenchRow> rows;
 	std::vector<std::pair<std::string, Edge>> all;
 	for (size_t i = 0; i < todo.size(); i++)
 		all.emplace_back(todo_model[i], todo[i]);
@@ -380,15 +352,18 @@ int run(int argc, char **argv)
 				    100 * sm.worst, 100 * sm.bias, 100 * ho[0], 100 * ho[1], 100 * ho[2]);
 			const std::string base = "accuracy_" + name + "_" + src + "_";
 			const std::string ref = "held-out rows drawn like the training rows (model provenance)";
-			rows.push_back({base + "median_rel_error", "relative", ref, sm.median, ho[0]});
-			rows.push_back({base + "p95_rel_error", "relative", ref, sm.p95, ho[1]});
-			rows.push_back({base + "worst_rel_error", "relative", ref, std::fabs(sm.worst), ho[2]});
-			rows.push_back({base + "bias", "relative", "", sm.bias, NAN});
-			rows.push_back({base + "edges", "edges", "", static_cast<double>(sm.n), NAN});
-			rows.push_back({base + "unsolved", "edges", "", static_cast<double>(sm.unsolved), NAN});
+			rows.push_back(bench_compared(base + "median_rel_error", sm.median, "relative", ref, ho[0]));
+			rows.push_back(bench_compared(base + "p95_rel_error", sm.p95, "relative", ref, ho[1]));
+			rows.push_back(bench_compared(base + "worst_rel_error", std::fabs(sm.worst), "relative", ref, ho[2]));
+			rows.push_back(bench_row(base + "bias", sm.bias, "relative"));
+			rows.push_back(bench_row(base + "edges", static_cast<double>(sm.n), "edges"));
+			rows.push_back(bench_row(base + "unsolved", static_cast<double>(sm.unsolved), "edges"));
 		}
 	}
-	write_json(json, rows);
+	if (!write_bench_results(json, rows)) {
+		std::fprintf(stderr, "bench_accuracy: cannot write %s\n", json.c_str());
+		return 1;
+	}
 	write_csv(csv, all);
 	std::printf("%zu rows -> %s; edges -> %s\n", rows.size(), json.c_str(), csv.c_str());
 	return 0;

@@ -24,6 +24,7 @@
 #include "hylo_plan_t.h"
 #include "node/node.h"
 #include "node/registry.h"
+#include "tools/bench/results.hpp"
 #include "tools/scene/scene.hpp"
 
 namespace {
@@ -171,13 +172,6 @@ int udp_client(const char *url, const char *out)
 	return 0;
 }
 
-struct Row {
-	std::string name;
-	double value;
-	std::string ref;
-	double ref_value;
-};
-
 }  // namespace
 
 int main(int argc, char **argv)
@@ -254,25 +248,15 @@ int main(int argc, char **argv)
 	else
 		std::printf("  %-34s  skipped: no network namespace here\n", "node over UDP");
 
-	std::vector<Row> rows = {
-		{"node_latency_memq_median_ms", s_memq.median, "library call alone", s_lib.median},
-		{"node_latency_memq_p99_ms", s_memq.p99, "library call alone", s_lib.p99},
+	// ratio: the library call over the node; below 1, the node's overhead.
+	const std::string call = "library call alone";
+	std::vector<BenchRow> rows = {
+		bench_compared("node_latency_memq_median_ms", s_memq.median, "ms", call, s_lib.median),
+		bench_compared("node_latency_memq_p99_ms", s_memq.p99, "ms", call, s_lib.p99),
 	};
 	if (udp) {
-		rows.push_back({"node_latency_udp_median_ms", s_udp.median, "library call alone", s_lib.median});
-		rows.push_back({"node_latency_udp_p99_ms", s_udp.p99, "library call alone", s_lib.p99});
+		rows.push_back(bench_compared("node_latency_udp_median_ms", s_udp.median, "ms", call, s_lib.median));
+		rows.push_back(bench_compared("node_latency_udp_p99_ms", s_udp.p99, "ms", call, s_lib.p99));
 	}
-	std::FILE *f = std::fopen(argv[1], "w");
-	if (!f)
-		return 1;
-	std::fprintf(f, "[\n");
-	for (size_t i = 0; i < rows.size(); i++)
-		// ratio: the reference over the value; below 1, the node's overhead.
-		std::fprintf(f, " {\"name\": \"%s\", \"value\": %.6g, \"unit\": \"ms\", \"reference\": "
-			     "\"%s\", \"reference_value\": %.6g, \"ratio\": %.4g}%s\n",
-			     rows[i].name.c_str(), rows[i].value, rows[i].ref.c_str(), rows[i].ref_value,
-			     rows[i].ref_value / rows[i].value, i + 1 < rows.size() ? "," : "");
-	std::fprintf(f, "]\n");
-	std::fclose(f);
-	return 0;
+	return write_bench_results(argv[1], rows) ? 0 : 1;
 }

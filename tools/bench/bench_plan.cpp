@@ -24,6 +24,7 @@
 #include "hylo/features.h"
 #include "hylo/planner.h"
 #include "bench/synthetic_ground.h"
+#include "tools/bench/results.hpp"
 
 namespace {
 
@@ -41,45 +42,7 @@ double median(std::vector<double> v)
 	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-struct Row {
-	std::string name, unit, reference;
-	double value, reference_value, ratio;
-	bool compared;
-};
-
-std::vector<Row> rows;
-
-void add(const std::string &name, double value, const std::string &unit)
-{
-	rows.push_back({name, unit, "", value, 0, 0, false});
-}
-
-void add_cmp(const std::string &name, double value, const std::string &unit,
-	     const std::string &ref, double ref_value, double ratio)
-{
-	rows.push_back({name, unit, ref, value, ref_value, ratio, true});
-}
-
-void write_json(const char *path)
-{
-	std::ofstream out(path);
-	out << "[\n";
-	for (size_t i = 0; i < rows.size(); i++) {
-		const Row &r = rows[i];
-		char buf[512];
-		if (r.compared)
-			std::snprintf(buf, sizeof buf,
-				      "  {\"name\": \"%s\", \"value\": %.6g, \"unit\": \"%s\", \"reference\": \"%s\", \"reference_value\": %.6g, \"ratio\": %.6g}",
-				      r.name.c_str(), r.value, r.unit.c_str(), r.reference.c_str(),
-				      r.reference_value, r.ratio);
-		else
-			std::snprintf(buf, sizeof buf,
-				      "  {\"name\": \"%s\", \"value\": %.6g, \"unit\": \"%s\", \"reference\": null, \"reference_value\": null, \"ratio\": null}",
-				      r.name.c_str(), r.value, r.unit.c_str());
-		out << buf << (i + 1 < rows.size() ? ",\n" : "\n");
-	}
-	out << "]\n";
-}
+std::vector<BenchRow> rows;
 
 // The water model: the ground model with every cost tripled.
 hylo_svr_model water_model()
@@ -352,18 +315,21 @@ int main(int argc, char **argv)
 			    (unsigned long long)plan->n_edges_evaluated, hylo_ms, median(reused),
 			    ref_med, ref.eval_ms, plan->total_cost, ref_med / hylo_ms, diff);
 		std::string t = std::to_string(target);
-		add_cmp("plan_ms_" + t + "_nodes", hylo_ms, "ms",
+		rows.push_back(bench_compared("plan_ms_" + t + "_nodes", hylo_ms, "ms",
 			"BGL dijkstra_shortest_paths + libsvm svm_predict on every edge", ref_med,
-			ref_med / hylo_ms);
-		add("plan_ms_reused_roadmap_" + t + "_nodes", median(reused), "ms");
-		add("nodes_" + t, plan->n_nodes, "count");
-		add("edges_" + t, double(plan->n_edges), "count");
-		add("edges_evaluated_" + t, double(plan->n_edges_evaluated), "count");
-		add("cost_rel_diff_vs_reference_" + t, diff, "relative");
+			ref_med / hylo_ms));
+		rows.push_back(bench_row("plan_ms_reused_roadmap_" + t + "_nodes", median(reused), "ms"));
+		rows.push_back(bench_row("nodes_" + t, plan->n_nodes, "count"));
+		rows.push_back(bench_row("edges_" + t, double(plan->n_edges), "count"));
+		rows.push_back(bench_row("edges_evaluated_" + t, double(plan->n_edges_evaluated), "count"));
+		rows.push_back(bench_row("cost_rel_diff_vs_reference_" + t, diff, "relative"));
 		if (ref.edges != plan->n_edges)
 			std::fprintf(stderr, "warning: reference has %zu edges, hylo %llu\n", ref.edges,
 				     (unsigned long long)plan->n_edges);
 	}
-	write_json(argv[1]);
+	if (!write_bench_results(argv[1], rows)) {
+		std::fprintf(stderr, "bench_plan: cannot write %s\n", argv[1]);
+		return 1;
+	}
 	return 0;
 }

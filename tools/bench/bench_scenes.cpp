@@ -26,6 +26,7 @@
 #include <time.h>
 
 #include "hylo/planner.h"
+#include "tools/bench/results.hpp"
 #include "tools/scene/committed.hpp"
 #include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
@@ -57,47 +58,7 @@ double median(std::vector<double> v)
 	return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-struct Row {
-	std::string name, unit, reference;
-	double value, reference_value;
-	bool compared;
-};
-std::vector<Row> rows;
-
-void add(const std::string &name, double value, const std::string &unit)
-{
-	rows.push_back({name, unit, "", value, 0, false});
-}
-
-void add_cmp(const std::string &name, double value, const std::string &unit, const std::string &ref,
-	     double ref_value)
-{
-	rows.push_back({name, unit, ref, value, ref_value, true});
-}
-
-// ratio > 1: hylo does better (less time, fewer edges); costs: reference / hylo.
-void write_json(const char *path)
-{
-	std::ofstream out(path);
-	out << "[\n";
-	for (size_t i = 0; i < rows.size(); i++) {
-		const Row &r = rows[i];
-		char buf[600];
-		if (r.compared)
-			std::snprintf(buf, sizeof buf,
-				      "  {\"name\": \"%s\", \"value\": %.10g, \"unit\": \"%s\", \"reference\": \"%s\", "
-				      "\"reference_value\": %.10g, \"ratio\": %.6g}",
-				      r.name.c_str(), r.value, r.unit.c_str(), r.reference.c_str(), r.reference_value,
-				      r.value > 0 ? r.reference_value / r.value : 0.0);
-		else
-			std::snprintf(buf, sizeof buf,
-				      "  {\"name\": \"%s\", \"value\": %.10g, \"unit\": \"%s\", \"reference\": null, "
-				      "\"reference_value\": null, \"ratio\": null}",
-				      r.name.c_str(), r.value, r.unit.c_str());
-		out << buf << (i + 1 < rows.size() ? ",\n" : "\n");
-	}
-	out << "]\n";
-}
+std::vector<BenchRow> rows;
 
 using hylo::scene::goal_of;
 using hylo::scene::map_view;
@@ -313,20 +274,20 @@ void bench_scene(Bench &b, const std::string &path)
 	std::printf("%-16s K = 3: cpu %7.1f ms (K = 1: %7.1f), %s\n", n.c_str(), median(alt_cpu),
 		    median(first_cpu), alternatives.c_str());
 	std::fflush(stdout);
-	add_cmp("plan_first_goal_k3_cpu_ms_" + n, median(alt_cpu), "ms", "hylo, one plan (K = 1)", median(first_cpu));
-	add_cmp("plan_first_goal_ms_" + n, median(first), "ms", "floor-heuristic A*, every successor evaluated", ref.ms);
-	add_cmp("plan_nearby_goal_ms_" + n, median(near), "ms", "floor-heuristic A*, every successor evaluated", ref2.ms);
-	add("plan_way_back_ms_" + n, median(back), "ms");
-	add_cmp("plan_first_goal_cpu_ms_" + n, median(first_cpu), "ms", "floor-heuristic A*, every successor evaluated",
-		ref.cpu);
-	add_cmp("plan_nearby_goal_cpu_ms_" + n, median(near_cpu), "ms", "floor-heuristic A*, every successor evaluated",
-		ref2.cpu);
-	add("plan_way_back_cpu_ms_" + n, median(back_cpu), "ms");
-	add_cmp("plan_cost_j_" + n, cost, "J", "floor-heuristic A*", ref.cost);
-	add_cmp("plan_nearby_cost_j_" + n, near_cost, "J", "floor-heuristic A*", ref2.cost);
-	add_cmp("plan_edges_evaluated_" + n, double(evaluated), "edges", "floor-heuristic A*", double(ref.evaluated));
-	add_cmp("plan_nearby_edges_evaluated_" + n, double(near_evaluated), "edges", "floor-heuristic A*",
-		double(ref2.evaluated));
+	rows.push_back(bench_compared("plan_first_goal_k3_cpu_ms_" + n, median(alt_cpu), "ms", "hylo, one plan (K = 1)", median(first_cpu)));
+	rows.push_back(bench_compared("plan_first_goal_ms_" + n, median(first), "ms", "floor-heuristic A*, every successor evaluated", ref.ms));
+	rows.push_back(bench_compared("plan_nearby_goal_ms_" + n, median(near), "ms", "floor-heuristic A*, every successor evaluated", ref2.ms));
+	rows.push_back(bench_row("plan_way_back_ms_" + n, median(back), "ms"));
+	rows.push_back(bench_compared("plan_first_goal_cpu_ms_" + n, median(first_cpu), "ms", "floor-heuristic A*, every successor evaluated",
+		ref.cpu));
+	rows.push_back(bench_compared("plan_nearby_goal_cpu_ms_" + n, median(near_cpu), "ms", "floor-heuristic A*, every successor evaluated",
+		ref2.cpu));
+	rows.push_back(bench_row("plan_way_back_cpu_ms_" + n, median(back_cpu), "ms"));
+	rows.push_back(bench_compared("plan_cost_j_" + n, cost, "J", "floor-heuristic A*", ref.cost));
+	rows.push_back(bench_compared("plan_nearby_cost_j_" + n, near_cost, "J", "floor-heuristic A*", ref2.cost));
+	rows.push_back(bench_compared("plan_edges_evaluated_" + n, double(evaluated), "edges", "floor-heuristic A*", double(ref.evaluated)));
+	rows.push_back(bench_compared("plan_nearby_edges_evaluated_" + n, double(near_evaluated), "edges", "floor-heuristic A*",
+		double(ref2.evaluated)));
 }
 
 }  // namespace
@@ -345,13 +306,16 @@ int main(int argc, char **argv)
 	try {
 		Bench b;
 		std::printf("workspace: %zu bytes (hylo_planner_size, every committed robot)\n", b.size);
-		add("workspace_bytes", double(b.size), "bytes");
+		rows.push_back(bench_row("workspace_bytes", double(b.size), "bytes"));
 		for (const std::string &s : scenes)
 			bench_scene(b, s);
 	} catch (const std::exception &e) {
 		std::fprintf(stderr, "bench_scenes: %s\n", e.what());
 		return 1;
 	}
-	write_json(argv[1]);
+	if (!write_bench_results(argv[1], rows)) {
+		std::fprintf(stderr, "bench_scenes: cannot write %s\n", argv[1]);
+		return 1;
+	}
 	return 0;
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/bench/results.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
@@ -92,10 +93,7 @@ int main(int argc, char **argv)
 		{"ambot", "marine", {{0, 0, 0.5, 0, 3, 1, 0.5, 0.5}, {0, 0, 0, 0, 2, 0, 0, 0}, {0, 0, 0.8, 0, 4, -1, 0.8, -0.3}, {0, 0, 0.3, 0, -1, 2, 0.3, 2.0}, {0, 0, 0.6, 0, 3, 0, 0.6, 0}}},
 		{"drivocopter", "flight", {{0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}, {0, 0, 1, 0, 0, 0, 3, 1, 1.5, 0, 0, 0}, {0, 0, 1, 2, 0, 0, 6, 2, 0, 4, 1, -1}, {0, 0, 1, 5, -1, 0, -2, 4, 3, 0, 0, 0}, {0, 0, 0, 6, 0, 0, 8, 0, 0, 6, 0, 0}}},
 	};
-	std::FILE *f = std::fopen(argv[1], "w");
-	if (!f)
-		return 1;
-	std::fprintf(f, "[\n");
+	std::vector<BenchRow> rows;
 	std::printf("trainer solve time per BVP (all starts, continuation and refinement), median\n");
 	std::printf("  %-20s %6s %10s %10s %10s\n", "mode", "BVPs", "accepted", "median s", "median it");
 	for (const Case &c : cases) {
@@ -114,15 +112,12 @@ int main(int argc, char **argv)
 		std::string name = std::string(c.robot) + " " + c.mode;
 		std::printf("  %-20s %6zu %10d %10.3f %10.0f\n", name.c_str(), c.pairs.size(), ok,
 			    median(secs), median(its));
-		std::fprintf(f, " {\"name\": \"trainer_solve_s_%s_%s\", \"value\": %.6g, \"unit\": \"s\", "
-			     "\"reference\": null, \"reference_value\": null, \"ratio\": null},\n",
-			     c.robot, c.mode, median(secs));
-		std::fprintf(f, " {\"name\": \"trainer_accepted_%s_%s\", \"value\": %d, \"unit\": \"of %zu BVPs\", "
-			     "\"reference\": null, \"reference_value\": null, \"ratio\": null}%s\n",
-			     c.robot, c.mode, ok, c.pairs.size(), &c == &cases.back() ? "" : ",");
+		rows.push_back(bench_row("trainer_solve_s_" + std::string(c.robot) + "_" + c.mode, median(secs), "s"));
+		rows.push_back(bench_row("trainer_accepted_" + std::string(c.robot) + "_" + c.mode, ok,
+					 "of " + std::to_string(c.pairs.size()) + " BVPs"));
 	}
-	std::fprintf(f, "]\n");
-	std::fclose(f);
+	if (!write_bench_results(argv[1], rows))
+		return 1;
 	if (argc == 3)
 		return bare_solves(cases, argv[2]);
 	return 0;
