@@ -77,6 +77,22 @@ hylo_point between(const Motion &a, const Motion &b, double h, double f)
 	return {q[0], q[1], q[2]};
 }
 
+// In the domain, or within tolerance of it: optimal trajectories sit on
+// their bounds, which Ipopt meets to ~1e-8 (its bound relaxation).
+bool in_domain(const hylo_map *m, hylo_mode mode, hylo_point p)
+{
+	if (hylo_domain_contains(m, mode, p))
+		return true;
+	const double d[4][3] = {{kCheckToleranceM, 0, 0}, {-kCheckToleranceM, 0, 0}, {0, kCheckToleranceM, 0},
+				{0, -kCheckToleranceM, 0}};
+	for (const auto &e : d) {
+		hylo_point q = {p.x + e[0], p.y + e[1], p.z + (mode == HYLO_MODE_FLIGHT ? kCheckToleranceM : 0)};
+		if (hylo_domain_contains(m, mode, q))
+			return true;
+	}
+	return false;
+}
+
 }  // namespace
 
 ClearanceCheck check_clearance(const MultiPhaseSolution &s, const TerrainGrid &map, double body_radius_m,
@@ -113,7 +129,7 @@ ClearanceCheck check_clearance(const MultiPhaseSolution &s, const TerrainGrid &m
 				c.y_m = p.y;
 				c.z_m = p.z;
 			}
-			if (c.outside_phase < 0 && !hylo_domain_contains(m.get(), mode, p)) {
+			if (c.outside_phase < 0 && !in_domain(m.get(), mode, p)) {
 				c.outside_phase = static_cast<int>(k);
 				c.outside_t_s = t0 + t;
 				c.outside_x_m = p.x;
@@ -136,7 +152,7 @@ ClearanceCheck check_clearance(const MultiPhaseSolution &s, const TerrainGrid &m
 		}
 		t0 += s.phases[k].T;
 	}
-	c.safe = c.outside_phase < 0 && !(c.min_clearance_m < margin_m);
+	c.safe = c.outside_phase < 0 && !(c.min_clearance_m < margin_m - kCheckToleranceM);
 	return c;
 }
 

@@ -16,6 +16,7 @@ namespace hylo::trainer {
 
 struct ClearanceCheck {
 	bool safe = true;            // every point keeps clearance >= margin and lies in its mode's domain
+	                             // (both to kCheckToleranceM)
 	double body_radius_m = 0, margin_m = 0;
 	// The smallest distance between the body and a hazard of its mode [m],
 	// and where; capped at margin + kClearanceReachM (nothing nearer).
@@ -34,6 +35,10 @@ struct ClearanceCheck {
 
 // How far beyond the margin the check looks for hazards [m].
 constexpr double kClearanceReachM = 2.0;
+// Points within this of their domain, and clearances within this of the
+// margin, pass [m]: optimal trajectories sit on their bounds, which the
+// solver meets to about 1e-8.
+constexpr double kCheckToleranceM = 1e-6;
 
 // Checks s on map for a body of body_radius_m and the margin, with
 // between_knots points on the cubic between consecutive knots.
