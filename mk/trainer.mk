@@ -4,7 +4,7 @@
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
 	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp \
-	trainer/numerics.cpp trainer/repair.cpp trainer/gather.cpp trainer/clearance.cpp
+	trainer/numerics.cpp trainer/repair.cpp trainer/gather.cpp trainer/clearance.cpp trainer/files.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS) $(YAML_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread

@@ -49,52 +49,6 @@ std::string num(double v) { return format_double(v); }
 
 namespace internal {
 
-void write_all(int fd, const std::string &s, const std::string &what)
-{
-	size_t off = 0;
-	while (off < s.size()) {
-		ssize_t n = ::write(fd, s.data() + off, s.size() - off);
-		if (n < 0 && errno == EINTR)
-			continue;
-		if (n <= 0)
-			throw std::runtime_error("cannot write " + what + ": " + std::strerror(errno));
-		off += static_cast<size_t>(n);
-	}
-}
-
-AppendFile::AppendFile(const std::string &path) : path_(path), fd_(open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644))
-{
-	if (fd_ < 0)
-		throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-}
-
-AppendFile::~AppendFile()
-{
-	if (fd_ >= 0)
-		::close(fd_);
-}
-
-void AppendFile::sync()
-{
-	if (fsync(fd_) != 0)
-		throw std::runtime_error("cannot sync " + path_ + ": " + std::strerror(errno));
-}
-
-void AppendFile::close()
-{
-	int fd = fd_;
-	fd_ = -1;
-	if (::close(fd) != 0)
-		throw std::runtime_error("cannot close " + path_ + ": " + std::strerror(errno));
-}
-
-std::string read_file(const std::string &path)
-{
-	std::ifstream f(path, std::ios::binary);
-	std::ostringstream ss;
-	ss << f.rdbuf();
-	return ss.str();
-}
 
 std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 {
@@ -182,33 +136,17 @@ ResumePoint resume_point(const std::string &existing, const std::string &header)
 	return r;
 }
 
-// Writes a dataset's .meta atomically (a temporary file renamed).
-void write_meta(const std::string &path, const std::string &meta)
-{
-	std::string tmp = path + ".tmp";
-	if (unlink(tmp.c_str()) != 0 && errno != ENOENT)
-		throw std::runtime_error("cannot remove " + tmp + ": " + std::strerror(errno));
-	AppendFile f(tmp);
-	f.write(meta);
-	f.sync();
-	f.close();
-	if (rename(tmp.c_str(), path.c_str()) != 0)
-		throw std::runtime_error("cannot rename " + tmp + " to " + path);
-}
 
 }  // namespace internal
 
 namespace {
 
-using internal::AppendFile;
 using internal::meta_differences;
 using internal::meta_text;
-using internal::read_file;
 using internal::resume_point;
 using internal::ResumePoint;
 using internal::same_stream;
-using internal::write_all;
-using internal::write_meta;
+
 
 // Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
 // time; returns rows in index order. A sample with a straight-line result in
@@ -579,7 +517,7 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 		if (truncate(sum.path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + sum.path);
 	} else {
-		write_meta(meta_path, meta);
+		write_file_atomically(meta_path, meta);
 	}
 	sum.resumed_from = next - lo;
 	AppendFile out(sum.path);

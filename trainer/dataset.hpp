@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "trainer/collocation.hpp"
+#include "trainer/files.hpp"
 #include "trainer/params.hpp"
 
 namespace hylo::trainer {
@@ -120,31 +121,9 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt);
 // The dataset file a run with these options writes.
 std::string dataset_path(const GenOptions &opt);
 
-// File handling shared by generation and the repair stage (repair.hpp).
+// Shared by generation, the repair stage (repair.hpp) and gather.
 namespace internal {
 
-// The file's bytes ("" if it cannot be read).
-std::string read_file(const std::string &path);
-// Writes all of s to fd; throws std::runtime_error naming what.
-void write_all(int fd, const std::string &s, const std::string &what);
-// A file opened for appending rows (O_APPEND, created 0644), closed when it
-// goes out of scope, so that a write that throws does not leak it; sync()
-// and close() throw naming the file.
-class AppendFile {
-public:
-	explicit AppendFile(const std::string &path);
-	~AppendFile();
-	AppendFile(const AppendFile &) = delete;
-	AppendFile &operator=(const AppendFile &) = delete;
-	int fd() const { return fd_; }
-	void write(const std::string &s) { write_all(fd_, s, path_); }
-	void sync();
-	void close();
-
-private:
-	std::string path_;
-	int fd_;
-};
 // The .meta of a dataset generated with opt: the stream (robot, mode, seed,
 // robot file, draws, shard) and what its labels depend on.
 std::string meta_text(const RobotParams &robot, const GenOptions &opt);
@@ -159,8 +138,6 @@ struct ResumePoint {
 	uint64_t rows = 0;
 };
 ResumePoint resume_point(const std::string &existing, const std::string &header);
-// Writes path atomically: a temporary file, fsync'd, renamed over it.
-void write_meta(const std::string &path, const std::string &text);
 
 }  // namespace internal
 

@@ -8,7 +8,6 @@ namespace {
 
 using internal::meta_differences;
 using internal::meta_text;
-using internal::read_file;
 
 std::string header_line(const std::string &mode)
 {
@@ -135,8 +134,8 @@ GatherReport gather(const RobotParams &robot, const GenOptions &opt)
 		throw std::invalid_argument(r.path + " exists and holds other rows than the shards; move it away to gather");
 	// The unsharded stream's .meta (a shard's without its samples and shard
 	// lines) first: a dataset without one would not be resumed or fitted.
-	internal::write_meta(meta_path, meta);
-	internal::write_meta(r.path, merged);
+	write_file_atomically(meta_path, meta);
+	write_file_atomically(r.path, merged);
 	r.merged = true;
 	return r;
 }

@@ -10,6 +10,7 @@
 
 #include "hylo/region.h"
 #include "trainer/collocation.hpp"
+#include "trainer/files.hpp"
 #include "trainer/envelope.hpp"
 #include "trainer/gather.hpp"
 #include "trainer/repair.hpp"
@@ -164,21 +165,6 @@ double floor_j(const std::string &mode, const ModeParams &p)
 	return p.at("rho") * 0.05;
 }
 
-void write_text(const std::string &path, const std::string &text)
-{
-	std::string tmp = path + ".tmp";
-	{
-		std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-		if (!f)
-			throw std::runtime_error("cannot write " + tmp);
-		f << text;
-		if (!f.flush())
-			throw std::runtime_error("error writing " + tmp);
-	}
-	if (std::rename(tmp.c_str(), path.c_str()) != 0)
-		throw std::runtime_error("cannot rename " + tmp + " to " + path);
-}
-
 int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 {
 	GenOptions g = opt.gen;
@@ -256,7 +242,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	   << ",\"fit_s\":" << format_double(rep.fit_seconds)
 	   << ",\"feasibility_accuracy\":" << (have_classifier ? format_double(crep.accuracy) : "null")
 	   << "}\n";
-	write_text(g.out_dir + "/" + g.mode + ".fit.json", js.str());
+	write_file_atomically(g.out_dir + "/" + g.mode + ".fit.json", js.str());
 	if (rows.errors)
 		std::fprintf(stderr, "trainer: fit %s %s: %zu rows whose solve ended in an error (status 'error: ...') "
 				     "left out\n", robot.robot.c_str(), g.mode.c_str(), rows.errors);
@@ -337,7 +323,7 @@ int region_stage(const RobotParams &robot, const PipelineOptions &opt)
 	if (provenance_value(text, "robot file sha256", header) != robot.labels_sha256)
 		throw std::invalid_argument(header + " was fitted from another robot file than " + robot.path);
 	const TrainedRegion r = checked_region(robot.mode(mode), rows, path);
-	write_text(header, header_with_region(text, r.bounded, r.min, r.max));
+	write_file_atomically(header, header_with_region(text, r.bounded, r.min, r.max));
 	std::printf("region %s %s: %zu rows inside; written into %s\n", robot.robot.c_str(), mode.c_str(),
 		    rows.n, header.c_str());
 	return 0;

@@ -23,14 +23,11 @@
 namespace hylo::trainer {
 namespace {
 
-using internal::AppendFile;
 using internal::meta_differences;
 using internal::meta_text;
-using internal::read_file;
 using internal::resume_point;
 using internal::ResumePoint;
 using internal::same_stream;
-using internal::write_meta;
 
 // A label lowered by more than this fraction counts as lowered.
 constexpr double kLowered = 0.005;
@@ -177,7 +174,7 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 		if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + path);
 	} else {
-		write_meta(meta_path, meta);
+		write_file_atomically(meta_path, meta);
 	}
 	AppendFile out(path);
 	struct stat fs;
@@ -366,7 +363,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		if (old != work_meta && existing == input_rows && old.find('\n') != std::string::npos &&
 		    old.substr(old.find('\n') + 1) == lines_meta) {
 			// Interrupted between replacing the dataset and its .meta: finish.
-			write_meta(meta_path, repaired_meta(input_meta, lines_meta));
+			write_file_atomically(meta_path, repaired_meta(input_meta, lines_meta));
 			std::remove(work.c_str());
 			std::remove(work_meta_path.c_str());
 			sum.already = true;
@@ -380,7 +377,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		if (truncate(work.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + work);
 	} else {
-		write_meta(work_meta_path, work_meta);
+		write_file_atomically(work_meta_path, work_meta);
 	}
 
 	double cpu0 = children_cpu_s();
@@ -490,8 +487,8 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		sum.median_drop = m % 2 ? drops[m / 2] : 0.5 * (drops[m / 2 - 1] + drops[m / 2]);
 		sum.max_drop = drops.back();
 	}
-	write_meta(sum.path, out);   // atomic: a temporary file, fsync'd, renamed
-	write_meta(meta_path, repaired_meta(input_meta, lines_meta));
+	write_file_atomically(sum.path, out);   // atomic: a temporary file, fsync'd, renamed
+	write_file_atomically(meta_path, repaired_meta(input_meta, lines_meta));
 	std::remove(work.c_str());
 	std::remove(work_meta_path.c_str());
 	sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -11,6 +11,7 @@
 #include "hylo/features.h"
 #include "hylo/types.h"
 #include "hylo/svr.h"
+#include "trainer/files.hpp"
 
 namespace hylo::trainer {
 namespace {
@@ -672,23 +673,7 @@ std::string header_with_region(const std::string &text, uint32_t bounded, const 
 
 void write_svr_header(const SvrExport &m, const std::string &path)
 {
-	const std::string text = svr_header_text(m);
-	const std::string tmp = path + ".tmp";
-	{
-		std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-		if (!f)
-			throw std::runtime_error("cannot write " + tmp);
-		f << text;
-		f.flush();
-		if (!f) {
-			std::remove(tmp.c_str());
-			throw std::runtime_error("error while writing " + tmp);
-		}
-	}
-	if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-		std::remove(tmp.c_str());
-		throw std::runtime_error("cannot rename " + tmp + " to " + path);
-	}
+	write_file_atomically(path, svr_header_text(m));
 }
 
 }  // namespace hylo::trainer

@@ -40,6 +40,7 @@
 #include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
 #include "trainer/collocation.hpp"
+#include "trainer/files.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/processes.hpp"
@@ -1127,16 +1128,6 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	return js + "\n]";
 }
 
-void write_atomically(const std::string &path, const std::string &text)
-{
-	std::string tmp = path + ".tmp";
-	std::ofstream f(tmp, std::ios::binary);
-	f << text;
-	f.close();
-	if (!f || std::rename(tmp.c_str(), path.c_str()) != 0)
-		throw std::runtime_error(path + ": cannot write");
-}
-
 const char *const kStudies[] = {"di", "ambot", "drivocopter"};
 
 // results.md and results.json from every study's part in OUT/results/.
@@ -1156,8 +1147,8 @@ void write_results(const std::string &out)
 		md += m.str();
 		js += std::string(js.size() > 1 ? "," : "") + "\n\"" + name + "\": " + j.str();
 	}
-	write_atomically(out + "/results.json", js + "\n}\n");
-	write_atomically(out + "/results.md", md);
+	write_file_atomically(out + "/results.json", js + "\n}\n");
+	write_file_atomically(out + "/results.md", md);
 }
 
 int run(int argc, char **argv)
@@ -1216,8 +1207,8 @@ int run(int argc, char **argv)
 			char took[96];
 			std::snprintf(took, sizeof took, "\n(%s%.0f s on %d workers.)\n", opt.quick ? "--quick, " : "",
 				      seconds_since(t0), opt.jobs);
-			write_atomically(parts + "/" + name + ".md", md + took);
-			write_atomically(parts + "/" + name + ".json", js);
+			write_file_atomically(parts + "/" + name + ".md", md + took);
+			write_file_atomically(parts + "/" + name + ".json", js);
 			write_results(opt.out);
 		};
 		std::string md, js;
