@@ -23,6 +23,8 @@ namespace {
 
 // Samples along an edge [m]: far finer than a cell (0.05 m and more).
 constexpr double kStep = 0.02;
+// Clearances are measured up to this [m] (hylo_hazard_distance's reach).
+constexpr double kReach = 1.0;
 
 struct Worst {
 	double clearance = HUGE_VAL;   // hazard distance minus the body radius [m]
@@ -118,7 +120,7 @@ int main(int argc, char **argv)
 			const uint32_t n = planned ? plan->n_alternatives : 0;
 			for (uint32_t k = 0; k < n; k++) {
 				hylo_planner_alternative(pl, k, plan.get());
-				const Worst w = path_clearance(&pl->map, *plan, body, body + 2 * margin);
+				const Worst w = path_clearance(&pl->map, *plan, body, body + kReach);
 				check(w.clearance >= margin - 1e-9,
 				      name + ": path " + std::to_string(k) + " (" +
 					      std::to_string(plan->n_waypoints) +
