@@ -1,7 +1,7 @@
 /*
  * hylo onboard planner: the public API.
  *
- *   hylo_planner_config cfg = { robots, n_robots, clock, clock_ctx };
+ *   hylo_planner_config cfg = { robots, n_robots, clock, clock_ctx }; // margin_m 0: the default
  *   size_t n = hylo_planner_size(&cfg);  // bytes for these robots' models
  *   hylo_planner *pl = malloc(n);        // once, at start-up (or static storage)
  *   hylo_planner_init(pl, n, &cfg);
