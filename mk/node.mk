@@ -1,6 +1,7 @@
 # The LCM planner node (C99, links liblcm) and its robot registry.
 #   build/bin/hylo-planner   the node, with the models of onboard/models/
-# The registry lists the committed model headers (tools/gen-model-registry).
+# The registry lists the committed model headers and the robot files' body
+# radii (tools/gen-model-registry).
 
 NODE_SRCS := onboard/node/node.c
 NODE_INC := $(ONBOARD_INC) -Ionboard/msg -I$(LCM_GEN_DIR)/c -Ionboard/models
@@ -8,9 +9,11 @@ NODE_CFLAGS := $(C99_FLAGS) -D_POSIX_C_SOURCE=200809L $(LCM_CFLAGS)
 MODEL_HEADERS := $(sort $(wildcard onboard/models/*.h))
 REGISTRY_C := $(BUILD)/gen/models/registry.c
 
-$(REGISTRY_C): tools/gen-model-registry $(MODEL_HEADERS)
+ROBOT_FILES := $(sort $(wildcard trainer/params/*.yaml))
+
+$(REGISTRY_C): tools/gen-model-registry $(MODEL_HEADERS) $(ROBOT_FILES)
 	@mkdir -p $(@D)
-	tools/gen-model-registry $@ onboard/models
+	tools/gen-model-registry $@ --params trainer/params onboard/models
 
 $(BUILD)/obj/node/%.o: onboard/node/%.c $(LCM_STAMP)
 	@mkdir -p $(@D)
@@ -110,9 +113,9 @@ REGISTRY_SYNTH_C := $(BUILD)/gen/models-test/registry.c
 HYLO_PLANNER_SYNTH := $(BUILD)/test/node/hylo-planner-synthetic
 PLAN_CHECK := $(BUILD)/test/node/plan_check
 
-$(REGISTRY_SYNTH_C): tools/gen-model-registry $(MODEL_HEADERS) $(SYNTH_HEADER)
+$(REGISTRY_SYNTH_C): tools/gen-model-registry $(MODEL_HEADERS) $(SYNTH_HEADER) $(ROBOT_FILES)
 	@mkdir -p $(@D)
-	tools/gen-model-registry $@ onboard/models $(BUILD)/gen/bench
+	tools/gen-model-registry $@ --params trainer/params onboard/models $(BUILD)/gen/bench
 
 $(BUILD)/obj/node/registry_synth.o: $(REGISTRY_SYNTH_C) $(SYNTH_HEADER)
 	@mkdir -p $(@D)

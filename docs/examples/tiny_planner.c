@@ -54,6 +54,7 @@ int main(void)
 	rover.modes[0].mode = HYLO_MODE_GROUND;
 	rover.modes[0].cost_fn = cost;
 	rover.modes[0].cost_floor_per_m = 20;   /* every edge costs at least this per metre */
+	rover.body_radius_m = 0.3;              /* plans keep it + the margin from every obstacle */
 
 	/* Ground everywhere but a wall at x = 10 m with a gap at the top. */
 	for (iy = 0; iy < NY; iy++)
@@ -84,7 +85,7 @@ int main(void)
 
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = &rover;
-	cfg.n_robots = 1;
+	cfg.n_robots = 1;                           /* margin_m 0: HYLO_DEFAULT_MARGIN_M */
 	size = hylo_planner_size(&cfg);
 	pl = malloc(size);                          /* the only allocation, at start-up */
 	if (!pl || hylo_planner_init(pl, size, &cfg) != HYLO_OK ||

@@ -4,6 +4,7 @@
  * failure (LCM URL, robots), 2 on a usage error.
  */
 #include <errno.h>
+#include <math.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
@@ -59,12 +60,16 @@ static void usage(FILE *f)
 		"                        (the default for file:// logs); otherwise goals wait\n"
 		"                        in the queue of docs/node.md while a plan runs\n"
 		"  --once                answer one goal, then exit\n"
+		"  --margin M            clearance [m] every plan keeps beyond the robot's body\n"
+		"                        from obstacles, walls, terrain and the map's edge\n"
+		"                        (finite, >= 0; default %g)\n"
 		"  --verbose             also log maps and start-up details\n"
-		"  --list-robots         print the robots and models compiled in, then exit\n"
+		"  --list-robots         print the robots, their body radii and the models\n"
+		"                        compiled in, then exit\n"
 		"  --help                this text\n"
 		"\n"
 		"Exit codes: 0 clean stop (signal, --once, end of an input log),\n"
-		"1 start-up failure, 2 usage error.\n", HYLO_NODE_RECV_BUF);
+		"1 start-up failure, 2 usage error.\n", HYLO_NODE_RECV_BUF, HYLO_DEFAULT_MARGIN_M);
 }
 
 static int is_file_url(const char *url)
@@ -84,7 +89,8 @@ static void list_robots(const hylo_robot *robots, uint32_t n)
 		if (robots[k].switch_cost[0] > 0 || robots[k].switch_cost[1] > 0)
 			printf(", switch costs %.6g J / %.6g J", robots[k].switch_cost[0],
 			       robots[k].switch_cost[1]);
-		printf("\n");
+		printf(", body radius %.6g m%s\n", robots[k].body_radius_m,
+		       hylo_registry_body_of(robots[k].name) ? "" : " (no robot file)");
 	}
 }
 
@@ -132,6 +138,7 @@ int main(int argc, char **argv)
 	const char *url = NULL, *out_url = NULL, *prefix = "";
 	int once = 0, verbose = 0, list = 0, sync = 0, threaded, i, rc = 0;
 	long recv_buf = HYLO_NODE_RECV_BUF;
+	double margin = HYLO_DEFAULT_MARGIN_M;
 	static char url_buf[1024];
 	static hylo_robot robots[HYLO_MAX_ROBOTS];
 	hylo_planner_config cfg;
@@ -168,6 +175,15 @@ int main(int argc, char **argv)
 			recv_buf = strtol(argv[++i], &end, 10);
 			if (*end || recv_buf < 0 || recv_buf > 1L << 30) {
 				fprintf(stderr, "hylo-planner: --recv-buf wants bytes in [0, 2^30]\n");
+				return 2;
+			}
+		} else if (strcmp(a, "--margin") == 0 && i + 1 < argc) {
+			char *end;
+
+			margin = strtod(argv[++i], &end);
+			if (end == argv[i] || *end || !isfinite(margin) || margin < 0) {
+				fprintf(stderr, "hylo-planner: --margin '%s': a clearance in metres, finite and >= 0\n",
+					argv[i]);
 				return 2;
 			}
 		} else if ((strcmp(a, "--lcm-url") == 0 || strcmp(a, "--out-url") == 0 ||
@@ -215,6 +231,7 @@ int main(int argc, char **argv)
 	cfg.robots = robots;
 	cfg.n_robots = n_robots;
 	cfg.clock = clock_ms;
+	cfg.margin_m = margin > 0 ? margin : HYLO_NO_MARGIN;
 	workspace = hylo_planner_size(&cfg);
 	planner = malloc(workspace);
 	plan = malloc(sizeof *plan);
@@ -257,8 +274,8 @@ int main(int argc, char **argv)
 	node->goal_limit = once ? 1 : 0;
 	if (verbose) {
 		fprintf(stderr, "hylo-planner: listening on %s (%sHYLO_MAP, %sHYLO_GOAL), %s; "
-			"workspace %zu bytes, node %zu bytes\n", url, prefix, prefix,
-			threaded ? "planning in a second thread" : "planning in order",
+			"margin %g m; workspace %zu bytes, node %zu bytes\n", url, prefix, prefix,
+			threaded ? "planning in a second thread" : "planning in order", margin,
 			workspace, sizeof *node);
 		list_robots(robots, n_robots);
 	}

@@ -43,6 +43,16 @@ static void bind(hylo_robot *rb, const hylo_registry_model *e)
 	}
 }
 
+const hylo_registry_body *hylo_registry_body_of(const char *robot)
+{
+	uint32_t k;
+
+	for (k = 0; k < hylo_registry_n_bodies; k++)
+		if (strcmp(hylo_registry_bodies[k].robot, robot) == 0)
+			return &hylo_registry_bodies[k];
+	return NULL;
+}
+
 uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason)
 {
 	uint32_t n = 0, k, m;
@@ -69,6 +79,11 @@ uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *rea
 			r = (int)n++;
 		}
 		bind(&robots[r], e);
+	}
+	for (k = 0; k < n; k++) {
+		const hylo_registry_body *b = hylo_registry_body_of(robots[k].name);
+
+		robots[k].body_radius_m = b ? b->radius_m : 0;
 	}
 	return n;
 full:

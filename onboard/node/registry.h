@@ -4,6 +4,8 @@
  * (ground, marine), drivocopter (ground, flight) and di (di_neg, di_pos) are
  * always known; a mode without a committed model makes plans for that robot
  * answer "no model". Any other <robot>_<mode>.h adds a robot of its own.
+ * Each robot's body radius comes from its robot file,
+ * trainer/params/<robot>.yaml (body: radius_m); a robot without one gets 0.
  */
 #ifndef HYLO_NODE_REGISTRY_H
 #define HYLO_NODE_REGISTRY_H
@@ -27,9 +29,23 @@ typedef struct {
 extern const hylo_registry_model hylo_registry_models[];
 extern const uint32_t hylo_registry_n_models;
 
+/* The body radius of each robot with a robot file. */
+typedef struct {
+	const char *robot;
+	double radius_m;
+} hylo_registry_body;
+
+extern const hylo_registry_body hylo_registry_bodies[];
+extern const uint32_t hylo_registry_n_bodies;
+
+/** The registry's entry for robot's body, or NULL when it has no robot file
+ * (its body radius is then 0). */
+const hylo_registry_body *hylo_registry_body_of(const char *robot);
+
 /**
- * Fills robots[0 .. cap) from the registry and returns their number, or 0
- * with *reason set when cap is too small. No allocation.
+ * Fills robots[0 .. cap) from the registry (models, switch costs, body
+ * radii) and returns their number, or 0 with *reason set when cap is too
+ * small. No allocation.
  */
 uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason);
 

@@ -95,6 +95,22 @@ static void largest_model(const hylo_planner_config *cfg, const char **name, siz
 		}
 }
 
+hylo_real hylo_planner_margin(const hylo_planner_config *cfg)
+{
+	if (!cfg)
+		return -1;
+	if (cfg->margin_m == 0)
+		return HYLO_DEFAULT_MARGIN_M;
+	if (cfg->margin_m == HYLO_NO_MARGIN)
+		return 0;
+	return isfinite(cfg->margin_m) && cfg->margin_m > 0 ? cfg->margin_m : -1;
+}
+
+hylo_real hylo_planner_clearance(const hylo_planner *pl)
+{
+	return pl && pl->has_map ? pl->map.inflation : 0;
+}
+
 hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_config *cfg)
 {
 	uint32_t k;
@@ -122,6 +138,10 @@ hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_
 	pl->n_start_adj = 0;
 	memset(pl->links_goal, 0, sizeof pl->links_goal);
 	memset(pl->links_start, 0, sizeof pl->links_start);
+	if (hylo_planner_margin(cfg) < 0)
+		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
+				 "margin_m = %g: finite and > 0, 0 (the default, %g m) or HYLO_NO_MARGIN",
+				 cfg->margin_m, HYLO_DEFAULT_MARGIN_M);
 	if (cfg->n_robots > HYLO_MAX_ROBOTS)
 		return hylo_fail(&pl->reason, HYLO_E_CAP_ROBOTS,
 				 "%u robots, more than HYLO_MAX_ROBOTS = %d",
@@ -174,35 +194,26 @@ static const hylo_robot *find_robot(const hylo_planner *pl, const char *name)
 	return NULL;
 }
 
-/* Some cell must belong to a domain of the robot. */
+/* Some cell belongs to a domain of the robot (as far as m's inflation
+ * leaves them: hylo_map_ingest leaves none). */
 static int map_has_domain(const hylo_map *m, const hylo_robot *robot)
 {
-	uint32_t k, cells = (uint32_t)m->nx * (uint32_t)m->ny;
+	int32_t c, cells = m->nx * m->ny;
+	uint32_t k;
 
-	for (k = 0; k < robot->n_modes; k++) {
-		switch (robot->modes[k].mode) {
-		case HYLO_MODE_GROUND:
-			if (m->n_ground > 0)
+	for (k = 0; k < robot->n_modes; k++)
+		for (c = 0; c < cells; c++)
+			if (robot->modes[k].mode == HYLO_MODE_FLIGHT
+				    ? hylo_map_flight_floor(m, c) <= hylo_map_flight_top(m)
+				    : hylo_map_cell_clear(m, robot->modes[k].mode, c))
 				return 1;
-			break;
-		case HYLO_MODE_MARINE:
-			if (m->n_water > 0)
-				return 1;
-			break;
-		case HYLO_MODE_FLIGHT:
-			return 1;
-		default:
-			if (m->n_obstacle < cells)
-				return 1;
-			break;
-		}
-	}
 	return 0;
 }
 
 static hylo_status ingest_map(hylo_planner *pl, const hylo_map_view *map)
 {
 	hylo_status st;
+	hylo_real margin;
 
 	pl->has_map = 0;
 	pl->roadmap.built = 0;
@@ -221,6 +232,15 @@ static hylo_status ingest_map(hylo_planner *pl, const hylo_map_view *map)
 		return hylo_fail(&pl->reason, HYLO_E_EMPTY_DOMAIN,
 				 "map %lld has no cell where robot %s can move (e.g. no drivable cell)",
 				 (long long)pl->map.map_id, pl->robot->name);
+	margin = hylo_planner_margin(&pl->cfg);
+	st = hylo_map_inflate(&pl->map, pl->robot->body_radius_m + margin, &pl->reason);
+	if (st != HYLO_OK)
+		return st;
+	if (!map_has_domain(&pl->map, pl->robot))
+		return hylo_fail(&pl->reason, HYLO_E_EMPTY_DOMAIN,
+				 "map %lld has no cell where robot %s keeps its clearance of %g m (body %g m + margin %g m) from every hazard",
+				 (long long)pl->map.map_id, pl->robot->name, pl->map.inflation,
+				 pl->robot->body_radius_m, margin);
 	attach_caches(pl);
 	pl->has_map = 1;
 	hylo_reason_clear(&pl->reason);
@@ -297,15 +317,48 @@ static hylo_point state_point(const hylo_map *m, hylo_mode mode, const hylo_real
 	return p;
 }
 
-static const char *domain_of(const hylo_planner *pl, hylo_point p)
+/* p in the plain domain of mode, without the clearance (inflation 0 is
+ * the plain domains, hylo/clearance.h). */
+static int plain_contains(hylo_planner *pl, hylo_mode mode, hylo_point p)
+{
+	hylo_real r = pl->map.inflation;
+	int in;
+
+	pl->map.inflation = 0;
+	in = hylo_domain_contains(&pl->map, mode, p);
+	pl->map.inflation = r;
+	return in;
+}
+
+static const char *domain_of(hylo_planner *pl, hylo_point p)
 {
 	int k;
 
 	for (k = HYLO_MODE_GROUND; k < HYLO_MODE_COUNT; k++)
 		if (hylo_robot_mode_index(pl->robot, (hylo_mode)k) >= 0 &&
-		    hylo_domain_contains(&pl->map, (hylo_mode)k, p))
+		    plain_contains(pl, (hylo_mode)k, p))
 			return hylo_mode_str((hylo_mode)k);
 	return NULL;
+}
+
+/* A start or goal in its mode's domain but not in the part that keeps the
+ * clearance: the planner could not leave it, or reach it, on edges that
+ * keep it, so the request is refused naming what is missing. */
+static hylo_status lacks_clearance(hylo_planner *pl, const char *what, hylo_mode mode,
+				   hylo_point p)
+{
+	hylo_real need = pl->map.inflation, d = hylo_hazard_distance(&pl->map, mode, p, need);
+	hylo_real margin = hylo_planner_margin(&pl->cfg);
+
+	if (d < need)
+		return hylo_fail(&pl->reason, HYLO_E_OUTSIDE_DOMAIN,
+				 "%s (%g, %g, %g) is %.3g m from the nearest %s hazard; robot %s needs %g m (body %g m + margin %g m)",
+				 what, p.x, p.y, p.z, d, hylo_mode_str(mode), pl->robot->name, need,
+				 pl->robot->body_radius_m, margin);
+	return hylo_fail(&pl->reason, HYLO_E_OUTSIDE_DOMAIN,
+			 "%s (%g, %g, %g) keeps %g m (body %g m + margin %g m) from every %s hazard, but its cell does not: the planner keeps the clearance cell by cell",
+			 what, p.x, p.y, p.z, need, pl->robot->body_radius_m, margin,
+			 hylo_mode_str(mode));
 }
 
 static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
@@ -339,6 +392,8 @@ static hylo_status check_state(hylo_planner *pl, const char *what, int mode,
 	*p = state_point(&pl->map, (hylo_mode)mode, xs);
 	if (hylo_domain_contains(&pl->map, (hylo_mode)mode, *p))
 		return HYLO_OK;
+	if (plain_contains(pl, (hylo_mode)mode, *p))
+		return lacks_clearance(pl, what, (hylo_mode)mode, *p);
 	other = domain_of(pl, *p);
 	if (other)
 		return hylo_fail(&pl->reason, HYLO_E_WRONG_MODE,

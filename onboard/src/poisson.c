@@ -337,7 +337,10 @@ static int guard_point(const hylo_map *m, const guard_set *g, uint64_t idx, hylo
 			p->y = m->origin_y + (iy + 1) * res;
 		}
 		p->z = m->height[m->terrain[cell] == HYLO_TERRAIN_GROUND ? cell : other];
-		return 1;
+		/* Both twins keep the clearance (hylo_map_inflate): the ground
+		 * cell's and the water cell's own hazards. */
+		return hylo_domain_contains(m, HYLO_MODE_GROUND, *p) &&
+		       hylo_domain_contains(m, HYLO_MODE_MARINE, *p);
 	}
 	case HYLO_GUARD_TAKEOFF: {
 		hylo_real i = fmod(k, g->sub), j = floor(k / g->sub);

@@ -96,5 +96,9 @@ hylo_status hylo_robot_check(const hylo_robot *robot, hylo_reason *r)
 			return hylo_fail(r, HYLO_E_BAD_VALUE,
 					 "robot %s: switch cost %u = %g must be finite and >= 0",
 					 robot->name, (unsigned)k, robot->switch_cost[k]);
+	if (!isfinite(robot->body_radius_m) || robot->body_radius_m < 0)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "robot %s: body radius %g m must be finite and >= 0", robot->name,
+				 robot->body_radius_m);
 	return HYLO_OK;
 }

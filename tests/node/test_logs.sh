@@ -2,7 +2,8 @@
 # The planner node as a process, driven through LCM file:// logs: the scene
 # publisher writes maps and goals to a log, the node reads it and writes its
 # plans to another log, and plan_check compares every plan with the library's
-# own answer. Also: --once, clean exit on SIGTERM/SIGINT, usage errors.
+# own answer. Also: --once, clean exit on SIGTERM/SIGINT, usage errors,
+# --margin and the body radii of --list-robots.
 set -u
 cd "$(dirname "$0")/../.."
 . tests/tap.sh
@@ -82,6 +83,39 @@ if [ "$rc" -eq 2 ] && grep -q -- "--out-url" "$T/usage.err"; then
 "$NODE" --lcm-url "nosuch://x" 2> "$T/url.err"; rc=$?
 if [ "$rc" -eq 1 ] && grep -q "nosuch" "$T/url.err"; then
   tap_ok "bad LCM URL: exit 1 naming it"; else tap_not_ok "bad LCM URL: exit 1 naming it" "exit $rc"; fi
+
+# Body and margin: a start 0.05 m from the wall lacks the default margin
+# (the synthetic robot has no robot file: no body) and is refused naming
+# it; with --margin 0 it is planned. Bad margins are usage errors.
+log 6 tests/node/synthetic.yaml --goal --request-id 6 --start ground:9.95,5,0,0
+for m in default 0; do
+  args=(); [ "$m" = default ] || args=(--margin "$m")
+  "$NODE" "${args[@]}" --lcm-url "file://$T/part6.log?speed=0" --out-url "file://$T/margin_$m.log?mode=w" 2> /dev/null
+  "$LISTEN" --lcm-url "file://$T/margin_$m.log?speed=0" --json > "$T/margin_$m.jsonl"
+done
+if python3 - "$T/margin_default.jsonl" "$T/margin_0.jsonl" <<'PY'
+import json, sys
+a, b = (json.loads(open(f).readline()) for f in sys.argv[1:3])
+assert a["status"] == "bad request", a
+assert "start (9.95, 5, 0) is 0.05 m from the nearest ground hazard; robot synthetic needs 0.1 m (body 0 m + margin 0.1 m)" in a["reason"], a["reason"]
+assert b["status"] == "ok", b
+PY
+then tap_ok "a start without the default margin is refused naming it; --margin 0 plans it"; else
+  tap_not_ok "a start without the default margin is refused naming it; --margin 0 plans it" "$(cut -c1-300 "$T"/margin_*.jsonl)"; fi
+for bad in -0.1 nan inf 1x ""; do
+  "$NODE" --margin "$bad" 2> "$T/margin.err"; rc=$?
+  if [ "$rc" -eq 2 ] && grep -q -- "--margin '$bad': a clearance in metres, finite and >= 0" "$T/margin.err"; then
+    tap_ok "--margin '$bad': exit 2 saying what it wants"; else
+    tap_not_ok "--margin '$bad': exit 2 saying what it wants" "exit $rc: $(cat "$T/margin.err")"; fi
+done
+"$NODE" --list-robots > "$T/robots.txt"; rc=$?
+if [ "$rc" -eq 0 ] && grep -q "^ambot: .*, body radius 0.35 m$" "$T/robots.txt" &&
+   grep -q "^drivocopter: .*, body radius 0.32 m$" "$T/robots.txt" &&
+   grep -q "^di: .*, body radius 0 m$" "$T/robots.txt" &&
+   grep -q "^synthetic: .*, body radius 0 m (no robot file)$" "$T/robots.txt" &&
+   grep -q -- "--margin M" "$T/help.txt"; then
+  tap_ok "--list-robots prints the robot files' body radii; --help lists --margin"; else
+  tap_not_ok "--list-robots prints the robot files' body radii; --help lists --margin" "$(cat "$T/robots.txt")"; fi
 
 # hylo-cost: the model's prediction for one edge, as text and JSON.
 COST=$B/test/node/hylo-cost-synthetic

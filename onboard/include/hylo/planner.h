@@ -1,7 +1,7 @@
 /*
  * hylo onboard planner: the public API.
  *
- *   hylo_planner_config cfg = { robots, n_robots, clock, clock_ctx };
+ *   hylo_planner_config cfg = { robots, n_robots, clock, clock_ctx }; // margin_m 0: the default
  *   size_t n = hylo_planner_size(&cfg);  // bytes for these robots' models
  *   hylo_planner *pl = malloc(n);        // once, at start-up (or static storage)
  *   hylo_planner_init(pl, n, &cfg);
@@ -20,6 +20,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "hylo/clearance.h"
 #include "hylo/config.h"
 #include "hylo/map.h"
 #include "hylo/robot.h"
@@ -116,11 +117,19 @@ typedef struct {
 	double plan_ms;                 /* 0 without a clock */
 } hylo_plan;
 
+/* hylo_planner_config.margin_m: the body's radius alone, no margin. */
+#define HYLO_NO_MARGIN (-1.0)
+
 typedef struct {
 	const hylo_robot *robots;       /* the robots this planner serves */
 	uint32_t n_robots;              /* <= HYLO_MAX_ROBOTS */
 	hylo_clock_fn clock;            /* optional monotonic clock [ms] */
 	void *clock_ctx;
+	/* The clearance every plan keeps beyond the robot's body from the
+	 * hazards of its mode [m] (docs/planner.md, "Body and margin"):
+	 * 0, as in a zero-initialised config, is HYLO_DEFAULT_MARGIN_M; a
+	 * finite value > 0 is that margin; HYLO_NO_MARGIN keeps the body alone. */
+	hylo_real margin_m;
 } hylo_planner_config;
 
 /* The workspace's head. Its fields are private; it is visible so that the
@@ -214,21 +223,38 @@ typedef struct {
 size_t hylo_planner_size(const hylo_planner_config *cfg);
 
 /**
+ * The margin cfg plans with [m]: margin_m with 0 read as
+ * HYLO_DEFAULT_MARGIN_M and HYLO_NO_MARGIN as 0; -1 when margin_m is
+ * neither of those nor finite and > 0 (hylo_planner_init refuses it).
+ */
+hylo_real hylo_planner_margin(const hylo_planner_config *cfg);
+
+/**
  * Prepares the workspace pl of size bytes (aligned for double) for the given
  * robots (copied). Errors: HYLO_E_NULL, HYLO_E_CAP_ROBOTS, HYLO_E_CAP_SV
  * (size is less than hylo_planner_size(cfg); the reason names the largest
- * model), and hylo_robot_check's errors. Does not allocate.
+ * model), HYLO_E_BAD_VALUE (margin_m), and hylo_robot_check's errors. Does
+ * not allocate.
  */
 hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_config *cfg);
 
 /**
  * Ingests a map (copied; the view may be freed afterwards) and invalidates
- * the roadmap. Errors: those of hylo_map_ingest, HYLO_E_UNKNOWN_ROBOT,
- * HYLO_E_EMPTY_DOMAIN (no cell of any of the robot's modes). On error the
+ * the roadmap. The domains the planner samples and connects in keep the
+ * clearance of the map's robot, its body radius plus the margin
+ * (hylo_planner_clearance), from every hazard (hylo_map_inflate): every
+ * node, guard point and edge of a plan does. Errors: those of
+ * hylo_map_ingest, HYLO_E_UNKNOWN_ROBOT, HYLO_E_EMPTY_DOMAIN (no cell of any
+ * of the robot's modes, or none that keeps the clearance). On error the
  * planner has no map, and plans answer with this error's status and a
- * reason "map N was refused: ..." until the next map. O(cells); no allocation.
+ * reason "map N was refused: ..." until the next map. O(cells times the
+ * cells within the clearance of one); no allocation.
  */
 hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map);
+
+/** The clearance the current map's plans keep [m]: the robot's body radius
+ * plus the margin; 0 without a map. */
+hylo_real hylo_planner_clearance(const hylo_planner *pl);
 
 /**
  * Plans for goal on the current map: (re)builds the roadmap when the
@@ -237,7 +263,9 @@ hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map);
  * HYLO_OK when the search ran (plan->outcome: found, no path, budget
  * exhausted), otherwise HYLO_E_NO_MAP, HYLO_E_BAD_VALUE (NaN, bad options),
  * HYLO_E_MAP_MISMATCH (a map_id naming a replaced map), HYLO_E_WRONG_MODE,
- * HYLO_E_OUTSIDE_DOMAIN, HYLO_E_CAP_*, HYLO_E_BAD_COST. No allocation.
+ * HYLO_E_OUTSIDE_DOMAIN (also a start or goal in its mode's domain that
+ * lacks the clearance: the reason names the point, the distance it keeps
+ * and the clearance it needs), HYLO_E_CAP_*, HYLO_E_BAD_COST. No allocation.
  */
 hylo_status hylo_planner_plan(hylo_planner *pl, const hylo_goal *goal, hylo_plan *plan);
 

@@ -51,12 +51,17 @@ typedef struct {
 	/* switch_cost[0]: modes[0] -> modes[1] (e.g. takeoff), switch_cost[1]:
 	 * modes[1] -> modes[0] (e.g. landing) [J], >= 0. */
 	hylo_real switch_cost[2];
+	/* The body: a disc (ground, marine) or a sphere (flight, every attitude)
+	 * of this radius round the robot's position [m], >= 0 (0: a point). The
+	 * planner keeps it, plus the configured margin, clear of every hazard
+	 * of the mode (hylo/clearance.h, hylo_planner_config.margin_m). */
+	hylo_real body_radius_m;
 } hylo_robot;
 
 /**
  * Checks a robot description: name, 1-2 valid distinct modes, a known guard
- * for a pair, finite non-negative switch costs and floors, valid SVR models
- * with the mode's feature count.
+ * for a pair, finite non-negative switch costs and floors, a finite
+ * non-negative body radius, valid SVR models with the mode's feature count.
  */
 hylo_status hylo_robot_check(const hylo_robot *robot, hylo_reason *r);
 

@@ -54,12 +54,13 @@ hylo_status hylo_poisson_sample(const hylo_map *m, hylo_mode mode, hylo_real r,
 
 /* Guard surfaces. */
 typedef enum {
-	/* Ambot: points on the common edge of a GROUND cell and a WATER cell;
-	 * z = the ground cell's height. */
+	/* Ambot: points on the common edge of a GROUND cell and a WATER cell
+	 * that lie in both domains (with hylo_map_inflate's clearance: both
+	 * cells clear); z = the ground cell's height. */
 	HYLO_GUARD_SHORELINE = 0,
 	/* Drivocopter: points of the ground domain whose twin
-	 * (x, y, z + HYLO_TAKEOFF_HEIGHT_M) lies in the flight domain; z = ground
-	 * height. */
+	 * (x, y, z + HYLO_TAKEOFF_HEIGHT_M) lies in the flight domain (both with
+	 * hylo_map_inflate's clearance); z = ground height. */
 	HYLO_GUARD_TAKEOFF = 1,
 	/* Double integrator: points (0, v, 0) of the phase plane (both domains). */
 	HYLO_GUARD_DI = 2
