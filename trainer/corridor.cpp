@@ -101,17 +101,22 @@ class Grower {
 public:
 	Grower(const std::string &mode, const ClearanceMap &m) : mode_(mode), m_(m), flight_(mode == "flight") {}
 
-	// The box of cells around [a, b] (grid units for x and y), grown while
-	// clear; false if the cells around the segment are not clear.
-	bool grow(const P3 &a, const P3 &b, CellBox &box) const
+	// The box of cells around the box with corners a and b (grid units for x
+	// and y; a segment's ends), grown while clear; false if the cells around
+	// it are not clear. A flight box holds its heights too; lifted, it may
+	// start above them (at the highest floor of its cells, below the top).
+	bool grow(const P3 &a, const P3 &b, CellBox &box, bool lifted = false) const
 	{
-		zlo_ = std::min(a[2], b[2]);
+		const double z0 = std::min(a[2], b[2]);
 		zhi_ = std::max(a[2], b[2]);
-		if (flight_ && zhi_ > m_.flight_top() + 1e-9)
+		if (flight_ && !lifted && zhi_ > m_.flight_top() + 1e-9)
 			return false;
 		for (const auto &xs : axis_seeds(std::min(a[0], b[0]), std::max(a[0], b[0]), m_.nx()))
 			for (const auto &ys : axis_seeds(std::min(a[1], b[1]), std::max(a[1], b[1]), m_.ny())) {
 				CellBox c{xs.first, xs.second, ys.first, ys.second, 0, 0};
+				zlo_ = z0;
+				if (lifted && !lift(c))
+					continue;
 				if (!strip_clear(c.ix0, c.ix1, c.iy0, c.iy1))
 					continue;
 				expand(c);
@@ -122,6 +127,21 @@ public:
 	}
 
 private:
+	// A lifted flight box's floor: the highest floor of its seed cells, if
+	// they may all be flown over below the top.
+	bool lift(const CellBox &c) const
+	{
+		double f = -std::numeric_limits<double>::infinity();
+		for (int iy = c.iy0; iy <= c.iy1; iy++)
+			for (int ix = c.ix0; ix <= c.ix1; ix++)
+				if (ix >= 0 && iy >= 0 && ix < m_.nx() && iy < m_.ny())
+					f = std::max(f, m_.flight_floor(ix, iy));
+		if (!(f <= m_.flight_top()))
+			return false;
+		zlo_ = std::max(zlo_, f);
+		return true;
+	}
+
 	bool cell_ok(int ix, int iy) const
 	{
 		if (!flight_)
@@ -180,7 +200,8 @@ private:
 struct Piece {
 	double s0 = 0, s1 = 0;
 	P3 a{}, b{};
-	bool has_box = false;
+	P3 lo{}, hi{};   // corners of the box round its path
+	bool has_box = false, lifted = false;
 	size_t level = 0;
 	CellBox box;
 };
@@ -211,6 +232,10 @@ void cover(const std::string &mode, const CorridorMaps &maps, size_t level, cons
 	pc.s1 = s1;
 	pc.a = a;
 	pc.b = b;
+	for (size_t k = 0; k < 3; k++) {
+		pc.lo[k] = std::min(a[k], b[k]);
+		pc.hi[k] = std::max(a[k], b[k]);
+	}
 	pc.level = level;
 	if (Grower(mode, *maps.levels()[level]).grow(grid_units(a), grid_units(b), pc.box)) {
 		pc.has_box = true;
@@ -225,6 +250,13 @@ void cover(const std::string &mode, const CorridorMaps &maps, size_t level, cons
 		cover(mode, maps, level, m, b, sm, s1, depth + 1, out);
 		return;
 	}
+	// A flight the cells around cannot hold at its height: lifted to where
+	// they can, at the full clearance (the plan passes too low there).
+	if (mode == "flight" && level == 0 && Grower(mode, *maps.levels()[0]).grow(grid_units(a), grid_units(b), pc.box, true)) {
+		pc.has_box = pc.lifted = true;
+		out.push_back(pc);
+		return;
+	}
 	if (level + 1 < maps.levels().size()) {
 		cover(mode, maps, level + 1, a, b, s0, s1, depth, out);
 		return;
@@ -232,18 +264,36 @@ void cover(const std::string &mode, const CorridorMaps &maps, size_t level, cons
 	out.push_back(pc);
 }
 
-// Consecutive pieces at the same level with the same box become one.
-std::vector<Piece> merged(const std::vector<Piece> &pieces)
+// Consecutive boxed pieces at one level (both lifted or neither) whose
+// path's box, as a whole, grows clear become one piece: fewer boxes, fewer times the
+// trajectory must be in the next box by a given time. Consecutive pieces
+// without a box become one too.
+std::vector<Piece> joined(const std::vector<Piece> &pieces, const std::string &mode, const CorridorMaps &maps)
 {
+	const TerrainGrid &g = maps.grid();
+	auto grid_units = [&](const P3 &p) {
+		return P3{(p[0] - g.origin_x_m) / g.resolution_m, (p[1] - g.origin_y_m) / g.resolution_m, p[2]};
+	};
 	std::vector<Piece> out;
 	for (const Piece &p : pieces) {
-		if (!out.empty() && out.back().has_box == p.has_box && out.back().level == p.level &&
-		    (!p.has_box || (out.back().box.ix0 == p.box.ix0 && out.back().box.ix1 == p.box.ix1 &&
-				    out.back().box.iy0 == p.box.iy0 && out.back().box.iy1 == p.box.iy1 &&
-				    out.back().box.z0 == p.box.z0))) {
-			out.back().s1 = p.s1;
-			out.back().b = p.b;
-			continue;
+		if (!out.empty()) {
+			Piece &q = out.back();
+			P3 lo, hi;
+			for (size_t k = 0; k < 3; k++) {
+				lo[k] = std::min(q.lo[k], p.lo[k]);
+				hi[k] = std::max(q.hi[k], p.hi[k]);
+			}
+			CellBox box = q.box;
+			bool boxless = !q.has_box && !p.has_box;
+			if (boxless || (q.has_box && p.has_box && q.lifted == p.lifted && q.level == p.level &&
+					Grower(mode, *maps.levels()[p.level]).grow(grid_units(lo), grid_units(hi), box, p.lifted))) {
+				q.s1 = p.s1;
+				q.b = p.b;
+				q.lo = lo;
+				q.hi = hi;
+				q.box = box;
+				continue;
+			}
 		}
 		out.push_back(p);
 	}
@@ -263,6 +313,67 @@ std::string piece_text(const Piece &p, bool flight)
 
 }  // namespace
 
+namespace {
+
+// A polyline by arc length.
+struct Polyline {
+	std::vector<P3> pts;
+	std::vector<double> at;   // arc length at each point
+	P3 point(double s) const
+	{
+		size_t i = 1;
+		while (i + 1 < pts.size() && at[i] < s)
+			i++;
+		double d = at[i] - at[i - 1];
+		return lerp(pts[i - 1], pts[i], d > 0 ? std::min(1.0, std::max(0.0, (s - at[i - 1]) / d)) : 0);
+	}
+};
+
+CorridorBox metric_box(const Piece &p, const TerrainGrid &g, bool flight)
+{
+	CorridorBox b;
+	b.lo = {g.origin_x_m + p.box.ix0 * g.resolution_m, g.origin_y_m + p.box.iy0 * g.resolution_m};
+	b.hi = {g.origin_x_m + (p.box.ix1 + 1) * g.resolution_m, g.origin_y_m + (p.box.iy1 + 1) * g.resolution_m};
+	if (flight) {
+		b.lo.push_back(p.box.z0);
+		b.hi.push_back(p.box.z1);
+	}
+	return b;
+}
+
+bool holds(const CorridorBox &b, const P3 &x)
+{
+	for (size_t k = 0; k < b.lo.size(); k++)
+		if (x[k] < b.lo[k] - 1e-9 || x[k] > b.hi[k] + 1e-9)
+			return false;
+	return true;
+}
+
+// Where the corridor hands over from box a (piece pa) to box b (the next
+// piece pb): the middle of the stretch of path round their shared point
+// that both boxes hold (searched from 60% of pa to 40% of pb, so that
+// hand-overs stay in order), and the half-width of the time both bound
+// the knots: half that stretch, at least 5 cm, at most 0.5 m and a tenth
+// of the shorter piece.
+std::pair<double, double> hand_over(const Polyline &path, const Piece &pa, const CorridorBox &a, const Piece &pb,
+				    const CorridorBox &b)
+{
+	const double h = 0.05, la = pa.s1 - pa.s0, lb = pb.s1 - pb.s0;
+	auto both = [&](double s) {
+		P3 x = path.point(s);
+		return holds(a, x) && holds(b, x);
+	};
+	double u0 = pa.s1, u1 = pa.s1;
+	while (u0 - h >= pa.s0 + 0.6 * la && both(u0 - h))
+		u0 -= h;
+	while (u1 + h <= pb.s0 + 0.4 * lb && both(u1 + h))
+		u1 += h;
+	double w = std::min({0.5, 0.1 * std::min(la, lb), std::max(0.5 * (u1 - u0), 0.05)});
+	return {0.5 * (u0 + u1), w};
+}
+
+}  // namespace
+
 Corridor build_corridor(const std::string &mode, const std::vector<P3> &path, const CorridorMaps &maps)
 {
 	if (mode != "ground" && mode != "marine" && mode != "flight")
@@ -270,58 +381,63 @@ Corridor build_corridor(const std::string &mode, const std::vector<P3> &path, co
 	if (path.empty())
 		throw std::invalid_argument("corridor: an empty path");
 	const bool flight = mode == "flight";
-	std::vector<P3> pts = path;
-	if (pts.size() == 1)
-		pts.push_back(pts[0]);
+	Polyline line;
+	line.pts = path;
+	if (line.pts.size() == 1)
+		line.pts.push_back(line.pts[0]);
+	line.at.assign(line.pts.size(), 0.0);
 	std::vector<Piece> pieces;
-	double s = 0;
-	for (size_t i = 1; i < pts.size(); i++) {
-		double d = length(pts[i - 1], pts[i], flight);
-		if (d == 0 && pts.size() > 2 && !pieces.empty())
+	for (size_t i = 1; i < line.pts.size(); i++) {
+		double d = length(line.pts[i - 1], line.pts[i], flight);
+		line.at[i] = line.at[i - 1] + d;
+		if (d == 0 && line.pts.size() > 2 && !pieces.empty())
 			continue;   // a repeated point adds nothing
-		cover(mode, maps, 0, pts[i - 1], pts[i], s, s + d, 0, pieces);
-		s += d;
+		cover(mode, maps, 0, line.pts[i - 1], line.pts[i], line.at[i - 1], line.at[i], 0, pieces);
 	}
-	pieces = merged(pieces);
-	const double L = s;
-	const TerrainGrid &g = maps.grid();
+	pieces = joined(pieces, mode, maps);
+	const double L = line.at.back();
 	Corridor c;
 	c.first_box = pieces.front().has_box;
 	c.last_box = pieces.back().has_box;
 	const double want = maps.levels().front()->clearance();
-	for (size_t j = 0; j < pieces.size(); j++) {
-		const Piece &p = pieces[j];
-		double got = maps.levels()[p.level]->clearance();
+	std::vector<CorridorBox> boxes;
+	for (const Piece &p : pieces) {
+		boxes.push_back(p.has_box ? metric_box(p, maps.grid(), flight) : CorridorBox{});
 		char buf[96];
 		if (!p.has_box) {
 			c.notes.push_back(piece_text(p, flight) + ": no box, not even the domain's cells hold it");
 			continue;
 		}
-		if (got < want) {
-			std::snprintf(buf, sizeof buf, ": cells clear by %.3g m, not %.3g m", got, want);
+		if (p.lifted) {
+			std::snprintf(buf, sizeof buf, ": passes below the clear floor, lifted to z >= %.3g m", p.box.z0);
 			c.notes.push_back(piece_text(p, flight) + buf);
 		}
-		// Overlap with the neighbours (both with boxes) around the shared point.
-		auto overlap = [&](size_t k) {
-			const Piece &q = pieces[k];
-			if (!q.has_box)
-				return 0.0;
-			return std::min({0.25 * (p.s1 - p.s0), 0.25 * (q.s1 - q.s0), 0.5});
-		};
-		double s0 = p.s0 - (j > 0 ? overlap(j - 1) : 0), s1 = p.s1 + (j + 1 < pieces.size() ? overlap(j + 1) : 0);
-		CorridorBox b;
-		b.tau0 = L > 0 ? std::max(0.0, s0 / L) : 0;
-		b.tau1 = L > 0 ? std::min(1.0, s1 / L) : 1;
-		if (j == 0)
-			b.tau0 = 0;
-		if (j + 1 == pieces.size())
-			b.tau1 = 1;
-		b.lo = {g.origin_x_m + p.box.ix0 * g.resolution_m, g.origin_y_m + p.box.iy0 * g.resolution_m};
-		b.hi = {g.origin_x_m + (p.box.ix1 + 1) * g.resolution_m, g.origin_y_m + (p.box.iy1 + 1) * g.resolution_m};
-		if (flight) {
-			b.lo.push_back(p.box.z0);
-			b.hi.push_back(p.box.z1);
+		if (maps.levels()[p.level]->clearance() < want) {
+			std::snprintf(buf, sizeof buf, ": cells clear by %.3g m, not %.3g m",
+				      maps.levels()[p.level]->clearance(), want);
+			c.notes.push_back(piece_text(p, flight) + buf);
 		}
+	}
+	// Each box bounds the knots from the hand-over from the previous box to
+	// the hand-over to the next (its piece's own ends next to a piece
+	// without a box), by arc length.
+	std::vector<double> start(pieces.size()), end(pieces.size());
+	for (size_t j = 0; j < pieces.size(); j++) {
+		start[j] = pieces[j].s0;
+		end[j] = pieces[j].s1;
+	}
+	for (size_t j = 0; j + 1 < pieces.size(); j++)
+		if (pieces[j].has_box && pieces[j + 1].has_box) {
+			auto [at, w] = hand_over(line, pieces[j], boxes[j], pieces[j + 1], boxes[j + 1]);
+			end[j] = at + w;
+			start[j + 1] = at - w;
+		}
+	for (size_t j = 0; j < pieces.size(); j++) {
+		if (!pieces[j].has_box)
+			continue;
+		CorridorBox &b = boxes[j];
+		b.tau0 = j == 0 || L <= 0 ? 0 : std::max(0.0, start[j] / L);
+		b.tau1 = j + 1 == pieces.size() || L <= 0 ? 1 : std::min(1.0, end[j] / L);
 		c.boxes.push_back(std::move(b));
 	}
 	return c;

@@ -490,6 +490,22 @@ SolveOptions solver_options(const SmoothOptions &opt, bool full)
 	return so;
 }
 
+// The straightened copy's problem with the plan's own corridors: the
+// straight line between a run's ends may cross water or rock, the plan's
+// path does not (when both have the same phases: a flight's wall cuts may
+// differ).
+void keep_corridors(MultiPhaseProblem &straight, const MultiPhaseProblem &own)
+{
+	if (straight.phases.size() != own.phases.size())
+		return;
+	for (size_t k = 0; k < own.phases.size(); k++)
+		if (straight.phases[k].mode != own.phases[k].mode)
+			return;
+	for (size_t k = 0; k < own.phases.size(); k++)
+		straight.phases[k].corridor = own.phases[k].corridor;
+	straight.notes = own.notes;
+}
+
 }  // namespace
 
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
@@ -499,8 +515,11 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 	MultiPhaseSolution s;
 	double seconds = 0, rejected = std::numeric_limits<double>::infinity();
 	std::string why;
+	const MultiPhaseProblem own = smoothing_problem(robot, plan, map, costs, opt);
 	for (int attempt = 0; attempt < 2; attempt++) {
-		MultiPhaseProblem prob = smoothing_problem(robot, attempt ? straightened(plan) : plan, map, costs, opt);
+		MultiPhaseProblem prob = attempt ? smoothing_problem(robot, straightened(plan), map, costs, opt) : own;
+		if (attempt)
+			keep_corridors(prob, own);
 		if (!T_scales.empty())
 			prob.T_scales = T_scales;
 		s = solve_multiphase(robot, prob, solver_options(opt, true));
