@@ -312,6 +312,18 @@ void staircase_corridor(const RobotParams &ambot)
 	      "ground x <= " + fmt(gl.hi[0]) + ", water x >= " + fmt(wf.lo[0]));
 }
 
+// A clearance the map cannot give (3 m on a 16 m map with a rock) is not
+// dropped silently: the corridor says which pieces got less.
+void too_wide()
+{
+	TerrainGrid m = staircase();
+	CorridorMaps maps(m, 3.0, 0.02);
+	Corridor g = build_corridor("ground", {{2, 2, 0}, {5, 5.5, 0}, {8, 8.5, 0}}, maps);
+	bool said = !g.notes.empty() && g.notes[0].find("not 3.02 m") != std::string::npos;
+	check(said && g.boxes.size() >= 1, "a clearance the map cannot give: the corridor's notes say where it gives less",
+	      g.notes.empty() ? "no note" : g.notes[0]);
+}
+
 // (a): the plan smoothed with corridors keeps every knot and midpoint in
 // its domain with the margin; without them it does not.
 void staircase_smoothing(const RobotParams &ambot)
@@ -373,6 +385,7 @@ int main(int argc, char **argv)
 	l_bounds(ambot);
 	l_shaped_phase(ambot);
 	staircase_corridor(ambot);
+	too_wide();
 	staircase_smoothing(ambot);
 	chasm_gate(drivo);
 	return tap_finish();
