@@ -105,11 +105,10 @@ public:
 	// and y; a segment's ends), grown while clear; false if the cells around
 	// it are not clear. A flight box holds its heights too; lifted, it may
 	// start above them (at the highest floor of its cells, below the top).
-	bool grow(const P3 &a, const P3 &b, CellBox &box, bool lifted = false) const
+	bool grow(const P3 &a, const P3 &b, CellBox &box, bool lifted = false)
 	{
 		const double z0 = std::min(a[2], b[2]);
-		zhi_ = std::max(a[2], b[2]);
-		if (flight_ && !lifted && zhi_ > m_.flight_top() + 1e-9)
+		if (flight_ && !lifted && std::max(a[2], b[2]) > m_.flight_top() + 1e-9)
 			return false;
 		for (const auto &xs : axis_seeds(std::min(a[0], b[0]), std::max(a[0], b[0]), m_.nx()))
 			for (const auto &ys : axis_seeds(std::min(a[1], b[1]), std::max(a[1], b[1]), m_.ny())) {
@@ -129,7 +128,7 @@ public:
 private:
 	// A lifted flight box's floor: the highest floor of its seed cells, if
 	// they may all be flown over below the top.
-	bool lift(const CellBox &c) const
+	bool lift(const CellBox &c)
 	{
 		double f = -std::numeric_limits<double>::infinity();
 		for (int iy = c.iy0; iy <= c.iy1; iy++)
@@ -193,7 +192,7 @@ private:
 	const std::string &mode_;
 	const ClearanceMap &m_;
 	bool flight_;
-	mutable double zlo_ = 0, zhi_ = 0;
+	double zlo_ = 0;   // a flight box's cells must have floors at most this high
 };
 
 // A piece of the path [s0, s1] (arc length) and its box, if it has one.

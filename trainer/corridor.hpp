@@ -63,7 +63,8 @@ private:
 struct Corridor {
 	std::vector<CorridorBox> boxes;   // in the order of the path, timed by its arc length
 	// Pieces of the path that got a box of less clearance than the first
-	// level's, or none ("(3.5, 2) -> (5, 2): clearance 0 m, not 0.47 m").
+	// level's, a lifted box, or none ("(3.5, 2) -> (5, 2): cells clear by
+	// 0 m, not 0.47 m").
 	std::vector<std::string> notes;
 	bool first_box = false, last_box = false;   // the path's first (last) piece has a box
 };
@@ -73,10 +74,12 @@ struct Corridor {
 // box of cells around it grown greedily a row or column at a time while it
 // stays clear, at the first level where its cells are clear; a segment
 // whose cells are not is halved (down to a quarter cell) and its halves
-// tried, then the next level. Piece j's box holds over the arc-length
-// fraction of its piece, widened into its neighbours' by up to a quarter
-// of the shorter piece (0.5 m at most), so that the knots near the point
-// they share are bounded to both boxes (which both hold that point).
+// tried; a flight piece still too low is lifted (its box starts at the
+// highest floor of its cells); else the next level. Consecutive pieces
+// whose joint box grows clear become one. A box holds over its piece's
+// share of the path's arc length, handing over to the next box in the
+// middle of the stretch of path both hold, where the knots are bounded to
+// both (5 cm to 0.5 m each way).
 Corridor build_corridor(const std::string &mode, const std::vector<std::array<double, 3>> &path,
 			const CorridorMaps &maps);
 
