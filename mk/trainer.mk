@@ -4,7 +4,7 @@
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
 	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp \
-	trainer/numerics.cpp trainer/repair.cpp trainer/gather.cpp trainer/clearance.cpp trainer/files.cpp
+	trainer/numerics.cpp trainer/repair.cpp trainer/gather.cpp trainer/clearance.cpp trainer/files.cpp trainer/corridor.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS) $(YAML_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread
@@ -50,12 +50,16 @@ CLEARANCE_CHECK_TEST := $(BUILD)/test/trainer/test_clearance_check
 $(CLEARANCE_CHECK_TEST): tests/trainer/test_clearance_check.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+CORRIDOR_TEST := $(BUILD)/test/trainer/test_corridor
+$(CORRIDOR_TEST): tests/trainer/test_corridor.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
 # Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
 # test_collocation under several OpenBLAS kernel settings and hwcaps masks.
 tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
-ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) tests/trainer/test_trainer_cli.sh \
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST)
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) tests/trainer/test_trainer_cli.sh \
 	tests/trainer/test_numerics.sh
 
 # make models: regenerates every committed model (datasets resume; see

@@ -559,8 +559,10 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 			int by_step = step > 0 ? static_cast<int>(std::ceil(Ts[k] / step)) : 0;
 			if (opt.derivative_test_file.empty())   // the checker needs no fine mesh, only exact derivatives
 				p.setups[k].segments = std::max({p.setups[k].segments, i.min_segments, by_step});
-			if (i.path_guess && p.setups[k].guess.size() == 2)
+			if (i.path_guess && p.setups[k].guess.size() == 2) {
 				p.setups[k].guess = i.path_guess(p.setups[k].guess[0], p.setups[k].guess[1], Ts[k]);
+				p.setups[k].guess_by_arc_length = false;
+			}
 		}
 		best.starts++;
 		// Continuation: smoother problems first, each starting the next; the
@@ -719,6 +721,39 @@ void check_state(const std::vector<double> &v, const Bounds &bd, const std::stri
 						    std::to_string(v[k]) + " is outside [" +
 						    std::to_string(bd.x_lo[k]) + ", " + std::to_string(bd.x_hi[k]) +
 						    "] of mode " + mode);
+}
+
+// Throws std::invalid_argument unless ps's corridor boxes have the mode's
+// position dimensions, intervals inside [0, 1] and non-empty boxes, and
+// boxes whose intervals overlap intersect (their knots would have no room).
+void check_corridor(const PhaseSpec &ps, const std::string &where)
+{
+	const size_t dims = ps.mode == "flight" ? 3 : ps.mode == "ground" || ps.mode == "marine" ? 2 : 0;
+	for (size_t i = 0; i < ps.corridor.size(); i++) {
+		const CorridorBox &b = ps.corridor[i];
+		std::string box = where + ": corridor box " + std::to_string(i);
+		if (dims == 0)
+			throw std::invalid_argument(box + ": mode " + ps.mode + " has no corridor");
+		if (b.lo.size() != dims || b.hi.size() != dims)
+			throw std::invalid_argument(box + " has " + std::to_string(b.lo.size()) + " and " +
+						    std::to_string(b.hi.size()) + " bounds, the mode's position " +
+						    std::to_string(dims));
+		if (!(b.tau0 >= 0 && b.tau0 <= b.tau1 && b.tau1 <= 1))
+			throw std::invalid_argument(box + ": interval [" + std::to_string(b.tau0) + ", " +
+						    std::to_string(b.tau1) + "] is not inside [0, 1]");
+		for (size_t k = 0; k < dims; k++)
+			if (!(b.lo[k] <= b.hi[k]))
+				throw std::invalid_argument(box + " is empty along component " + std::to_string(k));
+		for (size_t j = 0; j < i; j++) {
+			const CorridorBox &a = ps.corridor[j];
+			if (a.tau1 < b.tau0 || b.tau1 < a.tau0)
+				continue;
+			for (size_t k = 0; k < dims; k++)
+				if (std::max(a.lo[k], b.lo[k]) > std::min(a.hi[k], b.hi[k]))
+					throw std::invalid_argument(box + " and box " + std::to_string(j) +
+								    " overlap in time but not in space");
+		}
+	}
 }
 
 }  // namespace
@@ -1030,6 +1065,9 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 		for (size_t i = 1; i < ps.guess.size(); i++)
 			length += info.distance(ps.guess[i - 1].data(), ps.guess[i].data());
 		s.T_guess = ps.T_guess > 0 ? ps.T_guess : duration_guess(info, length);
+		check_corridor(ps, where);
+		s.corridor = ps.corridor;
+		s.guess_by_arc_length = !ps.corridor.empty();
 		p.modes.push_back(ps.mode);
 		p.info.push_back(std::move(info));
 		p.setups.push_back(std::move(s));
@@ -1051,7 +1089,9 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 		}
 		starts.push_back(st);
 	}
-	return solve_stacked(robot, p, starts, prob.switch_cost, opt);
+	MultiPhaseSolution out = solve_stacked(robot, p, starts, prob.switch_cost, opt);
+	out.notes = prob.notes;
+	return out;
 }
 
 }  // namespace hylo::trainer

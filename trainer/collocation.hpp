@@ -165,6 +165,15 @@ std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::stri
 // linear rows tie the last knot of a phase to the first of the next (reset
 // maps) and keep switch points on their guards. switching.hpp builds them.
 
+// A safe corridor's piece (trainer/corridor.hpp): over the part [tau0, tau1]
+// of a phase's normalized time (0 its start, 1 its end) the position,
+// components 0 and 1 (ground, marine) or 0 to 2 (flight), stays in the
+// axis-aligned box [lo, hi] (lo and hi of that many components).
+struct CorridorBox {
+	double tau0 = 0, tau1 = 1;
+	std::vector<double> lo, hi;
+};
+
 struct PhaseSpec {
 	std::string mode;
 	int segments = 20;
@@ -173,6 +182,12 @@ struct PhaseSpec {
 	// Bounds of the first and last knot's state (state_dim each; empty: the
 	// mode's bounds). Equal bounds fix a component.
 	std::vector<double> first_lo, first_hi, last_lo, last_hi;
+	// Empty: none. Else every knot and midpoint whose normalized time lies in
+	// a box's interval is bounded to that box (to the intersection of
+	// several); the first and last knots to their own bounds intersected
+	// with it (their own alone where that is empty). The initial guess then
+	// runs through the guess states at times proportional to arc length.
+	std::vector<CorridorBox> corridor;
 };
 
 // A state component of a phase's first or last knot.
@@ -193,6 +208,7 @@ struct MultiPhaseProblem {
 	std::vector<LinearRow> rows;
 	double switch_cost = 0;                      // constant switching costs [J], added to the cost
 	std::vector<double> T_scales{1.0, 2.0, 0.5}; // starts: every phase's T_guess times each
+	std::vector<std::string> notes;              // passed on to the solution (MultiPhaseSolution::notes)
 };
 
 struct MultiPhaseSolution {
@@ -214,6 +230,9 @@ struct MultiPhaseSolution {
 	std::vector<std::string> modes;
 	std::vector<Solution> phases;  // per phase: cost, T, trajectory (t from 0), replay
 	double solve_seconds = 0;
+	// What the problem's builder could not give as asked (the smoother: a
+	// corridor piece with less clearance, or none); copied from the problem.
+	std::vector<std::string> notes;
 };
 
 // Solves a multi-phase problem from every start; keeps the cheapest

@@ -44,6 +44,11 @@ struct PhaseSetup {
 	std::vector<std::vector<double>> guess;    // full states the initial guess runs through (>= 2)
 	std::vector<double> first_lo, first_hi;    // bounds of the first knot's state (NX each)
 	std::vector<double> last_lo, last_hi;      // bounds of the last knot's state
+	std::vector<CorridorBox> corridor;         // PhaseSpec::corridor (checked by solve_multiphase)
+	// The guess states are at times proportional to their arc length, not
+	// uniform (a corridor's boxes are timed so; a mode's own path guess is
+	// timed uniformly).
+	bool guess_by_arc_length = false;
 };
 
 // The interface CollocationNlp sees. Pointers passed in are already offset to
@@ -123,12 +128,10 @@ public:
 				xu[zi(p) + NX + k] = b_.u_hi[static_cast<size_t>(k)];
 			}
 		}
-		for (int k = 0; k < NX; k++) {
-			xl[zi(knot(0)) + k] = s_.first_lo[static_cast<size_t>(k)];
-			xu[zi(knot(0)) + k] = s_.first_hi[static_cast<size_t>(k)];
-			xl[zi(knot(N_)) + k] = s_.last_lo[static_cast<size_t>(k)];
-			xu[zi(knot(N_)) + k] = s_.last_hi[static_cast<size_t>(k)];
-		}
+		for (int p = 0; p < npts_ && !s_.corridor.empty(); p++)
+			in_corridor(time_of(p), xl + zi(p), xu + zi(p));
+		end_bounds(knot(0), s_.first_lo, s_.first_hi, xl, xu);
+		end_bounds(knot(N_), s_.last_lo, s_.last_hi, xl, xu);
 		xl[Ti()] = s_.T_fixed > 0 ? s_.T_fixed : b_.T_min;
 		xu[Ti()] = s_.T_fixed > 0 ? s_.T_fixed : b_.T_max;
 		for (int r = 0; r < 2 * N_ * NX; r++)
@@ -144,15 +147,23 @@ public:
 
 	// Piecewise linear through the guess states, uniformly in time, clamped to
 	// the bounds; inputs at the model's guess.
+	// At times proportional to the guess's arc length (guess_by_arc_length),
+	// else uniformly.
 	void start(Number *z) const override
 	{
 		auto ug = m_.input_guess();
 		const int nw = static_cast<int>(s_.guess.size()) - 1;
+		const std::vector<double> at = guess_times();
 		for (int p = 0; p < npts_; p++) {
-			double s = p <= N_ ? static_cast<double>(p) / N_
-					   : (static_cast<double>(p - N_ - 1) + 0.5) / N_;
+			double s = time_of(p);
 			int w = std::min(nw - 1, static_cast<int>(s * nw));
 			double local = s * nw - w;
+			if (s_.guess_by_arc_length) {
+				for (w = 0; w + 1 < nw && at[static_cast<size_t>(w + 1)] <= s;)
+					w++;
+				double span = at[static_cast<size_t>(w + 1)] - at[static_cast<size_t>(w)];
+				local = span > 0 ? clamp((s - at[static_cast<size_t>(w)]) / span, 0, 1) : 0;
+			}
 			const std::vector<double> &a = s_.guess[static_cast<size_t>(w)];
 			const std::vector<double> &b = s_.guess[static_cast<size_t>(w + 1)];
 			for (int k = 0; k < NX; k++) {
@@ -391,6 +402,62 @@ private:
 	// (the optimizer cannot exploit Simpson's rule with chattering inputs).
 	int c3(int k) const { return 2 * N_ * NX + npts_ * NP + k * NU; }
 	static double clamp(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
+	// Normalized time of point p (0 the first knot, 1 the last).
+	double time_of(int p) const
+	{
+		return p <= N_ ? static_cast<double>(p) / N_ : (static_cast<double>(p - N_ - 1) + 0.5) / N_;
+	}
+
+	// Position bounds of a point at normalized time s, lo and hi narrowed to
+	// every corridor box whose interval holds s.
+	void in_corridor(double s, Number *lo, Number *hi) const
+	{
+		constexpr double eps = 1e-12;
+		for (const CorridorBox &b : s_.corridor) {
+			if (s < b.tau0 - eps || s > b.tau1 + eps)
+				continue;
+			for (size_t k = 0; k < b.lo.size(); k++) {
+				lo[k] = std::max(lo[k], b.lo[k]);
+				hi[k] = std::min(hi[k], b.hi[k]);
+			}
+		}
+	}
+
+	// The first or last knot's bounds: its own, intersected with the
+	// corridor's where that leaves something (a pinned end outside it keeps
+	// its own).
+	void end_bounds(int p, const std::vector<double> &lo, const std::vector<double> &hi, Number *xl,
+			Number *xu) const
+	{
+		for (int k = 0; k < NX; k++) {
+			double l = std::max(lo[static_cast<size_t>(k)], xl[zi(p) + k]);
+			double h = std::min(hi[static_cast<size_t>(k)], xu[zi(p) + k]);
+			bool keep = !s_.corridor.empty() && l <= h;
+			xl[zi(p) + k] = keep ? l : lo[static_cast<size_t>(k)];
+			xu[zi(p) + k] = keep ? h : hi[static_cast<size_t>(k)];
+		}
+	}
+
+	// Normalized times of the guess states with guess_by_arc_length:
+	// proportional to the arc length of their positions (uniform if it is 0).
+	// Empty without.
+	std::vector<double> guess_times() const
+	{
+		if (!s_.guess_by_arc_length || s_.corridor.empty())
+			return {};
+		const size_t n = s_.guess.size();
+		std::vector<double> at(n, 0.0);
+		const size_t dims = s_.corridor[0].lo.size();
+		for (size_t w = 1; w < n; w++) {
+			double d = 0;
+			for (size_t k = 0; k < dims; k++)
+				d += std::pow(s_.guess[w][k] - s_.guess[w - 1][k], 2);
+			at[w] = at[w - 1] + std::sqrt(d);
+		}
+		for (size_t w = 0; w < n; w++)
+			at[w] = at.back() > 0 ? at[w] / at.back() : static_cast<double>(w) / static_cast<double>(n - 1);
+		return at;
+	}
 	double F(int p, int r) const { return f_[static_cast<size_t>(p * NX + r)]; }
 	double JF(int p, int r, int j) const { return jf_[static_cast<size_t>((p * NX + r) * NZ + j)]; }
 	// Simpson weight of point p in the cost.

@@ -78,9 +78,12 @@ void usage(FILE *out)
 		"  --alternatives-wait S wait at most S seconds after the plan for its\n"
 		"                        alternatives, then smooth those received (default: 2)\n"
 		"  --margin M            clearance the trajectory must keep beyond the robot's\n"
-		"                        body from every hazard of its mode, in metres\n"
-		"                        (default: 0.1; docs/smoothing.md, \"Clearance\");\n"
-		"                        traj_t.safe says whether it does\n"
+		"                        body from every hazard of its mode, in metres: its\n"
+		"                        phases' corridors keep it, the check after the solve\n"
+		"                        says whether it does (default: 0.1; docs/smoothing.md,\n"
+		"                        \"Clearance\"); traj_t.safe\n"
+		"  --no-corridors        no corridors: inside a phase only the state bounds\n"
+		"                        hold (the smoother before corridors, for comparison)\n"
 		"  --compare-graph       also solve every edge of the plan on its own and print\n"
 		"                        the exact cost of the graph path (slow)\n"
 		"  --ipopt-option NAME=VALUE\n"
@@ -104,10 +107,11 @@ struct Options {
 	long long request_id = -1;
 	bool once = false, compare = false, quiet = false;
 	int segments_per_edge = 6;
+	bool corridors = true;
 	std::vector<IpoptOption> ipopt_options, full_ipopt_options;
 	AlternativesBudget budget;
 	double alternatives_wait_s = 2;
-	double margin_m = HYLO_DEFAULT_MARGIN_M;   // the clearance check's margin beyond the body
+	double margin_m = HYLO_DEFAULT_MARGIN_M;   // beyond the body: the corridors keep it, the clearance check verifies it
 };
 
 // The sampled path of a plan_t.
@@ -280,6 +284,8 @@ private:
 		so.segments_per_edge = o_.segments_per_edge;
 		so.ipopt_options = o_.ipopt_options;
 		so.full_ipopt_options = o_.full_ipopt_options;
+		so.margin_m = o_.margin_m;
+		so.corridors = o_.corridors;
 		return so;
 	}
 
@@ -346,6 +352,8 @@ private:
 			return fail(t, hylo::plan_t::STATUS_NO_PATH,
 				    "the plan cannot be followed: " + res.failure + " (tried " + tried + ")");
 		const MultiPhaseSolution &s = res.solution;
+		for (const std::string &n : s.notes)
+			std::fprintf(stderr, "hylo-smooth: request %lld: %s\n", static_cast<long long>(p.request_id), n.c_str());
 		double t0 = 0;
 		for (size_t k = 0; k < s.phases.size(); k++) {
 			const Solution &ph = s.phases[k];
@@ -558,6 +566,10 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			usage(stdout);
 			exit_code = 0;
 			return false;
+		}
+		if (a == "--no-corridors") {
+			o.corridors = false;
+			continue;
 		}
 		if (a == "--once" || a == "--compare-graph" || a == "--quiet") {
 			(a == "--once" ? o.once : a == "--quiet" ? o.quiet : o.compare) = true;

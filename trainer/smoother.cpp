@@ -1,5 +1,8 @@
 #include "trainer/smoother.hpp"
 
+#include <array>
+#include <memory>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,6 +10,8 @@
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+
+#include "trainer/corridor.hpp"
 
 namespace hylo::trainer {
 namespace {
@@ -108,8 +113,10 @@ SwitchGuard shoreline_guard(const TerrainGrid &m, double x, double y, double hal
 // cells are level with (x, y)'s and within half_length of it. Its bounds are
 // the centres of its outer cells (the robot keeps half a cell from the edge),
 // widened to hold (x, y) itself. An area, not a line: a plan that reaches the
-// platform's edge at a corner may take off straight ahead instead.
-SwitchGuard platform_area(const TerrainGrid &m, double x, double y, double half_length)
+// platform's edge at a corner may take off straight ahead instead. With
+// clear, only its clear ground cells count (the takeoff cell's too).
+SwitchGuard platform_area(const TerrainGrid &m, double x, double y, double half_length,
+			  const ClearanceMap *clear = nullptr)
 {
 	Cell c = cell_at(m, x, y);
 	if (!c.inside || m.terrain[static_cast<size_t>(c.index)] != kGround)
@@ -120,7 +127,8 @@ SwitchGuard platform_area(const TerrainGrid &m, double x, double y, double half_
 	const int reach = static_cast<int>(std::floor(half_length / m.resolution_m + 1e-9));
 	auto level = [&](int ix, int iy) {
 		size_t k = static_cast<size_t>(iy * m.nx + ix);
-		return m.terrain[k] == kGround && std::fabs(m.height_m[k] - h) < 1e-3;
+		return m.terrain[k] == kGround && std::fabs(m.height_m[k] - h) < 1e-3 &&
+		       (!clear || clear->clear("ground", ix, iy));
 	};
 	int lo[2] = {cx, cy}, hi[2] = {cx, cy};
 	const int size[2] = {m.nx, m.ny}, centre[2] = {cx, cy};
@@ -225,6 +233,95 @@ double flight_time_guess(const std::vector<std::vector<double>> &xs)
 	return std::max(0.2, T);
 }
 
+// The clearance maps of a plan's corridors, or none (opt.corridors off, no
+// map; a map the onboard code refuses: a note says so).
+std::unique_ptr<CorridorMaps> corridor_maps(const RobotParams &robot, const TerrainGrid &map,
+					    const SmoothOptions &opt, std::vector<std::string> &notes)
+{
+	if (!(std::isfinite(opt.margin_m) && opt.margin_m >= 0))
+		throw std::invalid_argument("the margin " + std::to_string(opt.margin_m) + " m must be finite and >= 0");
+	if (!(std::isfinite(opt.corridor_pad_m) && opt.corridor_pad_m >= 0))
+		throw std::invalid_argument("the corridor pad " + std::to_string(opt.corridor_pad_m) +
+					    " m must be finite and >= 0");
+	if (!opt.corridors || map.nx <= 0 || map.ny <= 0)
+		return nullptr;
+	const double body = opt.body_radius_m >= 0 ? opt.body_radius_m : robot.body_radius_m;
+	try {
+		return std::make_unique<CorridorMaps>(map, body + opt.margin_m, opt.corridor_pad_m);
+	} catch (const std::invalid_argument &e) {
+		notes.push_back(std::string("no corridors: ") + e.what());
+		return nullptr;
+	}
+}
+
+bool has_corridor(const std::string &mode)
+{
+	return mode == "ground" || mode == "marine" || mode == "flight";
+}
+
+// Each phase's corridor along its guess path (notes in p.notes); per phase
+// whether the corridor's first and last pieces have boxes.
+std::vector<std::array<bool, 2>> add_corridors(MultiPhaseProblem &p, const CorridorMaps &maps)
+{
+	std::vector<std::array<bool, 2>> ends(p.phases.size(), {false, false});
+	for (size_t k = 0; k < p.phases.size(); k++) {
+		PhaseSpec &s = p.phases[k];
+		if (!has_corridor(s.mode))
+			continue;
+		std::vector<std::array<double, 3>> path;
+		for (const auto &x : s.guess)
+			path.push_back({x[0], x[1], s.mode == "flight" ? x[2] : 0.0});
+		Corridor c = build_corridor(s.mode, path, maps);
+		s.corridor = std::move(c.boxes);
+		ends[k] = {c.first_box, c.last_box};
+		for (const std::string &n : c.notes)
+			p.notes.push_back("phase " + std::to_string(k) + " (" + s.mode + ") corridor: " + n);
+	}
+	return ends;
+}
+
+// The shoreline piece where phase k's corridor ends (ground or water) and
+// phase k + 1's begins (the other): the intersection of the two boxes, a
+// piece of the shared edge of adjacent clear ground and water cells, within
+// half_length of the plan's switch point (x, y) per axis (0: the point).
+// False when the boxes do not meet.
+bool shore_from_boxes(const CorridorBox &a, const CorridorBox &b, double x, double y, double half_length,
+		      SwitchGuard &g)
+{
+	double lo[2], hi[2], at[2] = {x, y};
+	for (int i = 0; i < 2; i++) {
+		lo[i] = std::max({a.lo[static_cast<size_t>(i)], b.lo[static_cast<size_t>(i)], at[i] - half_length});
+		hi[i] = std::min({a.hi[static_cast<size_t>(i)], b.hi[static_cast<size_t>(i)], at[i] + half_length});
+		if (lo[i] > hi[i])
+			return false;
+	}
+	g = SwitchGuard{lo[0], lo[1], hi[0], hi[1], 0};
+	g.area = true;
+	return true;
+}
+
+// The takeoff or landing area (platform_area) over the cells clear at the
+// first corridor level whose cell under (x, y) is; the plain area with a
+// note if none is (or without corridors).
+SwitchGuard clear_platform(const TerrainGrid &map, double x, double y, double half_length, const CorridorMaps *maps,
+			   std::vector<std::string> &notes)
+{
+	if (!maps)
+		return platform_area(map, x, y, half_length);
+	Cell c = cell_at(map, x, y);
+	for (const auto &level : maps->levels())
+		if (c.inside && level->clear("ground", c.index % map.nx, c.index / map.nx)) {
+			if (level->clearance() < maps->levels().front()->clearance()) {
+				char buf[160];
+				std::snprintf(buf, sizeof buf, "switch at (%.3g, %.3g): its cell is clear by %.3g m, not %.3g m",
+					      x, y, level->clearance(), maps->levels().front()->clearance());
+				notes.push_back(buf);
+			}
+			return platform_area(map, x, y, half_length, level.get());
+		}
+	return platform_area(map, x, y, half_length);
+}
+
 }  // namespace
 
 MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<Waypoint> &plan,
@@ -313,6 +410,10 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 		double xs[6] = {w.state[0], w.state[1], height_at(map, w.state[0], w.state[1]) + 1, 0, 0, 0};
 		return full_state("flight", robot, xs);
 	};
+	const std::unique_ptr<CorridorMaps> maps = corridor_maps(robot, map, opt, p.notes);
+	std::vector<std::array<bool, 2>> boxed(p.phases.size(), {false, false});
+	if (maps)
+		boxed = add_corridors(p, *maps);
 	PhaseSpec &head = p.phases.front(), &tail = p.phases.back();
 	head.first_lo = head.first_hi = takeoff_first ? hover_above(plan.front()) : head.guess.front();
 	tail.last_lo = tail.last_hi = landing_last ? hover_above(plan.back()) : tail.guess.back();
@@ -327,15 +428,25 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 		const Waypoint &g = plan[runs[k].second];
 		const std::string a = run_mode(k), b = run_mode(k + 1);
 		SwitchGuard guard;
-		if ((a == "ground" && b == "marine") || (a == "marine" && b == "ground")) {
-			guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
-		} else {   // takeoff or landing: where the robot is on the ground
-			const Waypoint &ground = a == "ground" ? g : plan[runs[k + 1].first];
-			guard = platform_area(map, ground.state[0], ground.state[1], opt.guard_half_length_m);
-		}
 		// Phases joined at this switch: the last of run k, the first of run k + 1.
 		if (first_phase[k + 1] != last_phase[k] + 1)
 			throw std::logic_error("smoothing_problem: phases out of order");
+		const size_t ka = last_phase[k], kb = first_phase[k + 1];
+		if ((a == "ground" && b == "marine") || (a == "marine" && b == "ground")) {
+			bool boxes = boxed[ka][1] && boxed[kb][0] &&
+				     shore_from_boxes(p.phases[ka].corridor.back(), p.phases[kb].corridor.front(), g.state[0],
+						      g.state[1], opt.guard_half_length_m, guard);
+			if (!boxes) {
+				guard = shoreline_guard(map, g.state[0], g.state[1], opt.guard_half_length_m);
+				if (maps)
+					p.notes.push_back("switch " + std::to_string(ka) + " -> " + std::to_string(kb) +
+							  ": the corridors do not meet at the shore; the fitted shoreline instead");
+			}
+		} else {   // takeoff or landing: where the robot is on the ground
+			const Waypoint &ground = a == "ground" ? g : plan[runs[k + 1].first];
+			guard = clear_platform(map, ground.state[0], ground.state[1], opt.guard_half_length_m, maps.get(),
+					       p.notes);
+		}
 		join_phases(p, last_phase[k], robot, guard, costs);
 	}
 	return p;
@@ -379,6 +490,22 @@ SolveOptions solver_options(const SmoothOptions &opt, bool full)
 	return so;
 }
 
+// The straightened copy's problem with the plan's own corridors: the
+// straight line between a run's ends may cross water or rock, the plan's
+// path does not (when both have the same phases: a flight's wall cuts may
+// differ).
+void keep_corridors(MultiPhaseProblem &straight, const MultiPhaseProblem &own)
+{
+	if (straight.phases.size() != own.phases.size())
+		return;
+	for (size_t k = 0; k < own.phases.size(); k++)
+		if (straight.phases[k].mode != own.phases[k].mode)
+			return;
+	for (size_t k = 0; k < own.phases.size(); k++)
+		straight.phases[k].corridor = own.phases[k].corridor;
+	straight.notes = own.notes;
+}
+
 }  // namespace
 
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
@@ -388,8 +515,11 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 	MultiPhaseSolution s;
 	double seconds = 0, rejected = std::numeric_limits<double>::infinity();
 	std::string why;
+	const MultiPhaseProblem own = smoothing_problem(robot, plan, map, costs, opt);
 	for (int attempt = 0; attempt < 2; attempt++) {
-		MultiPhaseProblem prob = smoothing_problem(robot, attempt ? straightened(plan) : plan, map, costs, opt);
+		MultiPhaseProblem prob = attempt ? smoothing_problem(robot, straightened(plan), map, costs, opt) : own;
+		if (attempt)
+			keep_corridors(prob, own);
 		if (!T_scales.empty())
 			prob.T_scales = T_scales;
 		s = solve_multiphase(robot, prob, solver_options(opt, true));

@@ -1,17 +1,22 @@
 // Final path smoothing (paper section III.A.3): a plan's waypoints are split
 // into phases at its guard points, and one multi-phase collocation problem
 // with that mode sequence is solved, the switch points free to slide along
-// their guards (a straight piece of the shoreline fitted to the map, or a
-// rectangle of the level ground the robot takes off from or lands on),
-// switching costs included. The smoothed trajectory is the optimum from the
-// plan's guess.
+// their guards, switching costs included. The smoothed trajectory is the
+// optimum from the plan's guess.
 //
-// The map's domain is enforced at the switch points and at wall gates: a
-// flight crossing a wall (a height step over max_step) is cut there into two
-// phases that meet above the wall's top plus the flight clearance. Inside a
-// phase the trajectory is bounded by the mode's state bounds, not by
-// obstacles. A plan that takes off at its first waypoint (lands at its last)
-// starts (ends) with the hover above it, no ground phase.
+// The map's domain, with the robot's body and a margin, is enforced along
+// each phase by a safe corridor (trainer/corridor.hpp; docs/smoothing.md,
+// "Clearance"): axis-aligned boxes of cells that keep body + margin clear of
+// the mode's hazards, each bounding the knots of its part of the phase. A
+// shore switch point slides on the piece of shore where the ground and the
+// water corridors meet (the fitted straight shoreline when they do not); a
+// takeoff or landing point on the clear level ground around it. A flight
+// crossing a wall (a height step over max_step) is also cut there into two
+// phases that meet above the wall's top plus the flight clearance. Where
+// the plan itself passes too close for a box, the corridor gives less
+// clearance there, or none, and the problem's notes say where. A plan that
+// takes off at its first waypoint (lands at its last) starts (ends) with
+// the hover above it, no ground phase.
 #ifndef HYLO_TRAINER_SMOOTHER_HPP
 #define HYLO_TRAINER_SMOOTHER_HPP
 
@@ -59,6 +64,13 @@ struct SmoothOptions {
 	// (fallback steps full, straightened and finer mesh; hylo-smooth
 	// --full-ipopt-option): max_iter=1 forces the fallbacks, as a test does.
 	std::vector<IpoptOption> full_ipopt_options;
+	// Clearance (docs/smoothing.md, "Clearance"): every phase of the ground,
+	// marine and flight modes kept in a corridor of boxes whose cells keep
+	// the body plus margin_m clear of the mode's hazards (trainer/corridor.hpp).
+	bool corridors = true;
+	double body_radius_m = -1;      // < 0: the robot's (RobotParams::body_radius_m)
+	double margin_m = 0.1;          // HYLO_DEFAULT_MARGIN_M
+	double corridor_pad_m = 0.02;   // added to the cells' clearance: the cubic between knots may bulge
 };
 
 // The multi-phase problem of a plan. Throws std::invalid_argument for a plan

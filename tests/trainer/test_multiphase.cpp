@@ -214,13 +214,27 @@ void wall_gates(const RobotParams &drivo)
 	// Takeoff and landing points slide over an area of level ground (cell
 	// centres, within 6 m per axis), not along a line: the platform x < 8 for
 	// the takeoff at (6, 2), the floor from x = 8 for the landing at (12, 2).
-	ok = p.phases.size() == 4;
+	SmoothOptions plain;
+	plain.corridors = false;
+	MultiPhaseProblem pp = smoothing_problem(drivo, plan, m, TakeoffLanding{100, 40}, plain);
+	ok = pp.phases.size() == 4;
 	if (ok) {
-		const PhaseSpec &d = p.phases[0], &f = p.phases[2];
+		const PhaseSpec &d = pp.phases[0], &f = pp.phases[2];
 		ok = d.last_lo[0] == 0.5 && d.last_hi[0] == 7.5 && d.last_lo[1] == 0.5 && d.last_hi[1] == 3.5 &&
 		     f.last_lo[0] == 8.5 && f.last_hi[0] == 18.5 && f.last_lo[1] == 0.5 && f.last_hi[1] == 3.5;
 	}
 	check(ok, "takeoff and landing areas: x in [0.5, 7.5] on the platform, [8.5, 18.5] on the floor, y in [0.5, 3.5]");
+	// With corridors (the default), only the cells that keep the body
+	// (0.32 m) plus margin and pad (0.12 m) from the map's edge and the wall:
+	// not the outer rows and columns, nor the two columns at the wall.
+	ok = p.phases.size() == 4;
+	if (ok) {
+		const PhaseSpec &d = p.phases[0], &f = p.phases[2];
+		ok = d.last_lo[0] == 1.5 && d.last_hi[0] == 6.5 && d.last_lo[1] == 1.5 && d.last_hi[1] == 2.5 &&
+		     f.last_lo[0] == 9.5 && f.last_hi[0] == 18.5 && f.last_lo[1] == 1.5 && f.last_hi[1] == 2.5;
+	}
+	check(ok, "clear takeoff and landing areas: x in [1.5, 6.5] on the platform, [9.5, 18.5] on the floor, "
+		  "y in [1.5, 2.5]");
 	// Taking off at the first waypoint and landing at the last: no ground
 	// phases, the flight starts and ends hovering 1 m above those points.
 	std::vector<Waypoint> hop = {wp(G, 2, 0, true), wp(F, 2, 7, true), wp(F, 12, 1, true), wp(G, 12, 0, true)};

@@ -123,6 +123,14 @@ else tap_not_ok "bad --segments-per-edge: exit 2" "rc $rc $(cat "$T/u.err")"; fi
 "$B/bin/hylo-smooth" --ipopt-option mu_strategy=fancy > /dev/null 2> "$T/u.err"; rc=$?
 if [ $rc -eq 2 ] && grep -q "Ipopt refuses 'fancy' for mu_strategy" "$T/u.err"; then tap_ok "bad --ipopt-option: exit 2 and says why"
 else tap_not_ok "bad --ipopt-option: exit 2 and says why" "rc $rc $(cat "$T/u.err")"; fi
-if "$B/bin/hylo-smooth" --help | grep -q -- "--segments-per-edge N" && "$B/bin/hylo-smooth" --help | grep -q -- "--ipopt-option NAME=VALUE"; then tap_ok "--help lists the options"
+bad_margin=""
+for m in -0.1 nan inf 11 0.1m ""; do
+  "$B/bin/hylo-smooth" --margin "$m" > /dev/null 2> "$T/u.err"; rc=$?
+  [ $rc -eq 2 ] && grep -q -- "--margin wants metres in \[0, 10\], not '$m'" "$T/u.err" || bad_margin="$bad_margin [$m: rc $rc $(cat "$T/u.err")]"
+done
+if [ -z "$bad_margin" ]; then tap_ok "bad --margin (negative, NaN, infinite, over 10, not a number, empty): exit 2 and says why"
+else tap_not_ok "bad --margin (negative, NaN, infinite, over 10, not a number, empty): exit 2 and says why" "$bad_margin"; fi
+if "$B/bin/hylo-smooth" --help | grep -q -- "--segments-per-edge N" && "$B/bin/hylo-smooth" --help | grep -q -- "--ipopt-option NAME=VALUE" &&
+   "$B/bin/hylo-smooth" --help | grep -q -- "--margin M"; then tap_ok "--help lists the options"
 else tap_not_ok "--help lists the options"; fi
 tap_finish

@@ -1,0 +1,396 @@
+// Safe corridors (trainer/corridor.hpp, docs/smoothing.md "Clearance"):
+// corridor boxes as knot bounds of a collocation phase, through mesh
+// refinement (the bounds of a finer mesh); the builder's boxes on a staircase shore; and two smoothed
+// plans checked point by point against the hazards of docs/smoothing.md,
+// written out here from that definition (not the corridor's cell test):
+//   (a) Ambot driving to a staircase shoreline and paddling on: with
+//       corridors every knot and midpoint is in its mode's domain and keeps
+//       the margin; without them (the smoother before corridors) the same
+//       check fails, so it can;
+//   (b) Drivocopter hopping over a wall under a low ceiling, margin 0.25 m:
+//       every flight knot and midpoint keeps body + margin from the
+//       terrain's columns (the wall gates alone keep 0.18 m).
+// Prints TAP.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "tests/tap.hpp"
+#include "trainer/collocation.hpp"
+#include "trainer/corridor.hpp"
+#include "trainer/hs_phase.hpp"
+#include "trainer/numerics.hpp"
+#include "trainer/params.hpp"
+#include "trainer/smoother.hpp"
+#include "trainer/switching.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+
+std::string fmt(double v)
+{
+	char b[64];
+	std::snprintf(b, sizeof b, "%.4g", v);
+	return b;
+}
+
+// ---- the hazards of docs/smoothing.md, point by point ----------------------
+
+double gap(double a0, double a1, double b0, double b1)
+{
+	return std::max({0.0, b0 - a1, a0 - b1});
+}
+
+// Distance from (x, y) to the rectangle [x0, x1] x [y0, y1].
+double to_rect(double x, double y, double x0, double x1, double y0, double y1)
+{
+	return std::hypot(gap(x, x, x0, x1), gap(y, y, y0, y1));
+}
+
+struct PointCheck {
+	bool inside = true;       // in the mode's domain
+	double clearance = 0;     // distance to the nearest hazard less the body
+};
+
+// A ground or marine position: in a cell of its class (closed squares), and
+// its distance to obstacles, wall edges (ground: adjacent ground cells
+// stepping more than max_step) and the map's edge.
+PointCheck planar_check(const TerrainGrid &m, const std::string &mode, double x, double y, double body)
+{
+	const double res = m.resolution_m, X1 = m.origin_x_m + m.nx * res, Y1 = m.origin_y_m + m.ny * res;
+	const int8_t own = mode == "ground" ? 1 : 2;
+	PointCheck c;
+	double d = std::min({x - m.origin_x_m, X1 - x, y - m.origin_y_m, Y1 - y});
+	c.inside = false;
+	for (int iy = 0; iy < m.ny; iy++)
+		for (int ix = 0; ix < m.nx; ix++) {
+			size_t k = static_cast<size_t>(iy * m.nx + ix);
+			double x0 = m.origin_x_m + ix * res, y0 = m.origin_y_m + iy * res;
+			if (m.terrain[k] == own && to_rect(x, y, x0, x0 + res, y0, y0 + res) == 0)
+				c.inside = true;
+			if (m.terrain[k] == 0)
+				d = std::min(d, to_rect(x, y, x0, x0 + res, y0, y0 + res));
+			if (mode != "ground" || m.terrain[k] != 1)
+				continue;
+			auto wall = [&](size_t j) {
+				return m.terrain[j] == 1 && std::fabs(m.height_m[j] - m.height_m[k]) > m.max_step_m;
+			};
+			if (ix + 1 < m.nx && wall(k + 1))
+				d = std::min(d, to_rect(x, y, x0 + res, x0 + res, y0, y0 + res));
+			if (iy + 1 < m.ny && wall(k + static_cast<size_t>(m.nx)))
+				d = std::min(d, to_rect(x, y, x0, x0 + res, y0 + res, y0 + res));
+		}
+	c.clearance = d - body;
+	return c;
+}
+
+// A flight position: at least 0.5 m above every cell it is over, and its
+// distance to the terrain's columns, the map's edge and the ceiling.
+PointCheck flight_check(const TerrainGrid &m, double x, double y, double z, double body)
+{
+	const double res = m.resolution_m, X1 = m.origin_x_m + m.nx * res, Y1 = m.origin_y_m + m.ny * res;
+	PointCheck c;
+	double d = std::min({x - m.origin_x_m, X1 - x, y - m.origin_y_m, Y1 - y, m.ceiling_m - z});
+	for (int iy = 0; iy < m.ny; iy++)
+		for (int ix = 0; ix < m.nx; ix++) {
+			double h = m.height_m[static_cast<size_t>(iy * m.nx + ix)];
+			double x0 = m.origin_x_m + ix * res, y0 = m.origin_y_m + iy * res;
+			double flat = to_rect(x, y, x0, x0 + res, y0, y0 + res);
+			if (flat == 0 && z < h + kAirClearanceM)
+				c.inside = false;
+			d = std::min(d, std::hypot(flat, std::max(0.0, z - h)));
+		}
+	c.clearance = d - body;
+	return c;
+}
+
+// The worst knot or midpoint of a smoothed trajectory: outside its domain
+// first, then the least clearance. "" when every point keeps margin.
+std::string worst_point(const MultiPhaseSolution &s, const TerrainGrid &m, double body, double margin,
+			double *least = nullptr)
+{
+	std::string worst;
+	double low = std::numeric_limits<double>::infinity();
+	for (size_t k = 0; k < s.phases.size(); k++) {
+		const Trajectory &tr = s.phases[k].traj;
+		for (size_t i = 0; i < tr.t.size(); i++) {
+			const double *x = &tr.x[i * static_cast<size_t>(tr.nx)];
+			PointCheck c = s.modes[k] == "flight" ? flight_check(m, x[0], x[1], x[2], body)
+							      : planar_check(m, s.modes[k], x[0], x[1], body);
+			std::string where = "phase " + std::to_string(k) + " (" + s.modes[k] + ") point " + std::to_string(i) +
+					    " at (" + fmt(x[0]) + ", " + fmt(x[1]) +
+					    (s.modes[k] == "flight" ? ", " + fmt(x[2]) : "") + ")";
+			if (!c.inside)
+				return where + " is outside its domain";
+			if (c.clearance < low) {
+				low = c.clearance;
+				if (c.clearance < margin - 1e-9)
+					worst = where + " keeps " + fmt(c.clearance) + " m < margin " + fmt(margin) + " m";
+			}
+		}
+	}
+	if (least)
+		*least = low;
+	return worst;
+}
+
+// ---- corridors in one collocation phase --------------------------------------
+
+const std::vector<CorridorBox> kL = {CorridorBox{0, 0.55, {0, 0}, {1, 5}}, CorridorBox{0.45, 1, {0, 4}, {5, 5}}};
+
+// Where a point at normalized time tau may be by the L's boxes: the
+// intersection of those whose interval holds tau ({lo x, lo y, hi x, hi y}).
+std::array<double, 4> l_room(double tau)
+{
+	std::array<double, 4> r{-1e300, -1e300, 1e300, 1e300};
+	for (const CorridorBox &b : kL)
+		if (tau >= b.tau0 - 1e-12 && tau <= b.tau1 + 1e-12)
+			r = {std::max(r[0], b.lo[0]), std::max(r[1], b.lo[1]), std::min(r[2], b.hi[0]), std::min(r[3], b.hi[1])};
+	return r;
+}
+
+// The variable bounds a ground phase of n segments with the L's corridor
+// gives its knots and midpoints (the mesh refinement builds the finer
+// phase the same way, from the same setup): each point's position bounded
+// by the boxes of its time, the ends pinned where the corridor holds them.
+void l_bounds(const RobotParams &ambot)
+{
+	bool ok = true;
+	std::string why;
+	for (int n : {5, 10, 20}) {
+		internal::PhaseSetup s;
+		s.segments = n;
+		auto b = state_bounds("ground", ambot);
+		double a[4] = {0.5, 0.5, 0, 1.5708}, e[4] = {4.5, 4.5, 0, 0};
+		s.first_lo = s.first_hi = full_state("ground", ambot, a);
+		s.last_lo = s.last_hi = full_state("ground", ambot, e);
+		s.guess = {s.first_lo, s.last_lo};
+		s.corridor = kL;
+		internal::HsPhase<GroundModel> ph(GroundModel(ambot.mode("ground"), ambot.g), s);
+		std::vector<double> xl(static_cast<size_t>(ph.nvar())), xu(xl.size()), gl(static_cast<size_t>(ph.ncon())),
+			gu(gl.size());
+		ph.bounds(xl.data(), xu.data(), gl.data(), gu.data());
+		const int nz = GroundModel::NX + GroundModel::NU;
+		for (int p = 0; p <= 2 * n && ok; p++) {
+			double tau = p <= n ? static_cast<double>(p) / n : (p - n - 1 + 0.5) / n;
+			std::array<double, 4> r = l_room(tau);
+			if (p == 0 || p == n)   // pinned ends inside the corridor
+				r = {p ? 4.5 : 0.5, p ? 4.5 : 0.5, p ? 4.5 : 0.5, p ? 4.5 : 0.5};
+			const double *lo = &xl[static_cast<size_t>(p * nz)], *hi = &xu[static_cast<size_t>(p * nz)];
+			if (lo[0] != r[0] || lo[1] != r[1] || hi[0] != r[2] || hi[1] != r[3] ||
+			    (p != 0 && p != n && lo[2] != b.first[2])) {
+				ok = false;
+				why = std::to_string(n) + " segments, point " + std::to_string(p) + " (tau " + fmt(tau) + "): [" +
+				      fmt(lo[0]) + ", " + fmt(hi[0]) + "] x [" + fmt(lo[1]) + ", " + fmt(hi[1]) + "]";
+			}
+		}
+	}
+	check(ok, "a phase's corridor bounds every knot and midpoint by the boxes of its time, on meshes of 5, 10 "
+		  "and 20 segments", why);
+}
+
+// Ambot drives (0.5, 0.5) -> (4.5, 4.5) through the L: up the column
+// x in [0, 1], then along the row y in [4, 5]; every knot and midpoint of
+// the solution lies in the boxes of its time.
+void l_shaped_phase(const RobotParams &ambot)
+{
+	double a[4] = {0.5, 0.5, 0, 1.5708}, c[4] = {0.5, 4.5, 0, 0}, b[4] = {4.5, 4.5, 0, 0};
+	PhaseSpec s = phase_between("ground", ambot, a, b, a, b, 12);
+	s.guess = {full_state("ground", ambot, a), full_state("ground", ambot, c), full_state("ground", ambot, b)};
+	s.corridor = kL;
+	MultiPhaseProblem p;
+	p.phases = {s};
+	SolveOptions o;
+	o.replay_state_tol = 0.05;   // the smoother's: a sharp turn
+	MultiPhaseSolution m = solve_multiphase(ambot, p, o);
+	bool in = m.converged;
+	std::string why = in ? "" : "not converged (" + m.status_text + ", " + m.rejection + ")";
+	if (in) {
+		const Trajectory &tr = m.phases[0].traj;
+		for (size_t i = 0; i < tr.t.size() && in; i++) {
+			double x = tr.x[i * 6], y = tr.x[i * 6 + 1];
+			std::array<double, 4> r = l_room(tr.t[i] / m.phases[0].T);
+			if (x < r[0] - 1e-7 || x > r[2] + 1e-7 || y < r[1] - 1e-7 || y > r[3] + 1e-7) {
+				in = false;
+				why = "point " + std::to_string(i) + ": (" + fmt(x) + ", " + fmt(y) + ") outside its boxes";
+			}
+		}
+	}
+	std::printf("# L-shaped corridor: %.6g J, %d segments, %.2f s\n", m.cost,
+		    m.phases.empty() ? 0 : m.phases[0].segments, m.solve_seconds);
+	check(in, "an L-shaped corridor: the solution's knots and midpoints keep to the boxes of their time", why);
+	PhaseSpec bad = s;
+	bad.corridor[1].lo = {2, 4};
+	bad.corridor[1].hi = {5, 5};
+	p.phases = {bad};
+	try {
+		solve_multiphase(ambot, p, SolveOptions());
+		check(false, "boxes that overlap in time but not in space are refused");
+	} catch (const std::invalid_argument &e) {
+		check(std::string(e.what()).find("overlap in time but not in space") != std::string::npos,
+		      "boxes that overlap in time but not in space are refused", e.what());
+	}
+}
+
+// ---- the builder and the smoother -------------------------------------------
+
+// 16 x 16 cells of 1 m: ground where ix + iy < 16 (a staircase shore along
+// the diagonal), water beyond; an obstacle at cells (3..4, 8..9).
+TerrainGrid staircase()
+{
+	TerrainGrid m;
+	m.nx = m.ny = 16;
+	m.terrain.assign(256, 1);
+	m.height_m.assign(256, 0.0f);
+	for (int iy = 0; iy < 16; iy++)
+		for (int ix = 0; ix < 16; ix++)
+			m.terrain[static_cast<size_t>(iy * 16 + ix)] = ix + iy < 16 ? 1 : 2;
+	for (int iy = 8; iy < 10; iy++)
+		for (int ix = 3; ix < 5; ix++)
+			m.terrain[static_cast<size_t>(iy * 16 + ix)] = 0;
+	return m;
+}
+
+Waypoint wp(const std::string &mode, double x, double y, double z_or_v, double theta, bool guard)
+{
+	Waypoint w;
+	w.mode = mode_number(mode);
+	w.guard = guard;
+	w.state[0] = x;
+	w.state[1] = y;
+	w.state[2] = z_or_v;
+	w.state[3] = theta;
+	return w;
+}
+
+// Ambot from (2, 2) on land to the shore point (8, 8.5) (the edge between
+// ground cell (7, 8) and water cell (8, 8)), then paddling to (13, 13).
+std::vector<Waypoint> shore_plan()
+{
+	return {wp("ground", 2, 2, 0, 0.785, false), wp("ground", 5, 5.5, 0.5, 0.785, false),
+		wp("ground", 8, 8.5, 0.5, 0.785, true), wp("marine", 8, 8.5, 0.5, 0.785, true),
+		wp("marine", 13, 13, 0, 0.785, false)};
+}
+
+void staircase_corridor(const RobotParams &ambot)
+{
+	TerrainGrid m = staircase();
+	const double r = ambot.body_radius_m + 0.1;
+	CorridorMaps maps(m, r, 0.02);
+	Corridor g = build_corridor("ground", {{2, 2, 0}, {5, 5.5, 0}, {8, 8.5, 0}}, maps);
+	Corridor w = build_corridor("marine", {{8, 8.5, 0}, {13, 13, 0}}, maps);
+	const ClearanceMap &clear = *maps.levels().front();
+	bool ok = g.notes.empty() && w.notes.empty() && g.first_box && g.last_box && w.first_box && !g.boxes.empty();
+	std::string why = ok ? "" : "notes: " + (g.notes.empty() ? std::string() : g.notes[0]) +
+					(w.notes.empty() ? std::string() : w.notes[0]);
+	for (const Corridor *c : {&g, &w})
+		for (const CorridorBox &b : c->boxes)
+			for (int iy = static_cast<int>(b.lo[1]); ok && iy < static_cast<int>(b.hi[1]); iy++)
+				for (int ix = static_cast<int>(b.lo[0]); ok && ix < static_cast<int>(b.hi[0]); ix++)
+					if (!clear.clear(c == &g ? "ground" : "marine", ix, iy)) {
+						ok = false;
+						why = "cell (" + std::to_string(ix) + ", " + std::to_string(iy) + ") of a box is not clear";
+					}
+	check(ok, "staircase: every box is made of cells clear by body + margin + pad", why);
+	// Every point of the plan's path is in a box whose interval holds its
+	// arc-length time; consecutive intervals overlap.
+	ok = g.boxes.size() >= 2;
+	for (size_t j = 1; ok && j < g.boxes.size(); j++)
+		ok = g.boxes[j].tau0 < g.boxes[j - 1].tau1 && g.boxes[j].tau0 > g.boxes[j - 1].tau0;
+	ok = ok && g.boxes.front().tau0 == 0 && g.boxes.back().tau1 == 1;
+	check(ok, "staircase: the ground corridor's intervals cover [0, 1], each overlapping the next",
+	      std::to_string(g.boxes.size()) + " boxes");
+	// The ground corridor ends on the shore edge x = 8 and the water one
+	// starts there: their boxes meet on the edge, not over a cell.
+	const CorridorBox &gl = g.boxes.back(), &wf = w.boxes.front();
+	ok = gl.hi[0] == 8 && wf.lo[0] == 8 && std::max(gl.lo[1], wf.lo[1]) <= 8.5 && std::min(gl.hi[1], wf.hi[1]) >= 8.5;
+	check(ok, "staircase: the last ground box and the first water box meet on the shore edge x = 8",
+	      "ground x <= " + fmt(gl.hi[0]) + ", water x >= " + fmt(wf.lo[0]));
+}
+
+// A clearance the map cannot give (3 m on a 16 m map with a rock) is not
+// dropped silently: the corridor says which pieces got less.
+void too_wide()
+{
+	TerrainGrid m = staircase();
+	CorridorMaps maps(m, 3.0, 0.02);
+	Corridor g = build_corridor("ground", {{2, 2, 0}, {5, 5.5, 0}, {8, 8.5, 0}}, maps);
+	bool said = !g.notes.empty() && g.notes[0].find("not 3.02 m") != std::string::npos;
+	check(said && g.boxes.size() >= 1, "a clearance the map cannot give: the corridor's notes say where it gives less",
+	      g.notes.empty() ? "no note" : g.notes[0]);
+}
+
+// (a): the plan smoothed with corridors keeps every knot and midpoint in
+// its domain with the margin; without them it does not.
+void staircase_smoothing(const RobotParams &ambot)
+{
+	TerrainGrid m = staircase();
+	SmoothOptions on, off;
+	off.corridors = false;
+	MultiPhaseSolution a = smooth_plan(ambot, shore_plan(), m, {}, on);
+	MultiPhaseSolution b = smooth_plan(ambot, shore_plan(), m, {}, off);
+	double la = 0, lb = 0;
+	std::string wa = a.converged ? worst_point(a, m, ambot.body_radius_m, on.margin_m, &la) : "not converged";
+	std::string wb = b.converged ? worst_point(b, m, ambot.body_radius_m, on.margin_m, &lb) : "not converged";
+	std::printf("# staircase: with corridors %.6g J, %.2f s, least clearance %.3f m; without %.6g J, %.2f s: %s\n",
+		    a.cost, a.solve_seconds, la, b.cost, b.solve_seconds, wb.c_str());
+	for (const std::string &n : a.notes)
+		std::printf("# note: %s\n", n.c_str());
+	check(a.converged && wa.empty() && a.notes.empty(),
+	      "staircase shore: with corridors every knot and midpoint is in its domain, clear by the margin", wa);
+	check(b.converged && !wb.empty(),
+	      "staircase shore: without corridors the same check finds a point that is not (so it can fail)",
+	      b.converged ? "every point passed" : "not converged");
+}
+
+// (b): a 9 x 5 m map of 1 m cells, floor at height 0, a wall 2 m high over
+// x in [4, 5], ceiling 4 m: the gate over the wall is 1.5 m tall (2.5 m to
+// the ceiling). Drivocopter takes off at (1.5, 2.5) and lands at (7.5, 2.5),
+// with a margin of 0.25 m: the wall gates alone (without corridors) let the
+// flight cross 0.5 m above the wall's top edges, a clearance of 0.18 m.
+void chasm_gate(const RobotParams &drivo)
+{
+	TerrainGrid m;
+	m.nx = 9;
+	m.ny = 5;
+	m.terrain.assign(45, 1);
+	m.height_m.assign(45, 0.0f);
+	m.ceiling_m = 4;
+	for (int iy = 0; iy < 5; iy++)
+		m.height_m[static_cast<size_t>(iy * 9 + 4)] = 2;
+	std::vector<Waypoint> hop = {wp("ground", 1.5, 2.5, 0, 0, true), wp("flight", 1.5, 2.5, 1, 0, true),
+				     wp("flight", 7.5, 2.5, 1, 0, true), wp("ground", 7.5, 2.5, 0, 0, true)};
+	hop[1].state[3] = hop[2].state[3] = 0;
+	SmoothOptions on;
+	on.margin_m = 0.25;
+	MultiPhaseSolution a = smooth_plan(drivo, hop, m, TakeoffLanding{100, 40}, on);
+	double least = 0;
+	std::string w = a.converged ? worst_point(a, m, drivo.body_radius_m, on.margin_m, &least) : "not converged: " + a.status_text + " " + a.rejection;
+	std::printf("# chasm gate: %.6g J, %.2f s, least clearance %.3f m\n", a.cost, a.solve_seconds, least);
+	for (const std::string &n : a.notes)
+		std::printf("# note: %s\n", n.c_str());
+	check(a.converged && w.empty(), "chasm with a 1.5 m gate, margin 0.25 m: every flight knot and midpoint keeps "
+					"body + margin from the terrain's columns, the map's edge and the ceiling", w);
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+	if (!pin_numerics(argc, argv))
+		return 1;
+	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
+	RobotParams drivo = load_robot("trainer/params/drivocopter.yaml");
+	l_bounds(ambot);
+	l_shaped_phase(ambot);
+	staircase_corridor(ambot);
+	too_wide();
+	staircase_smoothing(ambot);
+	chasm_gate(drivo);
+	return tap_finish();
+}
