@@ -106,3 +106,6 @@ tests/trainer/test_alternatives.sh: $(HYLO_SMOOTH) $(TRAINER) $(BUILD)/bin/hylo-
 TESTS += tests/trainer/test_alternatives.sh
 tests/trainer/test_fallback.sh: $(HYLO_SMOOTH) $(BUILD)/bin/hylo-scene $(BUILD)/bin/hylo-planner $(BUILD)/bin/hylo-listen
 TESTS += tests/trainer/test_fallback.sh
+# The committed Ambot scenes' trajectories, walked from outside (tools/clearance_walk.py).
+tests/trainer/test_clearance_scenes.sh: $(HYLO_SMOOTH) $(BUILD)/bin/hylo-scene $(BUILD)/bin/hylo-planner tools/clearance_walk.py
+TESTS += tests/trainer/test_clearance_scenes.sh
