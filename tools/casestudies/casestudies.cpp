@@ -34,11 +34,13 @@
 #include <vector>
 
 #include "hylo/features.h"
+#include "hylo/clearance.h"
 #include "hylo/planner.h"
 #include "node/registry.h"
 #include "tools/casestudies/chasm.hpp"
 #include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
+#include "trainer/clearance.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/files.hpp"
 #include "trainer/numerics.hpp"
@@ -484,10 +486,20 @@ double predicted_cost(const hylo_robot &r, const hylo_plan &p)
 	return total;
 }
 
+// A smoothed trajectory's least clearance beyond the robot's body, by the
+// check hylo-smooth publishes (trainer/clearance.hpp), with the default
+// margin; -infinity when a point leaves its mode's domain.
+double least_clearance(const MultiPhaseSolution &s, const Scene &sc, const RobotParams &robot)
+{
+	const ClearanceCheck c = check_clearance(s, grid_of(sc), robot.body_radius_m, HYLO_DEFAULT_MARGIN_M);
+	return c.outside_phase >= 0 ? -INFINITY : c.min_clearance_m;
+}
+
 struct PlanResult {
 	std::string sequence;
 	double predicted = 0, exact = 0, smoothed = NAN, smoothed_error = NAN, length = 0, water = 0,
 	       smoothed_water = 0;
+	double clearance = NAN;   // the smoothed trajectory's least clearance beyond the body [m]
 	uint32_t waypoints = 0;
 	std::string path;   // JSON [[mode, x, y, v, theta], ...]
 };
@@ -516,6 +528,7 @@ PlanResult evaluate(const RobotParams &ambot, const hylo_robot &svr_robot, const
 	if (sm.converged) {
 		r.smoothed = sm.cost;
 		r.smoothed_error = sm.replay_error;
+		r.clearance = least_clearance(sm, sc, ambot);
 		for (size_t k = 0; k < sm.phases.size(); k++) {
 			if (sm.modes[k] != "marine")
 				continue;
@@ -535,7 +548,8 @@ std::string plan_json(const PlanResult &r)
 	       ", \"predicted_j\": " + num(r.predicted) + ", \"graph_path_exact_j\": " + num(r.exact) +
 	       ", \"smoothed_j\": " + num(r.smoothed) + ", \"smoothed_replay_error\": " + num(r.smoothed_error) +
 	       ", \"length_m\": " + num(r.length) + ", \"water_m\": " + num(r.water) +
-	       ", \"smoothed_water_m\": " + num(r.smoothed_water) + ",\n    \"path\": [" + r.path + "]}";
+	       ", \"smoothed_water_m\": " + num(r.smoothed_water) + ", \"smoothed_min_clearance_m\": " +
+	       num(r.clearance) + ",\n    \"path\": [" + r.path + "]}";
 }
 
 // The robot with its two committed models (onboard/models/, the registry).
@@ -582,8 +596,11 @@ std::string ambot_study(const Options &opt, std::string &md)
 	      "prediction), smoothed as `hylo-smooth` does (its fallback chain; the step named when not the "
 	      "full optimization), without the exact graph-path cost; hylo's result is the cheapest smoothed "
 	      "of the energy plan and its alternatives.\n\n"
+	      "Least clearance: the smoothed trajectory's smallest distance between Ambot's body (0.35 m) and "
+	      "a hazard (docs/smoothing.md, \"Clearance\"; margin " + num(HYLO_DEFAULT_MARGIN_M) + " m, at most 2.1 "
+	      "reported), -inf where it leaves its domain.\n\n"
 	      "| scene | plan | sequence | predicted [J] | graph path, exact [J] | smoothed [J] | length [m] | "
-	      "water [m] (smoothed) |\n|---|---|---|---|---|---|---|---|\n";
+	      "water [m] (smoothed) | least clearance [m] |\n|---|---|---|---|---|---|---|---|---|\n";
 	std::string js = "[";
 	const char *scenes[] = {"river_crossing", "island_crossing"};
 	for (int s = 0; s < 2; s++) {
@@ -601,9 +618,9 @@ std::string ambot_study(const Options &opt, std::string &md)
 		for (int k = 0; k < 2; k++) {
 			const PlanResult &r = k ? d : e;
 			char row[512];
-			std::snprintf(row, sizeof row, "| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f (%.1f) |\n",
+			std::snprintf(row, sizeof row, "| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f (%.1f) | %.2f |\n",
 				      k ? "" : scenes[s], k ? "shortest" : "energy", r.sequence.c_str(), r.predicted,
-				      r.exact, r.smoothed, r.length, r.water, r.smoothed_water);
+				      r.exact, r.smoothed, r.length, r.water, r.smoothed_water, r.clearance);
 			md += row;
 		}
 		// The energy plan's alternatives, smoothed as hylo-smooth does.
@@ -619,6 +636,7 @@ std::string ambot_study(const Options &opt, std::string &md)
 				if (sm.ok) {
 					a.smoothed = sm.solution.cost;
 					a.smoothed_error = sm.solution.replay_error;
+					a.clearance = least_clearance(sm.solution, sc, ambot);
 					if (sm.method != SmoothMethod::Full)
 						how = std::string(" (") + method_name(sm.method) + ")";
 					if (!(a.smoothed >= best_j) || !std::isfinite(best_j)) {
@@ -628,18 +646,20 @@ std::string ambot_study(const Options &opt, std::string &md)
 				}
 			}
 			char row[512];
-			std::snprintf(row, sizeof row, "| | alternative %zu | %s | %.1f | | %.1f%s | %.1f | %.1f |\n", k + 1,
-				      a.sequence.c_str(), a.predicted, a.smoothed, how.c_str(), a.length, a.water);
+			std::snprintf(row, sizeof row, "| | alternative %zu | %s | %.1f | | %.1f%s | %.1f | %.1f | %.2f |\n",
+				      k + 1, a.sequence.c_str(), a.predicted, a.smoothed, how.c_str(), a.length, a.water,
+				      a.clearance);
 			md += row;
 			aj += std::string(k > 1 ? ", " : "") + "{\"rank\": " + std::to_string(k + 1) +
 			      ", \"sequence\": \"" + a.sequence + "\", \"predicted_j\": " + num(a.predicted) +
 			      ", \"smoothed_j\": " + num(a.smoothed) + ", \"method\": \"" +
 			      (how.empty() ? "full" : how.substr(2, how.size() - 3)) + "\", \"length_m\": " +
-			      num(a.length) + ", \"water_m\": " + num(a.water) + "}";
+			      num(a.length) + ", \"water_m\": " + num(a.water) + ", \"min_clearance_m\": " +
+			      num(a.clearance) + "}";
 		}
 		if (!opt.quick) {
 			char row[256];
-			std::snprintf(row, sizeof row, "| | **hylo** | %s | | | **%.1f** (rank %zu) | | |\n",
+			std::snprintf(row, sizeof row, "| | **hylo** | %s | | | **%.1f** (rank %zu) | | | |\n",
 				      sequence(best ? *alts[best].plan : *pe.plan).c_str(), best_j, best + 1);
 			md += row;
 		}
@@ -652,26 +672,6 @@ std::string ambot_study(const Options &opt, std::string &md)
 
 // ---- study 3: Drivocopter, fixed mode sequences (the paper's Table I) -----
 
-// Lowest height of a solution's flight above the terrain under it [m].
-double flight_clearance(const MultiPhaseSolution &s, const Scene &sc)
-{
-	double lo = INFINITY;
-	for (size_t k = 0; k < s.phases.size(); k++) {
-		if (s.modes[k] != "flight")
-			continue;
-		const Trajectory &t = s.phases[k].traj;
-		for (size_t i = 0; i < t.t.size(); i++) {
-			const double *x = &t.x[i * static_cast<size_t>(t.nx)];
-			int ix = static_cast<int>(std::floor((x[0] - sc.origin_x_m) / sc.resolution_m));
-			int iy = static_cast<int>(std::floor((x[1] - sc.origin_y_m) / sc.resolution_m));
-			if (ix < 0 || iy < 0 || ix >= sc.nx || iy >= sc.ny)
-				continue;
-			lo = std::min(lo, x[2] - sc.height_m[static_cast<size_t>(iy * sc.nx + ix)]);
-		}
-	}
-	return lo;
-}
-
 // "DFDFD" from a plan's mode sequence.
 std::string letters(const hylo_plan &p)
 {
@@ -681,7 +681,7 @@ std::string letters(const hylo_plan &p)
 	return s;
 }
 
-// One smoothing solve of a plan: {cost, T, replay error, clearance, seconds,
+// One smoothing solve of a plan: {cost, T, replay error, least clearance, seconds,
 // switch-point x...}; cost NaN when it failed.
 std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Waypoint> &plan, const Scene &sc,
 				  const TakeoffLanding &tl)
@@ -697,7 +697,7 @@ std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Wa
 		r[0] = s.cost;
 		r[1] = s.T;
 		r[2] = s.replay_error;
-		r[3] = flight_clearance(s, sc);
+		r[3] = least_clearance(s, sc, robot);
 		for (size_t k = 0; k + 1 < s.phases.size(); k++)
 			if (s.modes[k] != s.modes[k + 1]) {
 				const Trajectory &t = s.phases[k].traj;
@@ -1020,15 +1020,18 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	      "ground rest at the goal, takeoff (" + num(tl.takeoff_j) + " J) and landing (" +
 	      num(tl.landing_j) + " J) included, every switch point free on its whole platform or floor, "
 	      "flights cut at each wall into phases that meet 0.5 m above its top (the planner's flight "
-	      "clearance); switch points placed at the walls initially (" + std::to_string(placements) +
+	      "clearance), every phase in a corridor that keeps the body (0.32 m) plus " +
+	      num(HYLO_DEFAULT_MARGIN_M) + " m clear of the terrain (docs/smoothing.md, \"Clearance\"); "
+	      "switch points placed at the walls initially (" + std::to_string(placements) +
 	      " placement). hylo: the planner's alternatives with the committed "
 	      "SVR models (goal.alternatives = " + std::to_string(kChasmAlternatives) + ": the best graph path "
 	      "of each of the cheapest distinct mode sequences predicted within 1.25 times the best; sequence "
 	      "and predicted cost), each smoothed by the same multi-phase solver from its path; the cheapest "
 	      "smoothed one is hylo's result, as `hylo-smooth` publishes it, and rank is the graph's rank of "
 	      "its sequence (1: the plan). Smoothing options: flight segments of at most 40 ms, replay "
-	      "tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt iterations per solve. Costs in J; "
-	      "best fixed sequence in bold.\n\n"
+	      "tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt iterations per solve. Costs in J, "
+	      "each with its trajectory's least clearance beyond the body in m (the check hylo-smooth "
+	      "publishes; -inf: it leaves its domain); best fixed sequence in bold.\n\n"
 	      "| width [m] | F | DF | DFD | FDF | DFDF | DFDFD | hylo plan (predicted) | plan smoothed | "
 	      "other alternatives (predicted) smoothed | hylo | rank | vs best |\n"
 	      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -1059,10 +1062,16 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		double seq_best = own == seqs.end() ? NAN : best[static_cast<size_t>(own - seqs.begin())];
 		double rel = (hs - best[qb]) / best[qb], seq_rel = (seq_best - best[qb]) / best[qb];
 		auto cost = [](double v) { return std::isfinite(v) ? num(std::round(v * 10) / 10) : std::string("failed"); };
+		auto clearance = [](double v) {
+			char b[32];
+			std::snprintf(b, sizeof b, "%.2f", v);
+			return std::string(b);
+		};
 		md += "| " + std::to_string(widths[c]) + " |";
 		for (size_t q = 0; q < seqs.size(); q++) {
-			char cell[64];
-			std::snprintf(cell, sizeof cell, q == qb ? " **%.1f** |" : " %.1f |", best[q]);
+			char cell[96];
+			std::snprintf(cell, sizeof cell, q == qb ? " **%.1f** (%.2f) |" : " %.1f (%.2f) |", best[q],
+				      best_rec[q].size() > 3 ? best_rec[q][3] : NAN);
 			md += std::isfinite(best[q]) ? cell : " failed |";
 		}
 		std::string others;
@@ -1076,7 +1085,9 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 			std::snprintf(pct, sizeof pct, "%+.2f%%", std::fabs(rel) < 5e-5 ? 0.0 : 100 * rel);
 		std::snprintf(tail, sizeof tail, " %s (%.1f) | %s | %s | %s | %zu | %s |\n", plan_seq.c_str(),
 			      alts[c][0].predicted, cost((*hylo)[0]).c_str(), others.empty() ? "none" : others.c_str(),
-			      std::isfinite(hs) ? (res_seq + " " + cost(hs)).c_str() : "failed", rank + 1, pct);
+			      std::isfinite(hs) ? (res_seq + " " + cost(hs) + " (" + clearance((*res)[3]) + ")").c_str()
+						: "failed",
+			      rank + 1, pct);
 		md += tail;
 		js += std::string(c ? "," : "") + "\n  {\"scene\": \"chasm_" + std::to_string(widths[c]) +
 		      "\", \"width_m\": " + std::to_string(widths[c]) + ", \"fixed\": {";
@@ -1088,7 +1099,7 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 				continue;
 			}
 			js += "{\"cost_j\": " + num(r[0]) + ", \"T_s\": " + num(r[1]) + ", \"replay_error\": " +
-			      num(r[2]) + ", \"flight_clearance_m\": " + num(r[3]) + ", \"switch_x_m\": [";
+			      num(r[2]) + ", \"min_clearance_m\": " + num(r[3]) + ", \"switch_x_m\": [";
 			for (size_t k = 5; k < r.size() && std::isfinite(r[k]); k++)
 				js += std::string(k > 5 ? ", " : "") + num(r[k]);
 			js += "]}";
@@ -1104,7 +1115,7 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		      ", \"sequence_vs_best\": " + num(seq_rel) + ", \"alternatives\": [" + aj +
 		      "], \"result_rank\": " + std::to_string(rank + 1) + ", \"result_sequence\": \"" + res_seq +
 		      "\", \"result_j\": " + num(hs) + ", \"T_s\": " +
-		      num((*res)[1]) + ", \"replay_error\": " + num((*res)[2]) + ", \"flight_clearance_m\": " +
+		      num((*res)[1]) + ", \"replay_error\": " + num((*res)[2]) + ", \"min_clearance_m\": " +
 		      num((*res)[3]) + ", \"result_vs_best\": " + num(rel) + "}}";
 	}
 	// The crossover: the first width whose best sequence drives on the floor.
