@@ -119,6 +119,9 @@ def main():
             continue
         s = t.state[k]
         pts.append((mode, t.t_s[k], s[0], s[1], s[2] if mode == "flight" else 0.0))
+    if not pts:
+        print("no sample in a mode with hazards (ground, marine, flight): nothing to walk")
+        return 0
     worst, where, outside, n = math.inf, None, None, 0
     for p, q in zip(pts, pts[1:] + [pts[-1]]):
         mode, t0, x0, y0, z0 = p
