@@ -1,5 +1,6 @@
 #include "trainer/clearance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -11,31 +12,6 @@ extern "C" {
 
 namespace hylo::trainer {
 namespace {
-
-// The map as the onboard code holds it (a few MB: one per check).
-std::unique_ptr<hylo_map> onboard_map(const TerrainGrid &g)
-{
-	auto m = std::make_unique<hylo_map>();
-	hylo_map_view v{};
-	v.map_id = 1;
-	v.robot = "check";
-	v.nx = g.nx;
-	v.ny = g.ny;
-	v.resolution = g.resolution_m;
-	v.origin_x = g.origin_x_m;
-	v.origin_y = g.origin_y_m;
-	v.ceiling = g.ceiling_m;
-	v.max_step = g.max_step_m;
-	v.n_cells = g.nx * g.ny;
-	v.terrain = g.terrain.data();
-	v.height = g.height_m.data();
-	hylo_reason why;
-	if (g.terrain.size() != static_cast<size_t>(v.n_cells) || g.height_m.size() != static_cast<size_t>(v.n_cells) ||
-	    hylo_map_ingest(m.get(), &v, &why) != HYLO_OK)
-		throw std::invalid_argument(std::string("the map cannot be checked against: ") +
-					    (g.terrain.size() == static_cast<size_t>(v.n_cells) ? why.text : "sizes differ"));
-	return m;
-}
 
 // A state's position and its velocity in the world frame (the kinematics
 // of docs/models.md sections 3-5).
@@ -94,6 +70,34 @@ bool in_domain(const hylo_map *m, hylo_mode mode, hylo_point p)
 }
 
 }  // namespace
+
+std::unique_ptr<hylo_map> onboard_map(const TerrainGrid &g)
+{
+	const size_t cells = static_cast<size_t>(std::max(g.nx, 0)) * static_cast<size_t>(std::max(g.ny, 0));
+	if (g.terrain.size() != cells || g.height_m.size() != cells)
+		throw std::invalid_argument("the map's terrain and heights are not nx * ny cells");
+	double ceiling = g.ceiling_m;
+	if (!std::isfinite(ceiling))   // no ceiling: far above the highest cell
+		ceiling = (g.height_m.empty() ? 0.0 : *std::max_element(g.height_m.begin(), g.height_m.end())) + 1e4;
+	auto m = std::make_unique<hylo_map>();
+	hylo_map_view v{};
+	v.map_id = 1;
+	v.robot = "smoother";
+	v.nx = g.nx;
+	v.ny = g.ny;
+	v.resolution = g.resolution_m;
+	v.origin_x = g.origin_x_m;
+	v.origin_y = g.origin_y_m;
+	v.ceiling = ceiling;
+	v.max_step = g.max_step_m;
+	v.n_cells = g.nx * g.ny;
+	v.terrain = g.terrain.data();
+	v.height = g.height_m.data();
+	hylo_reason why;
+	if (hylo_map_ingest(m.get(), &v, &why) != HYLO_OK)
+		throw std::invalid_argument(std::string("the onboard code refuses the map: ") + why.text);
+	return m;
+}
 
 ClearanceCheck check_clearance(const MultiPhaseSolution &s, const TerrainGrid &map, double body_radius_m,
 			       double margin_m, int between_knots)

@@ -7,8 +7,10 @@
 #ifndef HYLO_TRAINER_CLEARANCE_HPP
 #define HYLO_TRAINER_CLEARANCE_HPP
 
+#include <memory>
 #include <string>
 
+#include "hylo/map.h"
 #include "trainer/collocation.hpp"
 #include "trainer/smoother.hpp"
 
@@ -32,6 +34,12 @@ struct ClearanceCheck {
 	// or "not safe: ..." naming the point.
 	std::string text() const;
 };
+
+// The map as the onboard code holds it (hylo_map_ingest; a few MB), for its
+// domain, hazard and clearance functions; a ceiling that is not finite
+// becomes one far above the highest cell. Throws std::invalid_argument
+// for a map the onboard code refuses, naming why.
+std::unique_ptr<hylo_map> onboard_map(const TerrainGrid &grid);
 
 // How far beyond the margin the check looks for hazards [m].
 constexpr double kClearanceReachM = 2.0;

@@ -8,37 +8,14 @@
 
 #include "hylo/clearance.h"
 #include "hylo/map.h"
+#include "trainer/clearance.hpp"
 
 namespace hylo::trainer {
 
-struct ClearanceMap::Map {
-	hylo_map m;
-};
-
-ClearanceMap::ClearanceMap(const TerrainGrid &g, double r) : m_(std::make_unique<Map>()), r_(r), nx_(g.nx), ny_(g.ny)
+ClearanceMap::ClearanceMap(const TerrainGrid &g, double r) : m_(onboard_map(g)), r_(r), nx_(g.nx), ny_(g.ny)
 {
-	if (g.terrain.size() != static_cast<size_t>(g.nx) * static_cast<size_t>(g.ny) ||
-	    g.height_m.size() != g.terrain.size())
-		throw std::invalid_argument("corridor: the map's terrain and heights are not nx * ny cells");
-	double ceiling = g.ceiling_m;
-	if (!std::isfinite(ceiling)) {   // no ceiling: far above the highest cell
-		float top = g.height_m.empty() ? 0.0f : *std::max_element(g.height_m.begin(), g.height_m.end());
-		ceiling = static_cast<double>(top) + 1e4;
-	}
-	hylo_map_view v{};
-	v.robot = "smoother";
-	v.nx = g.nx;
-	v.ny = g.ny;
-	v.resolution = g.resolution_m;
-	v.origin_x = g.origin_x_m;
-	v.origin_y = g.origin_y_m;
-	v.ceiling = ceiling;
-	v.max_step = g.max_step_m;
-	v.n_cells = g.nx * g.ny;
-	v.terrain = g.terrain.data();
-	v.height = g.height_m.data();
 	hylo_reason why;
-	if (hylo_map_ingest(&m_->m, &v, &why) != HYLO_OK || hylo_map_inflate(&m_->m, r, &why) != HYLO_OK)
+	if (hylo_map_inflate(m_.get(), r, &why) != HYLO_OK)
 		throw std::invalid_argument(std::string("corridor: ") + why.text);
 }
 
@@ -47,18 +24,18 @@ ClearanceMap::~ClearanceMap() = default;
 bool ClearanceMap::clear(const std::string &mode, int ix, int iy) const
 {
 	hylo_mode md = mode == "ground" ? HYLO_MODE_GROUND : HYLO_MODE_MARINE;
-	return hylo_map_cell_clear(&m_->m, md, iy * nx_ + ix) != 0;
+	return hylo_map_cell_clear(m_.get(), md, iy * nx_ + ix) != 0;
 }
 
 double ClearanceMap::flight_floor(int ix, int iy) const
 {
-	double f = hylo_map_flight_floor(&m_->m, iy * nx_ + ix);
+	double f = hylo_map_flight_floor(m_.get(), iy * nx_ + ix);
 	return std::isfinite(f) ? f : std::numeric_limits<double>::infinity();
 }
 
 double ClearanceMap::flight_top() const
 {
-	return hylo_map_flight_top(&m_->m);
+	return hylo_map_flight_top(m_.get());
 }
 
 CorridorMaps::CorridorMaps(const TerrainGrid &grid, double body_and_margin, double pad) : grid_(grid)

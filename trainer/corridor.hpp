@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "hylo/map.h"
 #include "trainer/collocation.hpp"
 #include "trainer/smoother.hpp"
 
@@ -40,8 +41,7 @@ public:
 	double flight_top() const;
 
 private:
-	struct Map;
-	std::unique_ptr<Map> m_;
+	std::unique_ptr<hylo_map> m_;
 	double r_ = 0;
 	int nx_ = 0, ny_ = 0;
 };
