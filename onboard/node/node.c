@@ -273,7 +273,9 @@ static void goal_locked(hylo_node *node, const void *data, int len)
 	hylo_reason r;
 	hylo_status st;
 	int64_t request_id;
-	const hylo_node_map_slot *pending = node->map_pending;
+	/* A map waiting, or being taken right now (set_map runs unlocked): the
+	 * goal waits for it like a goal for the current map. */
+	const hylo_node_map_slot *pending = node->map_pending, *taking = node->map_busy;
 
 	node->n_goals++;
 	if (hylo_msg_check_goal(data, len, &request_id, &r) != HYLO_OK) {
@@ -296,7 +298,8 @@ static void goal_locked(hylo_node *node, const void *data, int len)
 		answer_now(node, msg.request_id, hylo_msg_plan_status(st, HYLO_NO_PATH), 0,
 			   node->map_id, "%s", r.text);
 	else if (goal.map_id != 0 && goal.map_id != node->map_id &&
-		 !(pending && goal.map_id == pending->view.map_id)) {
+		 !(pending && goal.map_id == pending->view.map_id) &&
+		 !(taking && goal.map_id == taking->view.map_id)) {
 		if (map_known(node, goal.map_id))
 			answer_now(node, msg.request_id, HYLO_PLAN_T_STATUS_MAP_REPLACED, 0,
 				   node->map_id, "goal is for map %" PRId64 ", which has been "
