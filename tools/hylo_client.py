@@ -194,8 +194,8 @@ def main():
                     help="seconds to wait for the plan (default: 10)")
     ap.add_argument("--json", action="store_true", help="print the plan as one JSON line")
     ap.add_argument("--alternatives", type=int, default=None, metavar="K",
-                    help="also ask for the best paths of K distinct mode sequences (0-8; "
-                         "default: the scene's, else none)")
+                    help="ask for the best paths of K distinct mode sequences, 0-8 (1: the plan "
+                         "only; 0: goal_t.DEFAULT_ALTERNATIVES = 3; default: the scene's)")
     ap.add_argument("--trajectory", type=float, default=0, metavar="S",
                     help="also wait up to S seconds after the plan for a running hylo-smooth's "
                          "trajectory and its report on each alternative (default: 0, do not wait)")
@@ -255,7 +255,8 @@ def main():
         return 1
     print_plan(answer[0], args.json)
     # Alternatives follow the plan (none when it failed or when one was asked for).
-    if g.alternatives >= 2 and answer[0].status in (0, 8):
+    asked = g.alternatives or goal_t.DEFAULT_ALTERNATIVES
+    if asked >= 2 and answer[0].status in (0, 8):
         while (not alts or len(alts) < next(iter(alts.values())).count) and \
                 time.monotonic() < deadline:
             bus.handle_timeout(100)
@@ -268,7 +269,7 @@ def main():
         # The smoother's report on the alternatives follows its trajectory.
         until = time.monotonic() + args.trajectory
         while time.monotonic() < until and (not trajs or (
-                g.alternatives >= 2 and answer[0].status == 0 and
+                asked >= 2 and answer[0].status == 0 and
                 (not smoothed or len(smoothed) < next(iter(smoothed.values())).count))):
             bus.handle_timeout(100)
         if not trajs:

@@ -182,7 +182,7 @@ public:
 	{
 		if (asked_.size() >= 64)
 			asked_.erase(asked_.begin());
-		asked_[g->request_id] = g->alternatives;
+		asked_[g->request_id] = g->alternatives == 0 ? hylo::goal_t::DEFAULT_ALTERNATIVES : g->alternatives;
 	}
 
 	void on_plan(const lcm::ReceiveBuffer *, const std::string &, const hylo::plan_t *p)

@@ -18,6 +18,8 @@ void hylo_msg_map_view(const hylo_map_t *msg, hylo_map_view *v)
 	v->height = msg->height_m;
 }
 
+typedef char hylo_check_default_alternatives[HYLO_GOAL_T_DEFAULT_ALTERNATIVES == HYLO_DEFAULT_ALTERNATIVES ? 1 : -1];
+
 static uint32_t count(int32_t n)
 {
 	/* A negative count from the wire is out of range: say so as too large. */
@@ -50,7 +52,7 @@ void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 	/* Negative: refused by hylo_msg_check_goal; 0 (no limit) if it gets here. */
 	g->max_expansions = msg->max_expansions < 0 ? 0 : (uint64_t)msg->max_expansions;
 	g->suboptimality = msg->suboptimality;
-	g->alternatives = count(msg->alternatives);
+	g->alternatives = msg->alternatives == 0 ? HYLO_DEFAULT_ALTERNATIVES : count(msg->alternatives);
 	g->alternatives_within = msg->alternatives_within;
 }
 

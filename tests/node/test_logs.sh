@@ -40,7 +40,11 @@ if [ "$n" -eq 5 ]; then tap_ok "one log line per request"; else
 "$LISTEN" --lcm-url "file://$T/out.log?speed=0" --json > "$T/plans.jsonl"
 if python3 - "$T/plans.jsonl" <<'PY'
 import json, sys
-rows = [json.loads(l) for l in open(sys.argv[1])]
+lines = [json.loads(l) for l in open(sys.argv[1])]
+rows = [r for r in lines if r["type"] == "plan"]
+# Goals ask for the default alternatives: a robot of one mode has one sequence.
+alts = [(r["request_id"], r["index"], r["count"]) for r in lines if r["type"] == "alternative"]
+assert alts == [(1, 0, 1), (2, 0, 1), (5, 0, 1)], alts
 want = [(1, "ok"), (2, "ok"), (3, "bad request"), (4, "bad request"), (5, "ok")]
 got = [(r["request_id"], r["status"]) for r in rows]
 assert got == want, got

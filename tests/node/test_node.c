@@ -198,15 +198,20 @@ static const hylo_plan_t *ask_raw(const void *data, int len)
 	return received[0];
 }
 
-/* The plan message equals what the library answers directly. */
+/* The plan message equals what the library answers directly to the goal
+ * as the node reads it (goal_t.alternatives 0: the default). */
 static void assert_same_as_library(const hylo_plan_t *got, const tu_map *m, const hylo_goal *g)
 {
 	hylo_map_view v = tu_view(m);
+	hylo_goal_t msg;
+	hylo_goal read;
 	int8_t want_status;
 	uint32_t k;
 
+	goal_msg(g, &msg);
+	hylo_msg_goal_view(&msg, &read);
 	assert_int_equal(hylo_planner_set_map(reference, &v), HYLO_OK);
-	hylo_planner_plan(reference, g, ref_plan);
+	hylo_planner_plan(reference, &read, ref_plan);
 	want_status = hylo_msg_plan_status(ref_plan->status, ref_plan->outcome);
 	assert_int_equal(got->status, want_status);
 	assert_string_equal(got->reason, ref_plan->reason.text);
@@ -287,6 +292,17 @@ static void test_alternatives(void **state)
 	g.alternatives = 1;
 	ask(&g);
 	assert_int_equal(n_alts, 0);
+	/* 0 on the wire: the default, the alternatives of asking for 3. */
+	g.alternatives = HYLO_DEFAULT_ALTERNATIVES;
+	g.request_id = 35;
+	ask(&g);
+	k = (uint32_t)n_alts;
+	assert_true(k >= 2);
+	g.alternatives = 0;
+	g.request_id = 36;
+	p = ask(&g);
+	assert_same_as_library(p, &river, &g);
+	assert_int_equal(n_alts, k);
 	/* More than HYLO_MAX_ALTERNATIVES: a bad request naming the field. */
 	g.request_id = 33;
 	g.alternatives = HYLO_MAX_ALTERNATIVES + 1;

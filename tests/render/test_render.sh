@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # hylo-render and hylo-pngdiff: determinism, one golden image per view,
 # pictures that would fail if they were wrong, and bad input.
-#   phase  di.yaml planned by the node with the committed DI models
+#   phase  di.yaml planned by the node with the committed DI models (one plan,
+#          as top: --alternatives 1)
 #   top    tests/node/synthetic.yaml planned with the synthetic robot, with a
 #          drawn (fake) trajectory for the robot outlines
 #   3d     chasm_030.yaml with a drawn drive-fly-drive plan (fake_traj chasm)
@@ -22,10 +23,10 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 
 scene_log() { "$B/bin/hylo-scene" "$@"; }
-scene_log scenes/di.yaml --goal --lcm-url "file://$T/di.in.log?mode=w"
+scene_log scenes/di.yaml --goal --alternatives 1 --lcm-url "file://$T/di.in.log?mode=w"
 "$B/bin/hylo-planner" --lcm-url "file://$T/di.in.log?speed=0" \
   --out-url "file://$T/di.plan.log?mode=w" 2>/dev/null
-scene_log tests/node/synthetic.yaml --goal --lcm-url "file://$T/syn.in.log?mode=w"
+scene_log tests/node/synthetic.yaml --goal --alternatives 1 --lcm-url "file://$T/syn.in.log?mode=w"
 "$B/test/node/hylo-planner-synthetic" --lcm-url "file://$T/syn.in.log?speed=0" \
   --out-url "file://$T/syn.plan.log?mode=w" 2>/dev/null
 "$FAKE" traj "$T/syn.traj.log" "$T/syn.plan.log"
@@ -67,7 +68,7 @@ else tap_not_ok "the view follows the robot (di: phase) unless --view says other
 
 # A changed plan (another sampling seed) fails the golden comparison, and
 # the comparator says where and writes a diff image.
-scene_log tests/node/synthetic.yaml --goal --seed 11 --lcm-url "file://$T/syn11.in.log?mode=w"
+scene_log tests/node/synthetic.yaml --goal --alternatives 1 --seed 11 --lcm-url "file://$T/syn11.in.log?mode=w"
 "$B/test/node/hylo-planner-synthetic" --lcm-url "file://$T/syn11.in.log?speed=0" \
   --out-url "file://$T/syn11.plan.log?mode=w" 2>/dev/null
 "$RENDER_S" --quiet --log "$T/syn11.in.log" --log "$T/syn11.plan.log" --log "$T/syn.traj.log" \

@@ -25,7 +25,7 @@ smooth() {
 }
 
 plan_logs k3 "$SCENE"
-plan_logs k1 "$SCENE" --alternatives 0
+plan_logs k1 "$SCENE" --alternatives 1
 "$B/bin/hylo-listen" --lcm-url "file://$T/k3.plan.log?speed=0" --json > "$T/k3.plan.json"
 if smooth k3 k3.all.log; then tap_ok "K = 3: hylo-smooth smooths the plan and its alternatives, exits 0"
 else tap_not_ok "K = 3: hylo-smooth smooths the plan and its alternatives, exits 0" "$(cat "$T/k3.err")"; fi

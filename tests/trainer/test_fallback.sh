@@ -90,8 +90,9 @@ field() { python3 -c "import json,sys; print(json.loads(open(sys.argv[1]).readli
 
 # --- the full optimization forced to fail --------------------------------
 # Generated Ambot scene, seed 2: a lake crossed by a swim (ground -> marine -> ground).
+# One plan: the fallbacks of its sequence (alternatives: test_alternatives.sh).
 S="$T/a/gen_ambot_2.yaml"
-plan_logs g2 "$S"
+plan_logs g2 "$S" --alternatives 1
 seq=$("$B/bin/hylo-listen" --lcm-url "file://$T/g2.plan.log?speed=0" --json | python3 -c "import json,sys; print(' '.join(json.loads(sys.stdin.readline())['mode_sequence']))")
 if [ "$seq" = "ground marine ground" ]; then tap_ok "gen_ambot_2 plans ground -> marine -> ground"
 else tap_not_ok "gen_ambot_2 plans ground -> marine -> ground" "$seq"; fi
@@ -137,7 +138,7 @@ else tap_not_ok "no step can solve it: status no path, the reason names the edge
 
 # --- the issue's lake scene --------------------------------------------------
 S=tests/trainer/scenes/lake_bridge.yaml
-plan_logs lake "$S"
+plan_logs lake "$S" --alternatives 1
 smooth lake lake
 status=$(field lake status); method=$(field lake method); reason=$(field lake reason)
 sed 's/^/# /' "$T/lake.out" "$T/lake.err"

@@ -335,6 +335,7 @@ std::string di_study(const Options &opt, std::string &md)
 		const DiCase &k = cases[c];
 		std::fprintf(stderr, "di case %d: planning with exact edge costs\n", c + 1);
 		hylo_goal g = goal_of(sc);
+		g.alternatives = 1;
 		g.start_mode = k.a[0] > 0 ? HYLO_MODE_DI_POS : HYLO_MODE_DI_NEG;
 		g.goal_mode = k.b[0] > 0 ? HYLO_MODE_DI_POS : HYLO_MODE_DI_NEG;
 		for (int j = 0; j < 2; j++) {
@@ -398,6 +399,7 @@ std::string di_study(const Options &opt, std::string &md)
 	for (size_t i = 0; i < spacings.size(); i++) {
 		const DiCase &k = cases[0];
 		hylo_goal g = goal_of(sc);
+		g.alternatives = 1;
 		g.start_mode = HYLO_MODE_DI_POS;
 		g.goal_mode = HYLO_MODE_DI_NEG;
 		for (int j = 0; j < 2; j++) {
@@ -607,6 +609,7 @@ std::string ambot_study(const Options &opt, std::string &md)
 		Scene sc = hylo::scene::load(std::string("scenes/") + scenes[s] + ".yaml");
 		hylo_goal g = goal_of(sc);
 		Planner pe, ps;
+		g.alternatives = 1;
 		ps.plan_on(shortest, sc, g);
 		g.alternatives = kAmbotAlternatives;
 		pe.plan_on(*energy, sc, g);

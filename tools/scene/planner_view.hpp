@@ -57,7 +57,8 @@ inline hylo_goal goal_of(const Scene &sc)
 	q.time_budget_ms = g.time_budget_ms;
 	q.max_expansions = static_cast<uint64_t>(g.max_expansions);
 	q.suboptimality = g.suboptimality;
-	q.alternatives = static_cast<uint32_t>(g.alternatives);
+	// As the node reads it from goal_t: 0 is the default.
+	q.alternatives = g.alternatives == 0 ? HYLO_DEFAULT_ALTERNATIVES : static_cast<uint32_t>(g.alternatives);
 	q.alternatives_within = g.alternatives_within;
 	return q;
 }

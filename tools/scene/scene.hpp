@@ -32,7 +32,7 @@ struct Goal {
 	double time_budget_ms = 0;
 	double suboptimality = 0;        // w >= 1, 0: the optimum
 	int32_t max_expansions = 0;
-	int alternatives = 0;            // K: also the best paths of K distinct mode sequences
+	int alternatives = 0;            // K distinct mode sequences; 1: the plan only, 0: the default (3)
 	double alternatives_within = 0;  // >= 1, 0: the planner's default
 };
 

@@ -80,6 +80,12 @@
 #define HYLO_MAX_SWITCH_LAYERS 12
 #endif
 #define HYLO_MAX_SEARCH_GOALS HYLO_MAX_SWITCH_LAYERS
+/* K for a goal on the bus or in a scene file whose alternatives is 0
+ * (goal_t.DEFAULT_ALTERNATIVES): the graph ranks mode sequences closer than
+ * its discretization error wrongly, so the smoother compares three. A
+ * hylo_goal itself says what it wants: 0 or 1 is the plan only. */
+#define HYLO_DEFAULT_ALTERNATIVES 3
+
 /* The default of hylo_goal.alternatives_within: alternatives predicted
  * more than 25% dearer than the best are left out (the graph's costs are
  * 6-23% above the smoothed ones on the paper's scenes, docs/planner.md). */
