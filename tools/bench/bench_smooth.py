@@ -11,7 +11,10 @@ reference, reference_value, ratio}: the fraction planned (status ok), the
 fraction of planned scenes that got a trajectory, that the full optimization
 smoothed, and that each fallback step smoothed (traj_t.method), and the
 median smoothed / predicted energy. A smoothing that takes longer than
---timeout counts as no trajectory. The per-scene lines go to
+--timeout counts as no trajectory. Every published trajectory is also
+walked from outside (tools/clearance_walk.py, with the .venv's Python: the
+robot's body and the margin traj_t states): the fraction outside its domain
+(target 0) and the fraction traj_t calls safe. The per-scene lines go to
 BUILD/bench/work/smooth/<robot>.jsonl.
 """
 import argparse
@@ -23,14 +26,30 @@ import subprocess
 import sys
 import time
 
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.join(HERE, "..", "..")
+VENV_PY = os.path.join(ROOT, ".venv", "bin", "python")
 METHODS = ["full", "straightened", "finer mesh", "via points", "phase by phase", "graph path"]
 
 
-def run(cmd, timeout=None):
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+def run(cmd, timeout=None, env=None):
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
 
 
-def one(build, scene, work, timeout):
+def can_walk():
+    """The outside walk needs the .venv's lcm and PyYAML (make venv)."""
+    return os.access(VENV_PY, os.X_OK) and run([VENV_PY, "-c", "import lcm, yaml"]).returncode == 0
+
+
+def walk(build, robot, inp, traj):
+    """tools/clearance_walk.py on a published trajectory: (inside, its summary line)."""
+    w = run([VENV_PY, os.path.join(ROOT, "tools", "clearance_walk.py"), "--map-log", inp, "--traj-log", traj,
+             "--robot-file", os.path.join(ROOT, "trainer", "params", robot + ".yaml")],
+            env=dict(os.environ, HYLO_PY_BINDINGS=os.path.join(build, "gen", "lcm", "python")))
+    return w.returncode == 0, (w.stdout + w.stderr).strip()[-300:]
+
+
+def one(build, robot, scene, work, timeout, walking):
     """Plans and smooths one scene; a dict of what happened."""
     name = os.path.splitext(os.path.basename(scene))[0]
     d = os.path.join(work, name)
@@ -77,6 +96,9 @@ def one(build, scene, work, timeout):
         r["method"] = tj["method"]
         r["energy_j"] = tj["energy_j"]
         r["gap_j"] = tj["gap_j"]
+        r["safe"] = tj["safe"]
+        if walking:
+            r["inside"], r["walk"] = walk(build, robot, inp, traj)
     return r
 
 
@@ -99,6 +121,9 @@ def main(argv):
     os.makedirs(work, exist_ok=True)
     here = os.path.dirname(os.path.abspath(__file__))
     rows = []
+    walking = can_walk()
+    if not walking:
+        print("no .venv with lcm and PyYAML (make venv): trajectories are not walked from outside")
     for robot in a.robots.split(","):
         scenes_dir = os.path.join(work, "scenes", robot)
         out = run([sys.executable, os.path.join(here, "..", "scene", "gen_scenes.py"), "--robot", robot,
@@ -107,7 +132,7 @@ def main(argv):
             raise SystemExit(out.stderr)
         scenes = out.stdout.split()
         with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as ex:
-            results = list(ex.map(lambda s: one(a.build, s, work, a.timeout), scenes))
+            results = list(ex.map(lambda s: one(a.build, robot, s, work, a.timeout, walking), scenes))
         with open(os.path.join(work, f"{robot}.jsonl"), "w") as f:
             for r in results:
                 f.write(json.dumps(r) + "\n")
@@ -127,6 +152,16 @@ def main(argv):
             key = m.replace(" ", "_")
             rows.append(row(f"smooth_{robot}_{key}_fraction", k / np_, "fraction",
                             "target" if m == "full" else None, 0.95 if m == "full" else None))
+        safe = sum(1 for r in got if r.get("safe"))
+        print(f"  traj_t safe (body + margin)    {safe:4d} / {len(got)}")
+        rows.append(row(f"smooth_{robot}_safe_fraction", safe / max(1, len(got)), "fraction", "target", 1.0))
+        if walking:
+            outside = [r for r in got if not r.get("inside")]
+            print(f"  outside by the outside walk    {len(outside):4d} / {len(got)}")
+            rows.append(row(f"smooth_{robot}_outside_fraction", len(outside) / max(1, len(got)), "fraction",
+                            "target", 0.0))
+            for r in outside:
+                print(f"  outside: {r['scene']}: {r.get('walk', '')}")
         if ratios:
             med = statistics.median(ratios)
             print(f"  smoothed / predicted energy    median {med:.3f}, range {min(ratios):.3f} .. {max(ratios):.3f}")
