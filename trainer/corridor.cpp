@@ -193,9 +193,32 @@ P3 lerp(const P3 &a, const P3 &b, double f)
 	return {a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2])};
 }
 
+// The fractions of a -> b (grid units) where it crosses a cell edge, inside
+// (0, 1), in order.
+std::vector<double> cell_crossings(const P3 &a, const P3 &b)
+{
+	std::vector<double> f;
+	for (int k = 0; k < 2; k++) {
+		const double d = b[k] - a[k];
+		if (d == 0)
+			continue;
+		for (double u = std::floor(std::min(a[k], b[k])) + 1; u < std::max(a[k], b[k]); u += 1) {
+			const double t = (u - a[k]) / d;
+			if (t > 1e-9 && t < 1 - 1e-9)
+				f.push_back(t);
+		}
+	}
+	std::sort(f.begin(), f.end());
+	f.erase(std::unique(f.begin(), f.end(), [](double x, double y) { return y - x < 1e-12; }), f.end());
+	return f;
+}
+
 // Covers the path piece a -> b (arc length s0 to s1) with boxes at level
 // from on: the whole piece, else its halves (down to a quarter cell), else
-// the next level; a piece no level clears gets no box.
+// on the ground or water its parts between the cell edges it crosses (a
+// piece that passes a blocked cell's corner closer than a quarter cell:
+// each part lies in one cell; a flight is lifted instead), else the next
+// level; a piece no level clears gets no box.
 void cover(const std::string &mode, const CorridorMaps &maps, size_t level, const P3 &a, const P3 &b, double s0,
 	   double s1, int depth, std::vector<Piece> &out)
 {
@@ -224,6 +247,17 @@ void cover(const std::string &mode, const CorridorMaps &maps, size_t level, cons
 		double sm = 0.5 * (s0 + s1);
 		cover(mode, maps, level, a, m, s0, sm, depth + 1, out);
 		cover(mode, maps, level, m, b, sm, s1, depth + 1, out);
+		return;
+	}
+	const std::vector<double> cuts = mode == "flight" ? std::vector<double>() : cell_crossings(grid_units(a), grid_units(b));
+	if (!cuts.empty()) {
+		double f0 = 0;
+		for (size_t i = 0; i <= cuts.size(); i++) {
+			const double f1 = i < cuts.size() ? cuts[i] : 1;
+			cover(mode, maps, level, lerp(a, b, f0), lerp(a, b, f1), s0 + f0 * (s1 - s0), s0 + f1 * (s1 - s0),
+			      kMaxDepth, out);
+			f0 = f1;
+		}
 		return;
 	}
 	// A flight the cells around cannot hold at its height: lifted to where

@@ -313,6 +313,38 @@ void staircase_corridor(const RobotParams &ambot)
 	      "ground x <= " + fmt(gl.hi[0]) + ", water x >= " + fmt(wf.lo[0]));
 }
 
+// A path that passes a blocked cell's corner 1.7 cm away through clear
+// cells only (a generated scene's plan did, and its corridor fell back to
+// the domain there): 0.5 m cells, a rock over cells (27..32, 13), so at
+// body + margin + pad (0.47 m) cell (26, 12), touching the rock's corner
+// (13.5, 6.5), is blocked; the plan's edge passes its corner (13, 6) at
+// (13, 5.983). Its corridor has full-clearance boxes only (quarter-cell
+// halves still straddle the corner: the parts between cell edges do not).
+void corner_pass(const RobotParams &ambot)
+{
+	TerrainGrid m;
+	m.nx = 60;
+	m.ny = 48;
+	m.resolution_m = 0.5;
+	m.terrain.assign(60 * 48, 1);
+	m.height_m.assign(60 * 48, 0.0f);
+	for (int ix = 27; ix <= 32; ix++)
+		m.terrain[static_cast<size_t>(13 * 60 + ix)] = 0;
+	CorridorMaps maps(m, ambot.body_radius_m + 0.1, 0.02);
+	Corridor g = build_corridor("ground", {{11.8912, 7.2921, 0}, {13.3401, 5.5821, 0}, {16.5834, 3.2932, 0}}, maps);
+	const ClearanceMap &clear = *maps.levels().front();
+	bool ok = g.notes.empty() && g.first_box && g.last_box && !g.boxes.empty();
+	std::string why = g.notes.empty() ? "" : g.notes[0];
+	for (const CorridorBox &b : g.boxes)
+		for (long iy = std::lround(b.lo[1] / 0.5); ok && iy < std::lround(b.hi[1] / 0.5); iy++)
+			for (long ix = std::lround(b.lo[0] / 0.5); ok && ix < std::lround(b.hi[0] / 0.5); ix++)
+				if (!clear.clear("ground", static_cast<int>(ix), static_cast<int>(iy))) {
+					ok = false;
+					why = "cell (" + std::to_string(ix) + ", " + std::to_string(iy) + ") of a box is not clear";
+				}
+	check(ok, "a path passing a blocked cell's corner by 1.7 cm: boxes of full clearance, no note", why);
+}
+
 // A clearance the map cannot give (3 m on a 16 m map with a rock) is not
 // dropped silently: the corridor says which pieces got less.
 void too_wide()
@@ -390,6 +422,7 @@ int main(int argc, char **argv)
 	l_shaped_phase(ambot);
 	staircase_corridor(ambot);
 	too_wide();
+	corner_pass(ambot);
 	staircase_smoothing(ambot);
 	chasm_gate(drivo);
 	return tap_finish();
