@@ -19,7 +19,7 @@ int main()
 {
 	const hylo::scene::Scene s50 = hylo::scene::load("scenes/chasm_050.yaml");
 	const hylo::scene::Scene s70 = hylo::scene::load("scenes/chasm_070.yaml");
-	const Chasm c50 = chasm_of(s50);
+	const Chasm c50 = chasm_of(s50, 0);
 	check(c50.e1 == 20 && c50.e2 == 70 && c50.h_platform == 6 && c50.h_floor == 0 && c50.x_start == 10 &&
 		      c50.x_goal == 80,
 	      "chasm_050: walls at 20 and 70 m, platforms 6 m over the floor, start and goal 10 m back",
@@ -29,7 +29,7 @@ int main()
 	check(w.nx == s70.nx && w.terrain == s70.terrain && w.height_m == s70.height_m &&
 		      w.goal.goal.x == s70.goal.goal.x && w.goal.start.x == s70.goal.start.x && w.name == "chasm_070",
 	      "chasm_050 widened by 20 m is chasm_070, cell for cell");
-	const Chasm c51 = chasm_of(widened(s50, c50, 1));
+	const Chasm c51 = chasm_of(widened(s50, c50, 1), 0);
 	check(c51.e1 == 20 && c51.e2 == 71 && c51.x_goal == 81, "widened by 1 m: the far wall and the goal move 1 m");
 
 	bool all = true;
@@ -58,5 +58,13 @@ int main()
 	}
 	check(all, "fixed sequences: their modes (takeoff and landing on the ground), rest at the ends, "
 		   "switch points a cell from the walls", "wrong: " + why);
+	// With a body and margin of 0.44 m the cells touching a wall's edge are
+	// not clear: the switch points move a cell further, into clear cells.
+	std::string at;
+	for (const Waypoint &w : sequence_plan(chasm_of(s50, 0.44), "DFDFD", 0.0))
+		if (w.guard && w.mode == mode_number("ground"))
+			at += std::to_string(static_cast<int>(std::lround(10 * w.state[0]))) + " ";
+	check(at == "190 210 690 710 ", "body and margin 0.44 m: DFDFD switches 1 m from the walls (19, 21, 69, 71 m)",
+	      "at (dm): " + at);
 	return tap_finish();
 }

@@ -497,6 +497,14 @@ double least_clearance(const MultiPhaseSolution &s, const Scene &sc, const Robot
 	return c.outside_phase >= 0 ? -INFINITY : c.min_clearance_m;
 }
 
+// What the fixed sequences' switch points keep from the walls' edges: what
+// the smoother's corridors keep (the body, the default margin and the pad),
+// so the sequences are solved under the margins hylo's plans keep.
+double switch_clearance(const RobotParams &robot)
+{
+	return robot.body_radius_m + HYLO_DEFAULT_MARGIN_M + SmoothOptions().corridor_pad_m;
+}
+
 struct PlanResult {
 	std::string sequence;
 	double predicted = 0, exact = 0, smoothed = NAN, smoothed_error = NAN, length = 0, water = 0,
@@ -878,7 +886,7 @@ std::string crossover(const Options &opt, const RobotParams &robot, const Takeof
 			guess = lo - dlo * (lo - w2) / (dlo - d2);
 		int w = std::clamp(static_cast<int>(std::lround(guess)), lo + 1, hi - 1);
 		Scene sc = widened(scenes[c - 1], chasms[c - 1], w - widths[c - 1]);
-		Chasm ch = chasm_of(sc);
+		Chasm ch = chasm_of(sc, switch_clearance(robot));
 		auto r = parallel_records(2, 9, opt.jobs, [&](size_t j) {
 			const std::string &seq = j ? B : A;
 			return log.solve(robot_sha, w, seq, 0.0,
@@ -949,9 +957,9 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 		} else {
 			// Not committed: the 30 m chasm widened (--widths).
 			Scene base = hylo::scene::load("scenes/chasm_030.yaml");
-			scenes.push_back(widened(base, chasm_of(base), widths[c] - 30.0));
+			scenes.push_back(widened(base, chasm_of(base, 0), widths[c] - 30.0));
 		}
-		chasms.push_back(chasm_of(scenes.back()));
+		chasms.push_back(chasm_of(scenes.back(), switch_clearance(robot)));
 		Planner pl;
 		hylo_goal g = goal_of(scenes.back());
 		g.alternatives = kChasmAlternatives;

@@ -12,13 +12,13 @@ using scene::Scene;
 using trainer::mode_number;
 using trainer::Waypoint;
 
-Chasm chasm_of(const Scene &sc)
+Chasm chasm_of(const Scene &sc, double clearance_m)
 {
 	Chasm c;
 	c.y = sc.goal.start.x[1];
 	c.x_start = sc.goal.start.x[0];
 	c.x_goal = sc.goal.goal.x[0];
-	c.margin = sc.resolution_m;   // switch points keep a cell from the walls
+	c.margin = sc.resolution_m * (1 + std::ceil(clearance_m / sc.resolution_m - 1e-9));
 	int iy = static_cast<int>((c.y - sc.origin_y_m) / sc.resolution_m);
 	int i0 = static_cast<int>((c.x_start - sc.origin_x_m) / sc.resolution_m);
 	int i1 = static_cast<int>((c.x_goal - sc.origin_x_m) / sc.resolution_m);

@@ -19,8 +19,10 @@ struct Chasm {
 };
 
 // Throws std::runtime_error naming the file unless there are exactly two
-// walls between start and goal along x.
-Chasm chasm_of(const scene::Scene &sc);
+// walls between start and goal along x. Switch points keep clearance_m (the
+// robot's body and margin) from the walls' edges and a cell more: they lie
+// in cells the corridors keep clear (margin).
+Chasm chasm_of(const scene::Scene &sc, double clearance_m);
 
 // The chasm scene sc made extra_m wider: floor columns inserted at the
 // chasm's middle, the far platform and the goal moved along. For widths
