@@ -590,7 +590,6 @@ MultiPhaseSolution phase_by_phase(const RobotParams &robot, const std::vector<Wa
 	pinned.guard_half_length_m = 0;
 	MultiPhaseProblem p = smoothing_problem(robot, plan, map, costs, pinned);
 	SolveOptions so = solver_options(opt, false);
-	so.refinements = 4;
 	MultiPhaseSolution out;
 	out.converged = true;
 	for (size_t k = 0; k < p.phases.size(); k++) {
@@ -842,9 +841,7 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 		    fine.min_segments *= 2;
 		    fine.max_segments *= 2;
 		    MultiPhaseProblem prob = smoothing_problem(robot, plan, map, costs, fine);
-		    SolveOptions so = solver_options(opt, true);
-		    so.refinements = 4;
-		    return solve_multiphase(robot, prob, so);
+		    return solve_multiphase(robot, prob, solver_options(opt, true));
 	    }))
 		return r;
 	// Via points start where a full solution left the domain; without one
@@ -897,6 +894,10 @@ SolveOptions smoothing_solve_options()
 {
 	SolveOptions o;
 	o.replay_state_tol = 0.05;
+	// Up to four mesh doublings where a phase's replay disagrees: long ground
+	// phases drift open loop and need 384 segments or more (with two, 2 of 20
+	// generated Ambot scenes fell back to a finer mesh, slower).
+	o.refinements = 4;
 	o.max_step_s = 0.04;
 	o.step_max_iter = 1000;
 	o.objective_scale = 100;
