@@ -14,7 +14,10 @@ median smoothed / predicted energy. A smoothing that takes longer than
 --timeout counts as no trajectory. Every published trajectory is also
 walked from outside (tools/clearance_walk.py, with the .venv's Python: the
 robot's body and the margin traj_t states): the fraction outside its domain
-(target 0) and the fraction traj_t calls safe. The per-scene lines go to
+(target 0) and the fraction traj_t calls safe. Goals ask for the default
+alternatives: the fraction of scenes whose published trajectory is not the
+graph's first sequence, and what it saves against that one smoothed. The
+per-scene lines go to
 BUILD/bench/work/smooth/<robot>.jsonl.
 """
 import argparse
@@ -90,6 +93,8 @@ def one(build, robot, scene, work, timeout, walking):
         r["traj"] = "none"
         return r
     tj = json.loads(t[0])
+    r["alternatives"] = [{k: a.get(k) for k in ("index", "mode_sequence", "predicted_j", "smoothed_j", "chosen")}
+                         for a in map(json.loads, t[1:]) if a.get("type") == "traj_alternative"]
     r["traj"] = tj["status"]
     r["reason"] = tj["reason"]
     if tj["status"] == "ok":
@@ -162,6 +167,18 @@ def main(argv):
                             "target", 0.0))
             for r in outside:
                 print(f"  outside: {r['scene']}: {r.get('walk', '')}")
+        # The graph's first sequence against the one published (alternatives).
+        other = [r for r in got if any(a["chosen"] and a["index"] > 0 for a in r.get("alternatives", []))]
+        savings = []
+        for r in other:
+            first = next((a for a in r["alternatives"] if a["index"] == 0), None)
+            if first and first.get("smoothed_j"):
+                savings.append(1 - r["energy_j"] / first["smoothed_j"])
+        print(f"  another sequence than the first  {len(other):4d} / {len(got)}" +
+              (f" (saving {statistics.median(savings):.1%} median, {max(savings):.1%} most)" if savings else ""))
+        rows.append(row(f"smooth_{robot}_other_sequence_fraction", len(other) / max(1, len(got)), "fraction"))
+        if savings:
+            rows.append(row(f"smooth_{robot}_other_sequence_saving_median", statistics.median(savings), "fraction"))
         if ratios:
             med = statistics.median(ratios)
             print(f"  smoothed / predicted energy    median {med:.3f}, range {min(ratios):.3f} .. {max(ratios):.3f}")
