@@ -66,5 +66,26 @@ int main()
 			at += std::to_string(static_cast<int>(std::lround(10 * w.state[0]))) + " ";
 	check(at == "190 210 690 710 ", "body and margin 0.44 m: DFDFD switches 1 m from the walls (19, 21, 69, 71 m)",
 	      "at (dm): " + at);
+	// The flights' guesses keep clear of the walls' top edges: within 0.5 m
+	// of a wall a guess is at least 0.94 m above the platform (the flight
+	// clearance 0.5 m plus the 0.44 m), on the straight lines between its
+	// waypoints too (the corridors are built along them).
+	std::string low;
+	for (const std::string seq : {"F", "DF", "DFD", "FDF", "DFDF", "DFDFD"}) {
+		const std::vector<Waypoint> p = sequence_plan(chasm_of(s50, 0.44), seq, 0.0);
+		for (size_t i = 1; i < p.size(); i++) {
+			if (p[i].mode != mode_number("flight") || p[i - 1].mode != mode_number("flight"))
+				continue;
+			for (int k = 0; k <= 20; k++) {
+				const double x = p[i - 1].state[0] + (p[i].state[0] - p[i - 1].state[0]) * k / 20;
+				const double z = p[i - 1].state[2] + (p[i].state[2] - p[i - 1].state[2]) * k / 20;
+				if ((std::fabs(x - 20) < 0.5 || std::fabs(x - 70) < 0.5) && z < 6.94) {
+					low += seq + " at (" + std::to_string(x) + ", " + std::to_string(z) + ") ";
+					break;
+				}
+			}
+		}
+	}
+	check(low.empty(), "the flights' guesses pass the walls' top edges at least 0.94 m above the platforms", low);
 	return tap_finish();
 }

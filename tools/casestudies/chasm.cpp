@@ -2,6 +2,7 @@
 #include "tools/casestudies/chasm.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -78,21 +79,39 @@ std::vector<Waypoint> sequence_plan(const Chasm &c, const std::string &seq, doub
 			ground(x0 + (x1 - x0) * i / n, i == 0 || i == n ? 0 : 2, 0, (i == 0 && guard0) || (i == n && guard1));
 	};
 	auto surface_h = [&](double x) { return x < c.e1 || x >= c.e2 ? c.h_platform : c.h_floor; };
+	// A flight 1 m above the platforms; from or to the floor it climbs
+	// (descends) straight over its floor end, so the guess keeps clear of
+	// the wall it crosses (a straight descent would cut through the wall's
+	// top edge, and the corridors are built along the guess).
 	auto fly = [&](double x0, double x1) {
-		double z0 = surface_h(x0) + 1, z1 = surface_h(x1) + 1, L = std::fabs(x1 - x0);
-		int n = std::max(1, static_cast<int>(std::ceil(L / 8)));
-		for (int i = 0; i <= n; i++) {
-			double s = L * i / n, x = x0 + (x1 - x0) * i / n;
-			double z = z0 + (z1 - z0) * i / n;
-			if (x < c.e1 || x >= c.e2)
-				z = std::max(z, c.h_platform + 1);
-			double v = i == 0 || i == n ? 0 : std::min(8.0, std::sqrt(6 * std::min(s, L - s)));
-			Waypoint p;
-			p.mode = F;
-			p.guard = i == 0 || i == n;
-			double st[6] = {x, c.y, z, x1 > x0 ? v : -v, 0, 0};
-			std::copy(st, st + 6, p.state);
-			w.push_back(p);
+		const double cruise = c.h_platform + 1, z0 = surface_h(x0) + 1, z1 = surface_h(x1) + 1;
+		std::vector<std::array<double, 2>> corner{{x0, z0}};
+		if (z0 < cruise)
+			corner.push_back({x0, cruise});
+		if (z1 < cruise)
+			corner.push_back({x1, cruise});
+		corner.push_back({x1, z1});
+		double L = 0;
+		for (size_t k = 1; k < corner.size(); k++)
+			L += std::hypot(corner[k][0] - corner[k - 1][0], corner[k][1] - corner[k - 1][1]);
+		double s0 = 0;
+		for (size_t k = 1; k < corner.size(); k++) {
+			const double dx = corner[k][0] - corner[k - 1][0], dz = corner[k][1] - corner[k - 1][1];
+			const double len = std::hypot(dx, dz);
+			const int n = std::max(1, static_cast<int>(std::ceil(len / 8)));
+			for (int i = k == 1 ? 0 : 1; i <= n; i++) {
+				const double s = s0 + len * i / n;
+				const bool end = (k == 1 && i == 0) || (k + 1 == corner.size() && i == n);
+				const double v = end ? 0 : std::min(8.0, std::sqrt(6 * std::min(s, L - s)));
+				Waypoint p;
+				p.mode = F;
+				p.guard = end;
+				double st[6] = {corner[k - 1][0] + dx * i / n, c.y, corner[k - 1][1] + dz * i / n,
+						v * dx / len, 0, v * dz / len};
+				std::copy(st, st + 6, p.state);
+				w.push_back(p);
+			}
+			s0 += len;
 		}
 	};
 	const double mid = 0.5 * (c.e1 + c.e2);
