@@ -1067,7 +1067,7 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 		s.T_guess = ps.T_guess > 0 ? ps.T_guess : duration_guess(info, length);
 		check_corridor(ps, where);
 		s.corridor = ps.corridor;
-		s.guess_by_arc_length = !ps.corridor.empty();
+		s.guess_by_arc_length = !ps.corridor.empty() && !ps.guess_timed;
 		p.modes.push_back(ps.mode);
 		p.info.push_back(std::move(info));
 		p.setups.push_back(std::move(s));

@@ -179,6 +179,9 @@ struct PhaseSpec {
 	int segments = 20;
 	double T_guess = 0;                       // [s]; 0: guess path length / typical speed
 	std::vector<std::vector<double>> guess;   // full states the initial guess runs through (>= 2)
+	// The guess states lie uniformly in time (a solution's knots and
+	// midpoints), with a corridor too; else, with one, by arc length.
+	bool guess_timed = false;
 	// Bounds of the first and last knot's state (state_dim each; empty: the
 	// mode's bounds). Equal bounds fix a component.
 	std::vector<double> first_lo, first_hi, last_lo, last_hi;
