@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# hylo-casestudies (tools/casestudies/): its command line, and the Ambot study
+# hylo-casestudies (tools/casestudies/): its command line (--two-chasms's
+# bad values refused before any planning), and the Ambot study
 # on the committed models in its quick form (plans only): on the same graph,
 # the energy-optimal plan must swim less than the shortest-distance plan and
 # cost less, and the shortest plan must be no longer (within the 1% of its
@@ -14,10 +15,19 @@ T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 
 "$CS" --help > "$T/help" 2>&1
-tap_check "--help lists every option" grep -q -- "--study.*--out.*--jobs.*--quick.*--widths" <(tr '\n' ' ' < "$T/help")
+tap_check "--help lists every option" grep -q -- "--study.*--out.*--jobs.*--quick.*--widths.*--two-chasms" <(tr '\n' ' ' < "$T/help")
 
 "$CS" --study drivocopter --widths 40,20 > "$T/out" 2>&1; rc=$?
 tap_check "--widths below the narrowest chasm: exit 2 naming the value" test "$rc" = 2 -a -n "$(grep -- "--widths: '20'" "$T/out")"
+
+"$CS" --study drivocopter --two-chasms 30,1,30 --out "$T" > "$T/out" 2>&1; rc=$?
+tap_check "--two-chasms with a middle platform under 2 m: exit 2 naming the value" test "$rc" = 2 -a -n "$(grep -- "--two-chasms: '1' .*middle platform" "$T/out")"
+"$CS" --study drivocopter --two-chasms 30,20 --out "$T" > "$T/out" 2>&1; rc=$?
+tap_check "--two-chasms with two values: exit 2, not W1,P,W2" test "$rc" = 2 -a -n "$(grep -- "is not W1,P,W2" "$T/out")"
+"$CS" --study drivocopter --two-chasms 30,20,30 > "$T/out" 2>&1; rc=$?
+tap_check "--two-chasms into docs (the committed Table I): exit 2 before planning" test "$rc" = 2 -a -n "$(grep -- "--out other than docs" "$T/out")"
+"$CS" --study drivocopter --two-chasms 30,20,30 --widths 40 --out "$T" > "$T/out" 2>&1; rc=$?
+tap_check "--two-chasms with --widths: exit 2, one or the other" test "$rc" = 2 -a -n "$(grep -- "one or the other" "$T/out")"
 
 "$CS" --study nope > "$T/out" 2>&1; rc=$?
 tap_check "an unknown study: exit 2 and says which" test "$rc" = 2 -a -n "$(grep "unknown study 'nope'" "$T/out")"

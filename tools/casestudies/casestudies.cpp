@@ -9,7 +9,9 @@
 //   drivocopter  the paper's Table I: on each chasm scene the fixed mode
 //          sequences F ... DFDFD, each one multi-phase optimization (the
 //          smoother's, on a plan of that sequence), against hylo's plan, its
-//          predicted cost and its smoothed cost.
+//          predicted cost and its smoothed cost. With --two-chasms, scenes
+//          nobody tuned on: the 30 m chasm made into two, every route
+//          (where it lands and drives) against hylo's alternatives.
 // Each study writes OUT/results/<study>.{md,json}; OUT/results.json (every
 // number) and OUT/results.md (the tables) are put together from those parts.
 // tools/casestudies/plot.py draws the convergence figure from the JSON.
@@ -54,16 +56,19 @@
 namespace {
 
 using namespace hylo::trainer;
-using hylo::casestudies::Chasm;
-using hylo::casestudies::chasm_of;
+using hylo::casestudies::chasms;
 using hylo::casestudies::letters;
+using hylo::casestudies::Profile;
+using hylo::casestudies::profile_of;
+using hylo::casestudies::route_name;
+using hylo::casestudies::route_of_plan;
 using hylo::casestudies::sequence_plan;
 using hylo::casestudies::widened;
 using hylo::scene::Scene;
 
 const char *kUsage =
 	"usage: hylo-casestudies [--study di|ambot|drivocopter|all] [--out DIR] [--jobs N] [--quick]\n"
-	"                        [--widths W,...]\n"
+	"                        [--widths W,... | --two-chasms W1,P,W2 ...]\n"
 	"  The paper's case studies (docs/results.md explains each).\n"
 	"  --study S   which study to run (default all); the others' last results\n"
 	"              (DIR/results/<study>.{md,json}) are kept in the combined files\n"
@@ -76,6 +81,12 @@ const char *kUsage =
 	"              30-110: a committed scene where there is one, else the 30 m chasm\n"
 	"              widened (floor inserted at its middle); no crossover. For scenes\n"
 	"              nobody tuned on: write them to another --out\n"
+	"  --two-chasms W1,P,W2  the Drivocopter study on two chasms instead: the 30 m chasm\n"
+	"              made into a floor W1 m wide [5-400], a middle platform P m long [2-400]\n"
+	"              and a floor W2 m wide [5-400] (whole metres); repeat the option for\n"
+	"              more scenes. Every route that drives on the start and goal platforms\n"
+	"              (landing on any of floor 1, the middle platform, floor 2: 8 routes)\n"
+	"              against hylo's alternatives; needs an --out other than docs\n"
 	"  The Drivocopter study ends by locating the crossover from flying over to driving\n"
 	"  through to the metre (the two sequences solved on chasms widened in between).\n"
 	"  It logs each finished solve to DIR/results/drivocopter.solves\n"
@@ -87,6 +98,7 @@ struct Options {
 	int jobs = 2;
 	bool quick = false;
 	std::vector<int> widths;   // the Drivocopter study's chasms; empty: the committed 30-110 m
+	std::vector<std::vector<int>> two_chasms;   // --two-chasms: {W1, P, W2} per scene [m]
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0)
@@ -722,9 +734,9 @@ std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Wa
 
 // Finished solves survive an interruption: each appends a line "<key>\t<record>"
 // to a log (OUT/results/drivocopter.solves) and a rerun takes its records from
-// there. Keys name the robot file's hash, the chasm, the sequence (hylo's plan
-// by its predicted cost) and the placement; delete the log after changing the
-// solver.
+// there. Keys name the robot file's hash, the scene (chasm_030; two chasms
+// chasm_030_020_030), the sequence (hylo's plan by its predicted cost) and the
+// placement; delete the log after changing the solver.
 class SolveLog {
 public:
 	explicit SolveLog(std::string path) : path_(std::move(path))
@@ -763,20 +775,20 @@ public:
 			close(fd);
 	}
 
-	// The record of one chasm solve, "what" on the chasm `width` m wide from
+	// The record of one solve, "what" on the scene `scene` (chasm_030) from
 	// placement lambda: from the log, else solve() and logged.
-	std::vector<double> solve(const std::string &robot_sha, int width, const std::string &what, double lambda,
-				  const std::function<std::vector<double>()> &solve) const
+	std::vector<double> solve(const std::string &robot_sha, const std::string &scene, const std::string &what,
+				  double lambda, const std::function<std::vector<double>()> &solve) const
 	{
-		char key[200];
-		std::snprintf(key, sizeof key, "%.16s chasm_%03d %s placement %.3f", robot_sha.c_str(), width,
-			      what.c_str(), lambda);
+		char placement[32];
+		std::snprintf(placement, sizeof placement, " placement %.3f", lambda);
+		const std::string key = robot_sha.substr(0, 16) + " " + scene + " " + what + placement;
 		if (const std::vector<double> *old = find(key)) {
-			std::fprintf(stderr, "  %s: from %s\n", key, path_.c_str());
+			std::fprintf(stderr, "  %s: from %s\n", key.c_str(), path_.c_str());
 			return *old;
 		}
 		std::vector<double> v = solve();
-		std::fprintf(stderr, "  chasm %d m %s (placement %.1f): %.1f J, %.0f s\n", width, what.c_str(), lambda,
+		std::fprintf(stderr, "  %s %s (placement %.1f): %.1f J, %.0f s\n", scene.c_str(), what.c_str(), lambda,
 			     v[0], v[4]);
 		add(key, v);
 		return v;
@@ -798,10 +810,54 @@ struct ChasmItem {
 // publishes the cheapest).
 constexpr uint32_t kChasmAlternatives = 3;
 
-std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
-		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
-		      const std::vector<std::vector<Alternative>> &alts, const std::vector<double> &plan_s,
-		      const TakeoffLanding &tl, std::string &md);
+// One scene of the Drivocopter study, and the planner's alternatives on it.
+struct ChasmScene {
+	std::string key;     // its name in the solves log: chasm_030, chasm_030_020_030
+	std::string label;   // the table's first column: "30", "30, 20, 30"
+	std::string json;    // its fields in the JSON: "scene": "chasm_30", "width_m": 30
+	Scene scene;
+	Profile profile;
+	std::vector<Alternative> alts;   // graph rank order, each named by its route
+	double plan_s = 0;               // planning with the alternatives [s]
+};
+
+// Plans on the scene with kChasmAlternatives alternatives; the fixed
+// sequences' switch points keep clearance_m from the walls. On one chasm an
+// alternative is named by its letters (DFDFD), on more by its route
+// (DFD(floor1)FD).
+ChasmScene chasm_scene(const hylo_robot &svr, double clearance_m, Scene sc, std::string key, std::string label,
+		       std::string json)
+{
+	ChasmScene s;
+	s.profile = profile_of(sc, clearance_m);
+	s.scene = std::move(sc);
+	s.key = std::move(key);
+	s.label = std::move(label);
+	s.json = std::move(json);
+	Planner pl;
+	hylo_goal g = goal_of(s.scene);
+	g.alternatives = kChasmAlternatives;
+	auto t0 = std::chrono::steady_clock::now();
+	pl.plan_on(svr, s.scene, g);
+	s.plan_s = seconds_since(t0);
+	s.alts = alternatives_of(pl);
+	for (size_t k = 0; k < s.alts.size(); k++) {
+		if (s.profile.walls.size() > 2)
+			s.alts[k].letters = route_name(s.profile, route_of_plan(s.profile, s.alts[k].path));
+		std::fprintf(stderr, "drivocopter %s: hylo's alternative %zu: %s, %.1f J predicted\n", s.scene.path.c_str(),
+			     k + 1, s.alts[k].letters.c_str(), s.alts[k].predicted);
+	}
+	std::fprintf(stderr, "drivocopter %s: planned in %.2f s\n", s.scene.path.c_str(), s.plan_s);
+	return s;
+}
+
+// The table's text above it: its heading and what it compares.
+std::string table_one_intro(size_t placements, const TakeoffLanding &tl);
+std::string two_chasms_intro(const TakeoffLanding &tl);
+
+std::string table_one(const std::vector<ChasmScene> &scenes, size_t done, const std::vector<std::string> &seqs,
+		      const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
+		      const std::string &intro, const std::string &first_column, bool crossover_line, std::string &md);
 
 // Per fixed sequence of chasm c, its cheapest converged record (empty: none).
 std::vector<std::vector<double>> best_fixed(const std::vector<ChasmItem> &items,
@@ -848,10 +904,10 @@ size_t first_drive_change(const std::vector<std::string> &best_seq)
 // secant through the two points below; else bisection).
 // Appends its section to md; returns its JSON (null: no change in the table).
 std::string crossover(const Options &opt, const RobotParams &robot, const TakeoffLanding &tl,
-		      const std::vector<int> &widths, const std::vector<Scene> &scenes,
-		      const std::vector<Chasm> &chasms, const std::vector<std::string> &seqs,
-		      const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
-		      const SolveLog &log, const std::string &robot_sha, std::string &md)
+		      const std::vector<int> &widths, const std::vector<ChasmScene> &scenes,
+		      const std::vector<std::string> &seqs, const std::vector<ChasmItem> &items,
+		      const std::vector<std::vector<double>> &rec, const SolveLog &log, const std::string &robot_sha,
+		      std::string &md)
 {
 	std::vector<size_t> best;
 	std::vector<std::string> best_seq;
@@ -885,11 +941,11 @@ std::string crossover(const Options &opt, const RobotParams &robot, const Takeof
 		else if (std::isfinite(dlo) && std::isfinite(d2) && dlo > d2)
 			guess = lo - dlo * (lo - w2) / (dlo - d2);
 		int w = std::clamp(static_cast<int>(std::lround(guess)), lo + 1, hi - 1);
-		Scene sc = widened(scenes[c - 1], chasms[c - 1], w - widths[c - 1]);
-		Chasm ch = chasm_of(sc, switch_clearance(robot));
+		Scene sc = widened(scenes[c - 1].scene, scenes[c - 1].profile, w - widths[c - 1]);
+		Profile ch = profile_of(sc, switch_clearance(robot));
 		auto r = parallel_records(2, 9, opt.jobs, [&](size_t j) {
 			const std::string &seq = j ? B : A;
-			return log.solve(robot_sha, w, seq, 0.0,
+			return log.solve(robot_sha, sc.name, seq, 0.0,
 					 [&] { return smooth_record(robot, sequence_plan(ch, seq, 0.0), sc, tl); });
 		});
 		const double d = r[0][0] - r[1][0];
@@ -924,15 +980,16 @@ std::string crossover(const Options &opt, const RobotParams &robot, const Takeof
 }
 
 // checkpoint(md, json) is called after each chasm with the results so far.
+// On the committed chasms (or --widths) the fixed sequences F ... DFDFD; on
+// --two-chasms scenes every route that drives on both ends (8).
 std::string drivocopter_study(const Options &opt, std::string &md,
 			      const std::function<void(const std::string &, const std::string &)> &checkpoint)
 {
 	RobotParams robot = load_robot(robot_file("drivocopter"));
 	const hylo_robot svr_robot = committed_robot("drivocopter");
-	const hylo_robot *svr = &svr_robot;
 	std::fprintf(stderr, "drivocopter: takeoff and landing costs\n");
 	const TakeoffLanding tl = takeoff_landing(robot, SolveOptions());
-	const std::vector<std::string> seqs = {"F", "DF", "DFD", "FDF", "DFDF", "DFDFD"};
+	std::vector<std::string> seqs = {"F", "DF", "DFD", "FDF", "DFDF", "DFDFD"};
 	// Switch points start at the walls. A second placement half way to the
 	// legs' far ends, tried on the 30 m chasm, failed its cold start in 3 of
 	// 5 sequences (at 400 Ipopt iterations; DF still at 1,000) and ended
@@ -944,35 +1001,43 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 	if (!opt.widths.empty())
 		widths = opt.widths;
 	using Item = ChasmItem;
-	std::vector<Scene> scenes;
-	std::vector<Chasm> chasms;
-	std::vector<std::vector<Alternative>> alts;   // the planner's alternatives of each chasm
-	std::vector<double> plan_s;
+	std::vector<ChasmScene> scenes;
+	if (opt.two_chasms.empty()) {
+		for (int width : widths) {
+			char path[64];
+			std::snprintf(path, sizeof path, "scenes/chasm_%03d.yaml", width);
+			Scene sc;
+			if (access(path, R_OK) == 0) {
+				sc = hylo::scene::load(path);
+			} else {
+				// Not committed: the 30 m chasm widened (--widths).
+				Scene base = hylo::scene::load("scenes/chasm_030.yaml");
+				sc = widened(base, profile_of(base, 0), width - 30.0);
+			}
+			char key[32];
+			std::snprintf(key, sizeof key, "chasm_%03d", width);
+			scenes.push_back(chasm_scene(svr_robot, switch_clearance(robot), std::move(sc), key, std::to_string(width),
+						     "\"scene\": \"chasm_" + std::to_string(width) + "\", \"width_m\": " +
+							     std::to_string(width)));
+		}
+	} else {
+		// Scenes nobody tuned on: the 30 m chasm made into two (--two-chasms).
+		const Scene base = hylo::scene::load("scenes/chasm_030.yaml");
+		for (const std::vector<int> &l : opt.two_chasms) {
+			Scene sc = chasms(base, profile_of(base, 0), {double(l[0]), double(l[1]), double(l[2])});
+			const std::string lengths = std::to_string(l[0]) + ", " + std::to_string(l[1]) + ", " + std::to_string(l[2]);
+			const std::string key = sc.name;
+			scenes.push_back(chasm_scene(svr_robot, switch_clearance(robot), std::move(sc), key, lengths,
+						     "\"scene\": \"" + key + "\", \"lengths_m\": [" + lengths + "]"));
+		}
+		seqs.clear();
+		for (const hylo::casestudies::Route &r : hylo::casestudies::routes(scenes[0].profile))
+			seqs.push_back(route_name(scenes[0].profile, r));
+	}
 	std::vector<Item> items;
-	for (size_t c = 0; c < widths.size(); c++) {
-		char path[64];
-		std::snprintf(path, sizeof path, "scenes/chasm_%03d.yaml", widths[c]);
-		if (access(path, R_OK) == 0) {
-			scenes.push_back(hylo::scene::load(path));
-		} else {
-			// Not committed: the 30 m chasm widened (--widths).
-			Scene base = hylo::scene::load("scenes/chasm_030.yaml");
-			scenes.push_back(widened(base, chasm_of(base, 0), widths[c] - 30.0));
-		}
-		chasms.push_back(chasm_of(scenes.back(), switch_clearance(robot)));
-		Planner pl;
-		hylo_goal g = goal_of(scenes.back());
-		g.alternatives = kChasmAlternatives;
-		auto t0 = std::chrono::steady_clock::now();
-		pl.plan_on(*svr, scenes.back(), g);
-		plan_s.push_back(seconds_since(t0));
-		alts.push_back(alternatives_of(pl));
-		for (size_t k = 0; k < alts.back().size(); k++) {
-			std::fprintf(stderr, "drivocopter %s: hylo's alternative %zu: %s, %.1f J predicted\n", path, k + 1,
-				     alts.back()[k].letters.c_str(), alts.back()[k].predicted);
+	for (size_t c = 0; c < scenes.size(); c++) {
+		for (size_t k = 0; k < scenes[c].alts.size(); k++)
 			items.push_back({c, -1, 0, static_cast<int>(k)});
-		}
-		std::fprintf(stderr, "drivocopter %s: planned in %.2f s\n", path, plan_s.back());
 		for (size_t q = 0; q < seqs.size(); q++)
 			for (double l : lambdas) {
 				items.push_back({c, static_cast<int>(q), l});
@@ -983,82 +1048,116 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 	const std::string log_path = opt.out + "/results/drivocopter.solves", robot_sha = sha256_file(robot.path);
 	const SolveLog log(log_path);
 	std::fprintf(stderr, "drivocopter: %zu multi-phase solves on %d workers\n", items.size(), opt.jobs);
+	const bool two = !opt.two_chasms.empty();
+	const std::string intro = two ? two_chasms_intro(tl) : table_one_intro(lambdas.size(), tl);
 	// One chasm at a time, its results written as they come (hours in all).
 	std::vector<std::vector<double>> rec(items.size());
 	std::string head_md = md, js;
-	for (size_t done = 1; done <= widths.size(); done++) {
+	for (size_t done = 1; done <= scenes.size(); done++) {
 		std::vector<size_t> mine;
 		for (size_t i = 0; i < items.size(); i++)
 			if (items[i].chasm == done - 1)
 				mine.push_back(i);
 		auto r = parallel_records(mine.size(), 9, opt.jobs, [&](size_t j) {
 			const Item &it = items[mine[j]];
+			const ChasmScene &sc = scenes[it.chasm];
 			// hylo's plan keeps its key of before (the alternatives' first).
-			const Alternative *a = it.seq >= 0 ? nullptr : &alts[it.chasm][static_cast<size_t>(it.rank)];
+			const Alternative *a = it.seq >= 0 ? nullptr : &sc.alts[static_cast<size_t>(it.rank)];
 			std::string what = a ? "hylo " + std::string(it.rank ? "alternative " + std::to_string(it.rank) + " " : "") +
 						       a->letters + " " + num(a->predicted)
 					     : seqs[static_cast<size_t>(it.seq)];
-			return log.solve(robot_sha, widths[it.chasm], what, it.lambda, [&] {
+			return log.solve(robot_sha, sc.key, what, it.lambda, [&] {
 				std::vector<Waypoint> w =
-					a ? a->path
-					  : sequence_plan(chasms[it.chasm], seqs[static_cast<size_t>(it.seq)], it.lambda);
-				return smooth_record(robot, w, scenes[it.chasm], tl);
+					a ? a->path : sequence_plan(sc.profile, seqs[static_cast<size_t>(it.seq)], it.lambda);
+				return smooth_record(robot, w, sc.scene, tl);
 			});
 		});
 		for (size_t j = 0; j < mine.size(); j++)
 			rec[mine[j]] = r[j];
 		md = head_md;
-		js = "{\"chasms\": " +
-		     table_one(widths, done, seqs, lambdas.size(), items, rec, alts, plan_s, tl, md);
-		checkpoint(md, js + ", \"crossover\": null}");
+		js = std::string(two ? "{\"two_chasms\": " : "{\"chasms\": ") +
+		     table_one(scenes, done, seqs, items, rec, intro, two ? "chasm, platform, chasm [m]" : "width [m]",
+			       !two, md);
+		checkpoint(md, js + (two ? "}" : ", \"crossover\": null}"));
 	}
+	if (two)
+		return js + "}";
 	if (!opt.quick && opt.widths.empty())
-		js += ", \"crossover\": " +
-		      crossover(opt, robot, tl, widths, scenes, chasms, seqs, items, rec, log, robot_sha, md);
+		js += ", \"crossover\": " + crossover(opt, robot, tl, widths, scenes, seqs, items, rec, log, robot_sha, md);
 	return js + "}";
 }
 
-// The table of study 3 for the first `done` chasms; returns its JSON.
-std::string table_one(const std::vector<int> &widths, size_t done, const std::vector<std::string> &seqs,
-		      size_t placements, const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
-		      const std::vector<std::vector<Alternative>> &alts, const std::vector<double> &plan_s,
-		      const TakeoffLanding &tl, std::string &md)
+std::string table_one_intro(size_t placements, const TakeoffLanding &tl)
 {
-	md += "\n## 3. Drivocopter: fixed mode sequences against hylo (the paper's Table I)\n\n"
-	      "Each chasm scene (`scenes/chasm_*.yaml`: platforms 6 m high, start and goal on them 10 m "
-	      "back from the walls; the width is the floor between the walls). Fixed sequences "
-	      "(D drive, F fly): one multi-phase collocation each, from ground rest at the start to "
-	      "ground rest at the goal, takeoff (" + num(tl.takeoff_j) + " J) and landing (" +
-	      num(tl.landing_j) + " J) included, every switch point free on its whole platform or floor, "
-	      "flights cut at each wall into phases that meet 0.5 m above its top (the planner's flight "
-	      "clearance), every phase in a corridor that keeps the body (0.32 m) plus " +
-	      num(HYLO_DEFAULT_MARGIN_M) + " m clear of the terrain (docs/smoothing.md, \"Clearance\"); "
-	      "switch points placed at the walls initially (" + std::to_string(placements) +
-	      " placement). hylo: the planner's alternatives with the committed "
-	      "SVR models (goal.alternatives = " + std::to_string(kChasmAlternatives) + ": the best graph path "
-	      "of each of the cheapest distinct mode sequences predicted within 1.25 times the best; sequence "
-	      "and predicted cost), each smoothed by the same multi-phase solver from its path; the cheapest "
-	      "smoothed one is hylo's result, as `hylo-smooth` publishes it, and rank is the graph's rank of "
-	      "its sequence (1: the plan). Smoothing options: flight segments of at most 40 ms, replay "
-	      "tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt iterations per solve. Costs in J, "
-	      "each with its trajectory's least clearance beyond the body in m (the check hylo-smooth "
-	      "publishes; -inf: it leaves its domain); best fixed sequence in bold.\n\n"
-	      "| width [m] | F | DF | DFD | FDF | DFDF | DFDFD | hylo plan (predicted) | plan smoothed | "
-	      "other alternatives (predicted) smoothed | hylo | rank | vs best |\n"
-	      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+	return "\n## 3. Drivocopter: fixed mode sequences against hylo (the paper's Table I)\n\n"
+	       "Each chasm scene (`scenes/chasm_*.yaml`: platforms 6 m high, start and goal on them 10 m "
+	       "back from the walls; the width is the floor between the walls). Fixed sequences "
+	       "(D drive, F fly): one multi-phase collocation each, from ground rest at the start to "
+	       "ground rest at the goal, takeoff (" + num(tl.takeoff_j) + " J) and landing (" +
+	       num(tl.landing_j) + " J) included, every switch point free on its whole platform or floor, "
+	       "flights cut at each wall into phases that meet 0.5 m above its top (the planner's flight "
+	       "clearance), every phase in a corridor that keeps the body (0.32 m) plus " +
+	       num(HYLO_DEFAULT_MARGIN_M) + " m clear of the terrain (docs/smoothing.md, \"Clearance\"); "
+	       "switch points placed at the walls initially (" + std::to_string(placements) +
+	       " placement). hylo: the planner's alternatives with the committed "
+	       "SVR models (goal.alternatives = " + std::to_string(kChasmAlternatives) + ": the best graph path "
+	       "of each of the cheapest distinct mode sequences predicted within 1.25 times the best; sequence "
+	       "and predicted cost), each smoothed by the same multi-phase solver from its path; the cheapest "
+	       "smoothed one is hylo's result, as `hylo-smooth` publishes it, and rank is the graph's rank of "
+	       "its sequence (1: the plan). Smoothing options: flight segments of at most 40 ms, replay "
+	       "tolerance 0.05 (knot to knot for flight), up to 1,000 Ipopt iterations per solve. Costs in J, "
+	       "each with its trajectory's least clearance beyond the body in m (the check hylo-smooth "
+	       "publishes; -inf: it leaves its domain); best fixed sequence in bold.\n\n";
+}
+
+std::string two_chasms_intro(const TakeoffLanding &tl)
+{
+	return "\n## 3. Drivocopter on two chasms (scenes nobody tuned on)\n\n"
+	       "`scenes/chasm_030.yaml` made into two chasms (`hylo-casestudies --two-chasms W1,P,W2`): its "
+	       "start platform, a floor W1 m wide, a middle platform P m long and 6 m high, a floor W2 m "
+	       "wide, its goal platform; start and goal 10 m back from the outer walls. Each route (D drive, "
+	       "F fly) drives on the start and goal platforms and on the segments named: D(floor1) on the "
+	       "first floor, D(mid1) on the middle platform, D(floor2) on the second floor; a flight may "
+	       "cross several walls. Every route is one multi-phase collocation, as in Table I: ground rest "
+	       "to ground rest, takeoff (" + num(tl.takeoff_j) + " J) and landing (" + num(tl.landing_j) +
+	       " J) included, every switch point free on its whole platform or floor, flights cut at each "
+	       "wall into phases that meet 0.5 m above its top, corridors keeping the body (0.32 m) plus " +
+	       num(HYLO_DEFAULT_MARGIN_M) + " m clear; switch points placed the body, the margin and a "
+	       "cell from the walls initially, flights 1 m above the highest wall top they pass. hylo: the "
+	       "planner's alternatives (goal.alternatives = " + std::to_string(kChasmAlternatives) +
+	       "), each named by its route and smoothed from its path; "
+	       "the cheapest smoothed one is hylo's result, rank its graph rank (1: the plan). Costs in J, "
+	       "each with its trajectory's least clearance beyond the body in m; best route in bold.\n\n";
+}
+
+// The table of study 3 for the first `done` scenes, below `intro`, one
+// column per fixed sequence (route); with the crossover's line if
+// crossover_line. Returns its JSON.
+std::string table_one(const std::vector<ChasmScene> &scenes, size_t done, const std::vector<std::string> &seqs,
+		      const std::vector<ChasmItem> &items, const std::vector<std::vector<double>> &rec,
+		      const std::string &intro, const std::string &first_column, bool crossover_line, std::string &md)
+{
+	md += intro + "| " + first_column + " |";
+	for (const std::string &q : seqs)
+		md += " " + q + " |";
+	md += " hylo plan (predicted) | plan smoothed | other alternatives (predicted) smoothed | hylo | rank | vs best |\n|";
+	for (size_t k = 0; k < seqs.size() + 7; k++)
+		md += "---|";
+	md += "\n";
 	std::string js = "[";
 	std::vector<std::string> best_seq(done);
 	for (size_t c = 0; c < done; c++) {
+		const std::vector<Alternative> &alts = scenes[c].alts;
 		const std::vector<std::vector<double>> best_rec = best_fixed(items, rec, c, seqs.size());
 		std::vector<double> best;
 		for (const std::vector<double> &r : best_rec)
 			best.push_back(cost_of(r));
-		std::vector<const std::vector<double> *> smoothed(alts[c].size());   // each alternative smoothed, by rank
+		std::vector<const std::vector<double> *> smoothed(alts.size());   // each alternative smoothed, by rank
 		for (size_t i = 0; i < items.size(); i++)
 			if (items[i].chasm == c && items[i].seq < 0)
 				smoothed[static_cast<size_t>(items[i].rank)] = &rec[i];
 		const std::vector<double> *hylo = smoothed[0];   // the plan smoothed
-		const std::string &plan_seq = alts[c][0].letters;
+		const std::string &plan_seq = alts[0].letters;
 		const size_t qb = cheapest(best);
 		best_seq[c] = seqs[qb];
 		// hylo's result: the cheapest converged alternative (the earlier on a tie).
@@ -1067,7 +1166,7 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 			if (std::isfinite((*smoothed[k])[0]) && !((*smoothed[k])[0] >= (*smoothed[rank])[0]))
 				rank = k;
 		const std::vector<double> *res = smoothed[rank];
-		const std::string &res_seq = alts[c][rank].letters;
+		const std::string &res_seq = alts[rank].letters;
 		const double hs = (*res)[0];
 		auto own = std::find(seqs.begin(), seqs.end(), plan_seq);
 		double seq_best = own == seqs.end() ? NAN : best[static_cast<size_t>(own - seqs.begin())];
@@ -1078,7 +1177,7 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 			std::snprintf(b, sizeof b, "%.2f", v);
 			return std::string(b);
 		};
-		md += "| " + std::to_string(widths[c]) + " |";
+		md += "| " + scenes[c].label + " |";
 		for (size_t q = 0; q < seqs.size(); q++) {
 			char cell[96];
 			std::snprintf(cell, sizeof cell, q == qb ? " **%.1f** (%.2f) |" : " %.1f (%.2f) |", best[q],
@@ -1088,20 +1187,19 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		std::string others;
 		for (size_t k = 1; k < smoothed.size(); k++) {
 			char pred[32];
-			std::snprintf(pred, sizeof pred, " (%.1f) ", alts[c][k].predicted);
-			others += std::string(k > 1 ? ", " : "") + alts[c][k].letters + pred + cost((*smoothed[k])[0]);
+			std::snprintf(pred, sizeof pred, " (%.1f) ", alts[k].predicted);
+			others += std::string(k > 1 ? ", " : "") + alts[k].letters + pred + cost((*smoothed[k])[0]);
 		}
 		char pct[32] = "", tail[512];
 		if (std::isfinite(hs))   // "0.00%" rather than "-0.00%" for a rounding-level difference
 			std::snprintf(pct, sizeof pct, "%+.2f%%", std::fabs(rel) < 5e-5 ? 0.0 : 100 * rel);
 		std::snprintf(tail, sizeof tail, " %s (%.1f) | %s | %s | %s | %zu | %s |\n", plan_seq.c_str(),
-			      alts[c][0].predicted, cost((*hylo)[0]).c_str(), others.empty() ? "none" : others.c_str(),
+			      alts[0].predicted, cost((*hylo)[0]).c_str(), others.empty() ? "none" : others.c_str(),
 			      std::isfinite(hs) ? (res_seq + " " + cost(hs) + " (" + clearance((*res)[3]) + ")").c_str()
 						: "failed",
 			      rank + 1, pct);
 		md += tail;
-		js += std::string(c ? "," : "") + "\n  {\"scene\": \"chasm_" + std::to_string(widths[c]) +
-		      "\", \"width_m\": " + std::to_string(widths[c]) + ", \"fixed\": {";
+		js += std::string(c ? "," : "") + "\n  {" + scenes[c].json + ", \"fixed\": {";
 		for (size_t q = 0; q < seqs.size(); q++) {
 			const std::vector<double> &r = best_rec[q];
 			js += std::string(q ? ", " : "") + "\"" + seqs[q] + "\": ";
@@ -1118,10 +1216,10 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		std::string aj;
 		for (size_t k = 0; k < smoothed.size(); k++)
 			aj += std::string(k ? ", " : "") + "{\"rank\": " + std::to_string(k + 1) + ", \"sequence\": \"" +
-			      alts[c][k].letters + "\", \"predicted_j\": " + num(alts[c][k].predicted) +
+			      alts[k].letters + "\", \"predicted_j\": " + num(alts[k].predicted) +
 			      ", \"smoothed_j\": " + num((*smoothed[k])[0]) + "}";
 		js += "},\n   \"best_fixed\": \"" + seqs[qb] + "\", \"hylo\": {\"sequence\": \"" + plan_seq +
-		      "\", \"predicted_j\": " + num(alts[c][0].predicted) + ", \"plan_s\": " + num(plan_s[c]) +
+		      "\", \"predicted_j\": " + num(alts[0].predicted) + ", \"plan_s\": " + num(scenes[c].plan_s) +
 		      ", \"smoothed_j\": " + num((*hylo)[0]) + ", \"sequence_fixed_j\": " + num(seq_best) +
 		      ", \"sequence_vs_best\": " + num(seq_rel) + ", \"alternatives\": [" + aj +
 		      "], \"result_rank\": " + std::to_string(rank + 1) + ", \"result_sequence\": \"" + res_seq +
@@ -1130,12 +1228,12 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 		      num((*res)[3]) + ", \"result_vs_best\": " + num(rel) + "}}";
 	}
 	// The crossover: the first width whose best sequence drives on the floor.
-	std::string cross = "none between " + std::to_string(widths.front()) + " and " +
-			    std::to_string(widths[done - 1]) + " m";
+	std::string cross = "none between " + scenes.front().label + " and " + scenes[done - 1].label + " m";
 	if (size_t c = first_drive_change(best_seq); c < done)
-		cross = "between " + std::to_string(widths[c - 1]) + " m (" + best_seq[c - 1] + ") and " +
-			std::to_string(widths[c]) + " m (" + best_seq[c] + ")";
-	md += "\nCrossover from flying over the chasm to driving through it: " + cross + ".\n";
+		cross = "between " + scenes[c - 1].label + " m (" + best_seq[c - 1] + ") and " + scenes[c].label + " m (" +
+			best_seq[c] + ")";
+	if (crossover_line)
+		md += "\nCrossover from flying over the chasm to driving through it: " + cross + ".\n";
 	double solver_s = 0;
 	size_t n_solves = 0;
 	for (size_t i = 0; i < items.size(); i++)
@@ -1145,8 +1243,8 @@ std::string table_one(const std::vector<int> &widths, size_t done, const std::ve
 	std::snprintf(took, sizeof took, "\n%zu solves, %.1f h of solver time (each solve's own time, from the log).\n",
 		      n_solves, solver_s / 3600);
 	md += took;
-	if (done < widths.size())
-		md += "\n(Partial: " + std::to_string(done) + " of " + std::to_string(widths.size()) + " chasms so far.)\n";
+	if (done < scenes.size())
+		md += "\n(Partial: " + std::to_string(done) + " of " + std::to_string(scenes.size()) + " chasms so far.)\n";
 	return js + "\n]";
 }
 
@@ -1208,13 +1306,46 @@ int run(int argc, char **argv)
 					throw std::invalid_argument("--widths: '" + w + "' is not a whole number of metres in 30..400");
 				opt.widths.push_back(static_cast<int>(v));
 			}
+		} else if (a == "--two-chasms") {
+			const std::string text = value();
+			std::vector<std::string> parts;
+			std::stringstream in(text);
+			for (std::string w; std::getline(in, w, ',');)
+				parts.push_back(w);
+			if (parts.size() != 3 || text.back() == ',')
+				throw std::invalid_argument("--two-chasms: '" + text +
+							    "' is not W1,P,W2 (chasm, middle platform, chasm in m)");
+			std::vector<int> l;
+			for (const std::string &w : parts) {
+				const bool platform = l.size() == 1;
+				const long lo = platform ? 2 : 5;
+				char *end = nullptr;
+				long v = std::strtol(w.c_str(), &end, 10);
+				if (w.empty() || *end || v < lo || v > 400)
+					throw std::invalid_argument("--two-chasms: '" + w + "' is not a whole number of metres in " +
+								    std::to_string(lo) + "..400 (" +
+								    (platform ? "the middle platform's length" : "a chasm's width") + ")");
+				l.push_back(static_cast<int>(v));
+			}
+			opt.two_chasms.push_back(l);
 		} else {
 			throw std::invalid_argument("unknown argument '" + a + "'");
 		}
 	}
+	if (!opt.two_chasms.empty() && !opt.widths.empty())
+		throw std::invalid_argument("--two-chasms and --widths: one or the other (different tables)");
 	// Fail now, not after an hour of solving.
 	if (access(opt.out.c_str(), W_OK) != 0)
 		throw std::runtime_error(opt.out + ": cannot write there (" + std::strerror(errno) + ")");
+	if (!opt.two_chasms.empty()) {   // it writes the Drivocopter part: not over the committed Table I
+		char *out = realpath(opt.out.c_str(), nullptr), *docs = realpath("docs", nullptr);
+		const bool same = out && docs && std::string(out) == docs;
+		std::free(out);
+		std::free(docs);
+		if (same)
+			throw std::invalid_argument("--two-chasms: give an --out other than docs (it would replace "
+						    "docs/results/drivocopter.md, the committed Table I)");
+	}
 	// Each study writes its part (OUT/results/<study>.{md,json}); results.md
 	// and results.json are put together from every part there, so one study
 	// can be re-run without the others (the DI study takes half an hour).
