@@ -38,9 +38,9 @@ fuzz: deps $(FUZZ_BIN)
 		$(BUILD)/fuzz/corpus tests/fuzz/corpus
 
 FUZZ_CORPUS_GEN := $(BUILD)/fuzz/make_corpus
-$(FUZZ_CORPUS_GEN): tests/fuzz/make_corpus.c $(MSG_NOPUBSUB_SRCS) $(ONBOARD_LIB) $(LCM_STAMP)
+$(FUZZ_CORPUS_GEN): tests/fuzz/make_corpus.c onboard/msg/convert.c $(MSG_NOPUBSUB_SRCS) $(ONBOARD_LIB) $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CC) -std=c99 -ffp-contract=off $(CPPFLAGS) $(CFLAGS) $(LDFLAGS) -O1 -g $(FUZZ_INC) tests/fuzz/make_corpus.c $(MSG_NOPUBSUB_SRCS) $(ONBOARD_LIB) -lm -o $@
+	$(CC) -std=c99 -ffp-contract=off $(CPPFLAGS) $(CFLAGS) $(LDFLAGS) -O1 -g $(FUZZ_INC) tests/fuzz/make_corpus.c onboard/msg/convert.c $(MSG_NOPUBSUB_SRCS) $(ONBOARD_LIB) -lm -o $@
 
 fuzz-corpus: $(FUZZ_CORPUS_GEN)
 	@mkdir -p tests/fuzz/corpus

@@ -77,11 +77,13 @@ int main(void)
 	goal.start_mode = goal.goal_mode = HYLO_MODE_GROUND;
 	goal.start[0] = 2, goal.start[1] = 2;       /* px, py [m], vx [m/s], heading [rad] */
 	goal.goal[0] = 18, goal.goal[1] = 2;
-	goal.seed = 1;
-	goal.spacing = 1.0;
-	goal.connect_radius = 2.5;
-	goal.n_speeds = 2, goal.speeds = speeds;
-	goal.n_headings = 4, goal.headings = headings;
+	goal.sampling.seed = 1;
+	goal.sampling.spacing = 1.0;
+	goal.sampling.connect_radius = 2.5;
+	goal.sampling.n_speeds = 2;                 /* the grids: at most HYLO_MAX_GRID entries */
+	memcpy(goal.sampling.speeds, speeds, sizeof speeds);
+	goal.sampling.n_headings = 4;
+	memcpy(goal.sampling.headings, headings, sizeof headings);
 
 	memset(&cfg, 0, sizeof cfg);
 	cfg.robots = &rover;

@@ -26,6 +26,16 @@ static uint32_t count(int32_t n)
 	return n < 0 ? UINT32_MAX : (uint32_t)n;
 }
 
+/* Copies a grid of n entries from the wire into dst (HYLO_MAX_GRID entries)
+ * and returns its count; a longer grid is not copied, its count stays for
+ * hylo_goal_check to refuse. */
+static uint32_t grid(hylo_real *dst, const double *src, int32_t n)
+{
+	if (n > 0 && n <= HYLO_MAX_GRID)
+		memcpy(dst, src, (size_t)n * sizeof *dst);
+	return count(n);
+}
+
 void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 {
 	memset(g, 0, sizeof *g);
@@ -36,24 +46,52 @@ void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 	g->goal_mode = msg->goal_mode;
 	memcpy(g->start, msg->start, sizeof g->start);
 	memcpy(g->goal, msg->goal, sizeof g->goal);
-	g->seed = (uint64_t)msg->seed;
-	g->spacing = msg->spacing_m;
-	g->air_spacing = msg->air_spacing_m;
-	g->guard_spacing = msg->guard_spacing_m;
-	g->connect_radius = msg->connect_radius_m;
-	g->air_connect_radius = msg->air_connect_radius_m;
-	g->n_speeds = count(msg->n_speeds);
-	g->n_headings = count(msg->n_headings);
-	g->n_air_speeds = count(msg->n_air_speeds);
-	g->speeds = msg->speeds_mps;
-	g->headings = msg->headings_rad;
-	g->air_speeds = msg->air_speeds_mps;
+	g->sampling.seed = (uint64_t)msg->seed;
+	g->sampling.spacing = msg->spacing_m;
+	g->sampling.air_spacing = msg->air_spacing_m;
+	g->sampling.guard_spacing = msg->guard_spacing_m;
+	g->sampling.connect_radius = msg->connect_radius_m;
+	g->sampling.air_connect_radius = msg->air_connect_radius_m;
+	g->sampling.n_speeds = grid(g->sampling.speeds, msg->speeds_mps, msg->n_speeds);
+	g->sampling.n_headings = grid(g->sampling.headings, msg->headings_rad, msg->n_headings);
+	g->sampling.n_air_speeds = grid(g->sampling.air_speeds, msg->air_speeds_mps, msg->n_air_speeds);
 	g->time_budget_ms = msg->time_budget_ms;
 	/* Negative: refused by hylo_msg_check_goal; 0 (no limit) if it gets here. */
 	g->max_expansions = msg->max_expansions < 0 ? 0 : (uint64_t)msg->max_expansions;
 	g->suboptimality = msg->suboptimality;
 	g->alternatives = msg->alternatives == 0 ? HYLO_DEFAULT_ALTERNATIVES : count(msg->alternatives);
 	g->alternatives_within = msg->alternatives_within;
+}
+
+void hylo_msg_goal(const hylo_goal *g, hylo_goal_t *msg)
+{
+	const hylo_sampling *s = &g->sampling;
+
+	memset(msg, 0, sizeof *msg);
+	msg->request_id = g->request_id;
+	msg->map_id = g->map_id;
+	msg->algorithm = (int8_t)g->algorithm;
+	msg->start_mode = (int8_t)g->start_mode;
+	msg->goal_mode = (int8_t)g->goal_mode;
+	memcpy(msg->start, g->start, sizeof msg->start);
+	memcpy(msg->goal, g->goal, sizeof msg->goal);
+	msg->seed = (int64_t)s->seed;
+	msg->spacing_m = s->spacing;
+	msg->air_spacing_m = s->air_spacing;
+	msg->guard_spacing_m = s->guard_spacing;
+	msg->connect_radius_m = s->connect_radius;
+	msg->air_connect_radius_m = s->air_connect_radius;
+	msg->n_speeds = (int32_t)s->n_speeds;
+	msg->speeds_mps = (double *)s->speeds;
+	msg->n_headings = (int32_t)s->n_headings;
+	msg->headings_rad = (double *)s->headings;
+	msg->n_air_speeds = (int32_t)s->n_air_speeds;
+	msg->air_speeds_mps = (double *)s->air_speeds;
+	msg->time_budget_ms = g->time_budget_ms;
+	msg->max_expansions = (int32_t)g->max_expansions;
+	msg->suboptimality = g->suboptimality;
+	msg->alternatives = (int8_t)g->alternatives;
+	msg->alternatives_within = g->alternatives_within;
 }
 
 const char *hylo_msg_plan_status_name(int8_t status)

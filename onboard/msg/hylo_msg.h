@@ -33,8 +33,12 @@ hylo_status hylo_msg_check_map(const void *buf, int len, int64_t *map_id, hylo_r
 /** A view of map message msg (no copy; valid while msg lives). */
 void hylo_msg_map_view(const hylo_map_t *msg, hylo_map_view *view);
 
-/** A goal view of goal message msg (no copy; valid while msg lives). */
+/** The goal of goal message msg (copied: the grids too). */
 void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *goal);
+
+/** The goal message of goal g, the inverse of hylo_msg_goal_view: utime and
+ * requester_id 0, the grids pointing into g (valid while g lives). */
+void hylo_msg_goal(const hylo_goal *g, hylo_goal_t *msg);
 
 /* Storage a plan message points into. */
 typedef struct {

@@ -224,14 +224,6 @@ static void slot_fill(hylo_node_slot *s, const hylo_goal *g, int64_t requester_i
 {
 	s->goal = *g;
 	s->requester_id = requester_id;
-	/* Counts are at most HYLO_MAX_GRID (hylo_goal_check); an empty grid may be NULL. */
-	if (g->n_speeds)
-		memcpy(s->speeds, g->speeds, g->n_speeds * sizeof *s->speeds);
-	if (g->n_headings)
-		memcpy(s->headings, g->headings, g->n_headings * sizeof *s->headings);
-	if (g->n_air_speeds)
-		memcpy(s->air_speeds, g->air_speeds, g->n_air_speeds * sizeof *s->air_speeds);
-	s->goal.speeds = s->goal.headings = s->goal.air_speeds = NULL;
 }
 
 /* The queue policy: one slot per requester, the newest goal wins and keeps
@@ -451,9 +443,6 @@ int hylo_node_step(hylo_node *node)
 	node->q_len--;
 	pthread_mutex_unlock(&node->lock);
 
-	cur->goal.speeds = cur->speeds;
-	cur->goal.headings = cur->headings;
-	cur->goal.air_speeds = cur->air_speeds;
 	hylo_planner_plan(node->planner, &cur->goal, node->plan);
 	utime = utime_now();
 	hylo_msg_plan(node->plan, utime, node->msg_buf, &msg);

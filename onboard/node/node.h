@@ -55,11 +55,10 @@ extern "C" {
 #define HYLO_NODE_LCM_QUEUE 100000
 #endif
 
-/* A waiting goal; its arrays are the slot's own (pointers set when taken). */
+/* A waiting goal (a copy: it holds its grids). */
 typedef struct {
 	hylo_goal goal;
 	int64_t requester_id;
-	hylo_real speeds[HYLO_MAX_GRID], headings[HYLO_MAX_GRID], air_speeds[HYLO_MAX_GRID];
 } hylo_node_slot;
 
 /* A received map, copied out of its message. */

@@ -267,41 +267,6 @@ hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map)
 
 /* ---- request validation ------------------------------------------------ */
 
-static hylo_status copy_grid(hylo_real *dst, const hylo_real *src, uint32_t n,
-			     const char *name, hylo_reason *r)
-{
-	if (n > HYLO_MAX_GRID)
-		return hylo_fail(r, HYLO_E_CAP_GRID, "%s has %u entries, more than HYLO_MAX_GRID = %d",
-				 name, (unsigned)n, HYLO_MAX_GRID);
-	if (n > 0 && !src)
-		return hylo_fail(r, HYLO_E_NULL, "%s is NULL", name);
-	if (n > 0)
-		memcpy(dst, src, n * sizeof *dst);
-	return HYLO_OK;
-}
-
-static hylo_status make_sampling(const hylo_goal *g, hylo_sampling *s, hylo_reason *r)
-{
-	hylo_status st;
-
-	memset(s, 0, sizeof *s);
-	s->seed = g->seed;
-	s->spacing = g->spacing;
-	s->air_spacing = g->air_spacing;
-	s->guard_spacing = g->guard_spacing;
-	s->connect_radius = g->connect_radius;
-	s->air_connect_radius = g->air_connect_radius;
-	s->n_speeds = g->n_speeds;
-	s->n_headings = g->n_headings;
-	s->n_air_speeds = g->n_air_speeds;
-	st = copy_grid(s->speeds, g->speeds, g->n_speeds, "speeds_mps", r);
-	if (st == HYLO_OK)
-		st = copy_grid(s->headings, g->headings, g->n_headings, "headings_rad", r);
-	if (st == HYLO_OK)
-		st = copy_grid(s->air_speeds, g->air_speeds, g->n_air_speeds, "air_speeds_mps", r);
-	return st;
-}
-
 /* Where a state of mode sits in the work space. */
 static hylo_point state_point(const hylo_map *m, hylo_mode mode, const hylo_real *xs)
 {
@@ -448,15 +413,15 @@ hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r)
 	if (st == HYLO_OK)
 		st = check_reals(g->goal, HYLO_XS_DIM, "goal", 0, r);
 	if (st == HYLO_OK)
-		st = check_real(g->spacing, "spacing_m", -1, 1, r);
+		st = check_real(g->sampling.spacing, "spacing_m", -1, 1, r);
 	if (st == HYLO_OK)
-		st = check_real(g->air_spacing, "air_spacing_m", -1, 1, r);
+		st = check_real(g->sampling.air_spacing, "air_spacing_m", -1, 1, r);
 	if (st == HYLO_OK)
-		st = check_real(g->guard_spacing, "guard_spacing_m", -1, 1, r);
+		st = check_real(g->sampling.guard_spacing, "guard_spacing_m", -1, 1, r);
 	if (st == HYLO_OK)
-		st = check_real(g->connect_radius, "connect_radius_m", -1, 1, r);
+		st = check_real(g->sampling.connect_radius, "connect_radius_m", -1, 1, r);
 	if (st == HYLO_OK)
-		st = check_real(g->air_connect_radius, "air_connect_radius_m", -1, 1, r);
+		st = check_real(g->sampling.air_connect_radius, "air_connect_radius_m", -1, 1, r);
 	if (st == HYLO_OK)
 		st = check_real(g->time_budget_ms, "time_budget_ms", -1, 1, r);
 	if (st != HYLO_OK)
@@ -473,19 +438,17 @@ hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "alternatives %lu: at most HYLO_MAX_ALTERNATIVES = %d",
 				 (unsigned long)g->alternatives, HYLO_MAX_ALTERNATIVES);
-	grids[0] = g->speeds;
-	grids[1] = g->headings;
-	grids[2] = g->air_speeds;
-	counts[0] = g->n_speeds;
-	counts[1] = g->n_headings;
-	counts[2] = g->n_air_speeds;
+	grids[0] = g->sampling.speeds;
+	grids[1] = g->sampling.headings;
+	grids[2] = g->sampling.air_speeds;
+	counts[0] = g->sampling.n_speeds;
+	counts[1] = g->sampling.n_headings;
+	counts[2] = g->sampling.n_air_speeds;
 	for (k = 0; k < 3; k++) {
 		if (counts[k] > HYLO_MAX_GRID)
 			return hylo_fail(r, HYLO_E_CAP_GRID,
 					 "%s has %u entries, more than HYLO_MAX_GRID = %d",
 					 grid_names[k], (unsigned)counts[k], HYLO_MAX_GRID);
-		if (counts[k] > 0 && !grids[k])
-			return hylo_fail(r, HYLO_E_NULL, "%s is NULL", grid_names[k]);
 		st = check_reals(grids[k], counts[k], grid_names[k], 0, r);
 		if (st != HYLO_OK)
 			return st;
@@ -527,8 +490,8 @@ static hylo_status check_goal(hylo_planner *pl, const hylo_goal *g, hylo_point *
 	for (k = 0; k < pl->robot->n_modes; k++) {
 		const hylo_mode_model *mm = &pl->robot->modes[k];
 		hylo_real reach = max_distance(mm);
-		hylo_real radius = mm->mode == HYLO_MODE_FLIGHT ? g->air_connect_radius
-								: g->connect_radius;
+		hylo_real radius = mm->mode == HYLO_MODE_FLIGHT ? g->sampling.air_connect_radius
+								: g->sampling.connect_radius;
 
 		if (reach > 0 && radius > reach)
 			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
@@ -925,15 +888,12 @@ static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan,
 static hylo_status run(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan, double t0)
 {
 	hylo_roadmap *rm = &pl->roadmap;
-	hylo_sampling s;
 	hylo_point ps, pg;
 	hylo_status st;
 
 	st = check_goal(pl, g, &ps, &pg);
 	if (st == HYLO_OK)
-		st = make_sampling(g, &s, &pl->reason);
-	if (st == HYLO_OK)
-		st = roadmap_for(pl, &s, plan);
+		st = roadmap_for(pl, &g->sampling, plan);
 	if (st == HYLO_OK)
 		st = connect_terminals(pl, g, ps, pg);
 	if (st != HYLO_OK)

@@ -46,11 +46,11 @@ static void fits(void)
 {
 	hylo_goal g = tu_goal_river();
 
-	g.spacing = 3;
-	g.guard_spacing = 3;
-	g.connect_radius = 5;
-	g.n_speeds = 1;
-	g.n_headings = 2;
+	g.sampling.spacing = 3;
+	g.sampling.guard_spacing = 3;
+	g.sampling.connect_radius = 5;
+	g.sampling.n_speeds = 1;
+	g.sampling.n_headings = 2;
 	set(&river);
 	assert_int_equal(hylo_planner_plan(pl, &g, plan), HYLO_OK);
 	assert_int_equal(plan->outcome, HYLO_FOUND);
@@ -62,7 +62,7 @@ static void test_positions(void **state)
 
 	(void)state;
 	set(&river);
-	g.spacing = 0.5;
+	g.sampling.spacing = 0.5;
 	expect_cap(HYLO_E_CAP_POSITIONS, &g);
 	fits();
 }
@@ -73,9 +73,9 @@ static void test_nodes(void **state)
 
 	(void)state;
 	set(&river);
-	g.spacing = 1.5;     /* 241 positions x 12 combinations */
-	g.guard_spacing = 1.5;
-	g.connect_radius = 3;
+	g.sampling.spacing = 1.5;     /* 241 positions x 12 combinations */
+	g.sampling.guard_spacing = 1.5;
+	g.sampling.connect_radius = 3;
 	expect_cap(HYLO_E_CAP_NODES, &g);
 	fits();
 }
@@ -86,11 +86,11 @@ static void test_adjacency(void **state)
 
 	(void)state;
 	set(&river);
-	g.spacing = 1.5;     /* 215 positions, about 9000 neighbour entries */
-	g.guard_spacing = 4;
-	g.connect_radius = 10;
-	g.n_speeds = 1;
-	g.n_headings = 1;
+	g.sampling.spacing = 1.5;     /* 215 positions, about 9000 neighbour entries */
+	g.sampling.guard_spacing = 4;
+	g.sampling.connect_radius = 10;
+	g.sampling.n_speeds = 1;
+	g.sampling.n_headings = 1;
 	expect_cap(HYLO_E_CAP_ADJACENCY, &g);
 	fits();
 }
@@ -101,11 +101,11 @@ static void test_successors(void **state)
 
 	(void)state;
 	set(&river);
-	g.spacing = 3;       /* about 26 neighbours x 12 combinations */
-	g.guard_spacing = 3;
-	g.connect_radius = 14;
-	g.n_speeds = 3;
-	g.n_headings = 4;
+	g.sampling.spacing = 3;       /* about 26 neighbours x 12 combinations */
+	g.sampling.guard_spacing = 3;
+	g.sampling.connect_radius = 14;
+	g.sampling.n_speeds = 3;
+	g.sampling.n_headings = 4;
 	expect_cap(HYLO_E_CAP_SUCCESSORS, &g);
 	fits();
 }
@@ -116,9 +116,9 @@ static void test_waypoints(void **state)
 
 	(void)state;
 	set(&di);
-	g.spacing = 0.1;     /* a path of about 22 waypoints */
-	g.guard_spacing = 0.1;
-	g.connect_radius = 0.15;
+	g.sampling.spacing = 0.1;     /* a path of about 22 waypoints */
+	g.sampling.guard_spacing = 0.1;
+	g.sampling.connect_radius = 0.15;
 	expect_cap(HYLO_E_CAP_WAYPOINTS, &g);
 	fits();
 }

@@ -10,8 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hylo_goal_t.h"
-#include "hylo_map_t.h"
+#include "hylo_msg.h"
 #include "onboard/testutil_planner.h"
 
 static int n_written;
@@ -40,25 +39,7 @@ static int enc_goal(const hylo_goal *g, uint8_t *out, int cap)
 {
 	hylo_goal_t msg;
 
-	memset(&msg, 0, sizeof msg);
-	msg.request_id = g->request_id;
-	msg.algorithm = (int8_t)g->algorithm;
-	msg.start_mode = (int8_t)g->start_mode;
-	msg.goal_mode = (int8_t)g->goal_mode;
-	memcpy(msg.start, g->start, sizeof msg.start);
-	memcpy(msg.goal, g->goal, sizeof msg.goal);
-	msg.seed = (int64_t)g->seed;
-	msg.spacing_m = g->spacing;
-	msg.air_spacing_m = g->air_spacing;
-	msg.guard_spacing_m = g->guard_spacing;
-	msg.connect_radius_m = g->connect_radius;
-	msg.air_connect_radius_m = g->air_connect_radius;
-	msg.n_speeds = (int32_t)g->n_speeds;
-	msg.speeds_mps = (double *)g->speeds;
-	msg.n_headings = (int32_t)g->n_headings;
-	msg.headings_rad = (double *)g->headings;
-	msg.n_air_speeds = (int32_t)g->n_air_speeds;
-	msg.air_speeds_mps = (double *)g->air_speeds;
+	hylo_msg_goal(g, &msg);
 	return hylo_goal_t_encode(out, 0, cap, &msg);
 }
 
@@ -95,8 +76,8 @@ int main(int argc, char **argv)
 	tu_river(&river);
 	tu_chasm(&chasm);
 	tu_di(&di);
-	gr.spacing = gr.guard_spacing = 3;
-	gr.connect_radius = 6;
+	gr.sampling.spacing = gr.sampling.guard_spacing = 3;
+	gr.sampling.connect_radius = 6;
 	ml = enc_map(&river, map, sizeof map);
 	gl = enc_goal(&gr, goal, sizeof goal);
 	put(argv[1], "river", map, ml, goal, gl);
@@ -127,10 +108,10 @@ int main(int argc, char **argv)
 	g.goal_mode = HYLO_MODE_MARINE;
 	gl = enc_goal(&g, goal, sizeof goal);
 	put(argv[1], "river-dijkstra-to-water", map, ml, goal, gl);
-	gc.spacing = 4;
-	gc.air_spacing = 6;
-	gc.connect_radius = 9;
-	gc.air_connect_radius = 12;
+	gc.sampling.spacing = 4;
+	gc.sampling.air_spacing = 6;
+	gc.sampling.connect_radius = 9;
+	gc.sampling.air_connect_radius = 12;
 	ml = enc_map(&chasm, map, sizeof map);
 	gl = enc_goal(&gc, goal, sizeof goal);
 	put(argv[1], "chasm", map, ml, goal, gl);

@@ -115,10 +115,10 @@ static int consumer_plan(void)
 	goal.start[0] = 0.8;
 	goal.start[1] = 0.2;
 	goal.goal[0] = -0.8;
-	goal.seed = 1;
-	goal.spacing = 0.15;
-	goal.guard_spacing = 0.15;
-	goal.connect_radius = 0.4;
+	goal.sampling.seed = 1;
+	goal.sampling.spacing = 0.15;
+	goal.sampling.guard_spacing = 0.15;
+	goal.sampling.connect_radius = 0.4;
 	if (hylo_planner_plan(pl, &goal, plan) != HYLO_OK) {
 		rc = consumer_fail("hylo_planner_plan", plan->reason.text);
 		goto out;

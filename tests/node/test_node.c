@@ -136,33 +136,8 @@ static void map_msg(const tu_map *m, hylo_map_t *msg)
 
 static void goal_msg(const hylo_goal *g, hylo_goal_t *msg)
 {
-	memset(msg, 0, sizeof *msg);
+	hylo_msg_goal(g, msg);
 	msg->utime = 2;
-	msg->request_id = g->request_id;
-	msg->requester_id = 0;
-	msg->map_id = g->map_id;
-	msg->algorithm = (int8_t)g->algorithm;
-	msg->start_mode = (int8_t)g->start_mode;
-	msg->goal_mode = (int8_t)g->goal_mode;
-	memcpy(msg->start, g->start, sizeof msg->start);
-	memcpy(msg->goal, g->goal, sizeof msg->goal);
-	msg->seed = (int64_t)g->seed;
-	msg->spacing_m = g->spacing;
-	msg->air_spacing_m = g->air_spacing;
-	msg->guard_spacing_m = g->guard_spacing;
-	msg->connect_radius_m = g->connect_radius;
-	msg->air_connect_radius_m = g->air_connect_radius;
-	msg->n_speeds = (int32_t)g->n_speeds;
-	msg->speeds_mps = (double *)g->speeds;
-	msg->n_headings = (int32_t)g->n_headings;
-	msg->headings_rad = (double *)g->headings;
-	msg->n_air_speeds = (int32_t)g->n_air_speeds;
-	msg->air_speeds_mps = (double *)g->air_speeds;
-	msg->time_budget_ms = g->time_budget_ms;
-	msg->max_expansions = (int32_t)g->max_expansions;
-	msg->suboptimality = g->suboptimality;
-	msg->alternatives = (int8_t)g->alternatives;
-	msg->alternatives_within = g->alternatives_within;
 }
 
 static void send_map(const tu_map *m)
@@ -175,17 +150,22 @@ static void send_map(const tu_map *m)
 }
 
 /* Sends goal g and returns the one plan that answers it. */
+static const hylo_plan_t *ask_msg(const hylo_goal_t *msg)
+{
+	clear_received();
+	assert_int_equal(hylo_goal_t_publish(lcm, "HYLO_GOAL", msg), 0);
+	pump();
+	assert_int_equal(n_received, 1);
+	assert_true(received[0]->request_id == msg->request_id);
+	return received[0];
+}
+
 static const hylo_plan_t *ask(const hylo_goal *g)
 {
 	hylo_goal_t msg;
 
-	clear_received();
 	goal_msg(g, &msg);
-	assert_int_equal(hylo_goal_t_publish(lcm, "HYLO_GOAL", &msg), 0);
-	pump();
-	assert_int_equal(n_received, 1);
-	assert_true(received[0]->request_id == g->request_id);
-	return received[0];
+	return ask_msg(&msg);
 }
 
 /* Sends raw bytes on a channel and returns the one plan answering them. */
@@ -419,8 +399,9 @@ static void test_bad_messages(void **state)
 static void test_bad_requests(void **state)
 {
 	hylo_goal g;
+	hylo_goal_t over;
 	tu_map m;
-	hylo_real many[HYLO_MAX_GRID + 1] = { 0 };
+	double many[HYLO_MAX_GRID + 1] = { 0 };
 	int k;
 
 	(void)state;
@@ -435,9 +416,10 @@ static void test_bad_requests(void **state)
 	}
 	send_map(&river);
 	g = tu_goal_river();
-	g.n_speeds = HYLO_MAX_GRID + 1;   /* over capacity */
-	g.speeds = many;
-	expect(ask(&g), HYLO_PLAN_T_STATUS_OVER_CAPACITY, "HYLO_MAX_GRID");
+	goal_msg(&g, &over);
+	over.n_speeds = HYLO_MAX_GRID + 1;   /* over capacity */
+	over.speeds_mps = many;
+	expect(ask_msg(&over), HYLO_PLAN_T_STATUS_OVER_CAPACITY, "HYLO_MAX_GRID");
 	g = tu_goal_river();
 	g.start[0] = NAN;
 	expect(ask(&g), HYLO_PLAN_T_STATUS_BAD_REQUEST, "start");
@@ -612,22 +594,22 @@ static void test_validation(void **state)
 	expect_field(&g, "start[5]");
 	g.goal[5] = -INFINITY;
 	expect_field(&g, "goal[5]");
-	g.air_spacing = NAN;            /* ambot does not fly */
+	g.sampling.air_spacing = NAN;            /* ambot does not fly */
 	expect_field(&g, "air_spacing_m");
-	g.air_spacing = -INFINITY;
+	g.sampling.air_spacing = -INFINITY;
 	expect_field(&g, "air_spacing_m");
-	g.air_connect_radius = NAN;
+	g.sampling.air_connect_radius = NAN;
 	expect_field(&g, "air_connect_radius_m");
-	g.air_connect_radius = -INFINITY;
+	g.sampling.air_connect_radius = -INFINITY;
 	expect_field(&g, "air_connect_radius_m");
-	g.guard_spacing = -1;
+	g.sampling.guard_spacing = -1;
 	expect_field(&g, "guard_spacing_m");
 	g.time_budget_ms = -1;
 	expect_field(&g, "time_budget_ms");
 	/* max_expansions = -1 and -2^31 on the wire. */
 	at = 8 + 8 + 8 + 8 + 8 + 1 + 1 + 48 + 1 + 48 + 8 + 40;
 	len = encode_goal(&g, &bytes);
-	at += 4 + 8 * (int)g.n_speeds + 4 + 8 * (int)g.n_headings + 4 + 8 * (int)g.n_air_speeds + 8;
+	at += 4 + 8 * (int)g.sampling.n_speeds + 4 + 8 * (int)g.sampling.n_headings + 4 + 8 * (int)g.sampling.n_air_speeds + 8;
 	bytes[at] = bytes[at + 1] = bytes[at + 2] = bytes[at + 3] = 0xff;
 	p = ask_raw(bytes, len);
 	expect(p, HYLO_PLAN_T_STATUS_BAD_REQUEST, "max_expansions is -1");

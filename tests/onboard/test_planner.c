@@ -219,7 +219,7 @@ static void test_optimal_river(void **state)
 	(void)state;
 	tu_river(&m);
 	for (seed = 1; seed <= 3; seed++) {
-		g.seed = seed;
+		g.sampling.seed = seed;
 		check_optimal(&m, g);
 	}
 	tu_map_free(&m);
@@ -323,7 +323,7 @@ static void test_river_plan_shape(void **state)
 				  tu_edge_cost(&costs, (hylo_mode)plan->mode[k], a, b),
 				  hypot(b[0] - a[0], b[1] - a[1]));
 		assert_true(fabs(sum - plan->cost[k + 1]) <= 1e-9 * sum);
-		assert_true(hypot(b[0] - a[0], b[1] - a[1]) <= g.connect_radius);
+		assert_true(hypot(b[0] - a[0], b[1] - a[1]) <= g.sampling.connect_radius);
 	}
 	assert_int_equal(guards, 4);
 	assert_true(plan->total_cost == plan->cost[plan->n_waypoints - 1]);
@@ -536,7 +536,7 @@ static void test_roadmap_reuse(void **state)
 	assert_same_plan_but_counts(plan, plan2);
 	/* Other options or a new map rebuild, and empty the cache: the same
 	 * counts as a fresh planner's. */
-	g1.seed = 99;
+	g1.sampling.seed = 99;
 	plan_ok(planner, &g1, plan);
 	assert_int_equal(plan->roadmap_reused, 0);
 	init_planner(planner2);
@@ -544,7 +544,7 @@ static void test_roadmap_reuse(void **state)
 	plan_ok(planner2, &g1, plan2);
 	assert_true(plan->n_edges_evaluated == plan2->n_edges_evaluated);
 	set_scene(planner, &m);
-	g1.seed = 1;
+	g1.sampling.seed = 1;
 	plan_ok(planner, &g1, plan);
 	assert_int_equal(plan->roadmap_reused, 0);
 	tu_map_free(&m);
@@ -564,7 +564,7 @@ static void test_determinism(void **state)
 	plan_ok(planner2, &g, plan2);
 	assert_same_plan(plan, plan2);
 	/* Another seed gives another roadmap. */
-	g.seed = 2;
+	g.sampling.seed = 2;
 	plan_ok(planner2, &g, plan2);
 	assert_true(plan->n_nodes != plan2->n_nodes || plan->total_cost != plan2->total_cost);
 	tu_map_free(&m);
@@ -708,13 +708,13 @@ static void test_speed_range(void **state)
 	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
 	assert_non_null(strstr(plan->reason.text, "goal speed -0.25"));
 	g = tu_goal_river();
-	g.speeds = backing;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, backing, 3);
 	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
 	assert_non_null(strstr(plan->reason.text, "speeds_mps[0] = -0.5 m/s"));
 	/* No range declared (both bounds 0): any speed. */
 	ground.speed_max_mps = 0;
 	g = tu_goal_river();
-	g.speeds = backing;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, backing, 3);
 	g.start[2] = 1.5;
 	plan_ok(planner, &g, plan);
 
@@ -722,8 +722,7 @@ static void test_speed_range(void **state)
 	set_scene(planner, &chasm);
 	g = tu_goal_chasm();   /* air speeds 0 and 4: inside [0, 4] */
 	plan_ok(planner, &g, plan);
-	g.air_speeds = fast_air;
-	g.n_air_speeds = 3;
+	tu_grid(g.sampling.air_speeds, &g.sampling.n_air_speeds, fast_air, 3);
 	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
 	assert_non_null(strstr(plan->reason.text, "air_speeds_mps[2] = 4.5 m/s is outside the flight model's"));
 
@@ -806,7 +805,7 @@ static void test_bad_input(void **state)
 	tu_map river, empty;
 	hylo_goal good = tu_goal_river(), g;
 	hylo_map_view v;
-	hylo_real many[HYLO_MAX_GRID + 1];
+	hylo_real many[HYLO_MAX_GRID];
 	double want;
 	uint32_t k;
 
@@ -849,10 +848,10 @@ static void test_bad_input(void **state)
 	g.goal_mode = 42;
 	expect(HYLO_E_WRONG_MODE, hylo_planner_plan(planner, &g, plan), plan);
 	g = good;
-	g.spacing = -1;
+	g.sampling.spacing = -1;
 	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
 	g = good;
-	g.connect_radius = NAN;
+	g.sampling.connect_radius = NAN;
 	expect(HYLO_E_BAD_VALUE, hylo_planner_plan(planner, &g, plan), plan);
 	g = good;
 	g.algorithm = 7;
@@ -863,27 +862,22 @@ static void test_bad_input(void **state)
 	g = good;
 	g.map_id = 12345;       /* a map that is not the current one */
 	expect(HYLO_E_MAP_MISMATCH, hylo_planner_plan(planner, &g, plan), plan);
-	g = good;
-	g.n_speeds = 2;
-	g.speeds = NULL;
-	expect(HYLO_E_NULL, hylo_planner_plan(planner, &g, plan), plan);
 
 	/* Grids: exactly HYLO_MAX_GRID entries work, one more does not. */
-	for (k = 0; k <= HYLO_MAX_GRID; k++)
+	for (k = 0; k < HYLO_MAX_GRID; k++)
 		many[k] = 0.05 * k;
 	g = good;
-	g.speeds = many;
-	g.n_speeds = HYLO_MAX_GRID + 1;
-	g.n_headings = 1;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, many, HYLO_MAX_GRID);
+	g.sampling.n_speeds = HYLO_MAX_GRID + 1;
+	g.sampling.n_headings = 1;
 	expect(HYLO_E_CAP_GRID, hylo_planner_plan(planner, &g, plan), plan);
-	g.n_speeds = HYLO_MAX_GRID;
+	g.sampling.n_speeds = HYLO_MAX_GRID;
 	plan_ok(planner, &g, plan);
 	/* Combinations: speeds x headings past HYLO_MAX_COMBOS. */
 	g = good;
-	g.speeds = many;
-	g.n_speeds = HYLO_MAX_GRID;
-	g.headings = many;
-	g.n_headings = HYLO_MAX_COMBOS / HYLO_MAX_GRID + 1;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, many, HYLO_MAX_GRID);
+	tu_grid(g.sampling.headings, &g.sampling.n_headings, many,
+		HYLO_MAX_COMBOS / HYLO_MAX_GRID + 1);
 	expect(HYLO_E_CAP_COMBOS, hylo_planner_plan(planner, &g, plan), plan);
 
 	/* The expansion budget runs out: a valid request; the greedy walk's

@@ -135,9 +135,9 @@ static hylo_goal corridor_goal(void)
 	g.start[1] = 5;
 	g.goal[0] = 17;
 	g.goal[1] = 5;
-	g.spacing = 0.5;
-	g.guard_spacing = 0.5;
-	g.connect_radius = 2.5;
+	g.sampling.spacing = 0.5;
+	g.sampling.guard_spacing = 0.5;
+	g.sampling.connect_radius = 2.5;
 	return g;
 }
 

@@ -175,8 +175,8 @@ static hylo_goal random_pair(const hylo_goal *base, const tu_map *m)
 			g.start[1] = m->oy + h * (0.1 + 0.8 * unit());
 			g.goal[0] = m->ox + w * (0.75 + 0.2 * unit());
 			g.goal[1] = m->oy + h * (0.1 + 0.8 * unit());
-			g.start[3] = base->headings[(size_t)(unit() * base->n_headings)];
-			g.goal[3] = base->headings[(size_t)(unit() * base->n_headings)];
+			g.start[3] = base->sampling.headings[(size_t)(unit() * base->sampling.n_headings)];
+			g.goal[3] = base->sampling.headings[(size_t)(unit() * base->sampling.n_headings)];
 		}
 		hylo_planner_plan(planner, &g, plan);
 		if (plan->status == HYLO_OK && plan->outcome == HYLO_FOUND)

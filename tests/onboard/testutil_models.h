@@ -76,76 +76,32 @@ static inline void tm_small_chasm(tu_map *m)
 		}
 }
 
-static const hylo_real tm_speeds[] = { 0.0, 0.5, 1.0 };
 static const hylo_real tm_fast[] = { 0.0, 1.0 };
-static const hylo_real tm_headings4[] = { 0, 1.5707963267948966, 3.141592653589793, -1.5707963267948966 };
-static const hylo_real tm_headings2[] = { 0, 3.141592653589793 };
-static const hylo_real tm_air[] = { 0.0, 4.0 };
 
 static inline hylo_goal tm_river_goal(void)
 {
-	hylo_goal g;
+	hylo_goal g = tu_goal(HYLO_MODE_GROUND, 1, 4, HYLO_MODE_GROUND, 13, 5, 3, 2.0, 3.5);
 
-	memset(&g, 0, sizeof g);
-	g.algorithm = HYLO_ASTAR;
-	g.start_mode = g.goal_mode = HYLO_MODE_GROUND;
-	g.start[0] = 1;
-	g.start[1] = 4;
-	g.goal[0] = 13;
-	g.goal[1] = 5;
-	g.seed = 3;
-	g.spacing = 2.0;
-	g.guard_spacing = 2.0;
-	g.connect_radius = 3.5;
-	g.speeds = tm_speeds;
-	g.n_speeds = 3;
-	g.headings = tm_headings4;
-	g.n_headings = 4;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tu_speeds, 3);
+	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings, 4);
 	return g;
 }
 
 static inline hylo_goal tm_chasm_goal(void)
 {
-	hylo_goal g;
+	hylo_goal g = tu_goal(HYLO_MODE_GROUND, 2, 2, HYLO_MODE_GROUND, 16, 2, 5, 2.0, 3.0);
 
-	memset(&g, 0, sizeof g);
-	g.algorithm = HYLO_ASTAR;
-	g.start_mode = g.goal_mode = HYLO_MODE_GROUND;
-	g.start[0] = 2;
-	g.start[1] = 2;
-	g.goal[0] = 16;
-	g.goal[1] = 2;
-	g.seed = 5;
-	g.spacing = 2.0;
-	g.air_spacing = 3.0;
-	g.guard_spacing = 2.0;
-	g.connect_radius = 3.0;
-	g.air_connect_radius = 6.0;
-	g.speeds = tm_fast;
-	g.n_speeds = 2;
-	g.headings = tm_headings2;
-	g.n_headings = 2;
-	g.air_speeds = tm_air;
-	g.n_air_speeds = 2;
+	g.sampling.air_spacing = 3.0;
+	g.sampling.air_connect_radius = 6.0;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tm_fast, 2);
+	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings_x, 2);
+	tu_grid(g.sampling.air_speeds, &g.sampling.n_air_speeds, tu_air_speeds, 2);
 	return g;
 }
 
 static inline hylo_goal tm_di_goal(void)
 {
-	hylo_goal g;
-
-	memset(&g, 0, sizeof g);
-	g.algorithm = HYLO_ASTAR;
-	g.start_mode = HYLO_MODE_DI_POS;
-	g.goal_mode = HYLO_MODE_DI_NEG;
-	g.start[0] = 0.8;
-	g.start[1] = 0.2;
-	g.goal[0] = -0.8;
-	g.seed = 1;
-	g.spacing = 0.15;
-	g.guard_spacing = 0.15;
-	g.connect_radius = 0.4;
-	return g;
+	return tu_goal(HYLO_MODE_DI_POS, 0.8, 0.2, HYLO_MODE_DI_NEG, -0.8, 0, 1, 0.15, 0.4);
 }
 
 #endif

@@ -212,75 +212,68 @@ static const hylo_real tu_headings[] = { 0.0, TU_PI / 2, TU_PI, -TU_PI / 2 };
 static const hylo_real tu_air_speeds[] = { 0.0, 4.0 };
 static const hylo_real tu_headings_x[] = { 0.0, TU_PI };
 
-static inline hylo_goal tu_goal_river(void)
+/* A goal from (sx, sy) in start_mode to (gx, gy) in goal_mode (the other
+ * coordinates 0, A*), sampled with seed, spacing and connect_radius (the
+ * guard spacing as the spacing); no grids, nothing in the air. */
+static inline hylo_goal tu_goal(int start_mode, hylo_real sx, hylo_real sy, int goal_mode,
+				hylo_real gx, hylo_real gy, uint64_t seed, hylo_real spacing,
+				hylo_real connect_radius)
 {
 	hylo_goal g;
 
 	memset(&g, 0, sizeof g);
-	g.request_id = 7;
 	g.algorithm = HYLO_ASTAR;
-	g.start_mode = HYLO_MODE_GROUND;
-	g.start[0] = 2;
-	g.start[1] = 16;
-	g.goal_mode = HYLO_MODE_GROUND;
-	g.goal[0] = 28;
-	g.goal[1] = 4;
-	g.seed = 1;
-	g.spacing = 2.0;
-	g.guard_spacing = 2.0;
-	g.connect_radius = 4.5;
-	g.n_speeds = 3;
-	g.speeds = tu_speeds;
-	g.n_headings = 4;
-	g.headings = tu_headings;
+	g.start_mode = start_mode;
+	g.start[0] = sx;
+	g.start[1] = sy;
+	g.goal_mode = goal_mode;
+	g.goal[0] = gx;
+	g.goal[1] = gy;
+	g.sampling.seed = seed;
+	g.sampling.spacing = spacing;
+	g.sampling.guard_spacing = spacing;
+	g.sampling.connect_radius = connect_radius;
+	return g;
+}
+
+/* Sets a sampling grid (speeds, headings or air_speeds) and its count to
+ * the n values of v (n <= HYLO_MAX_GRID). */
+static inline void tu_grid(hylo_real grid[HYLO_MAX_GRID], uint32_t *count, const hylo_real *v,
+			   uint32_t n)
+{
+	memcpy(grid, v, n * sizeof *grid);
+	*count = n;
+}
+
+static inline hylo_goal tu_goal_river(void)
+{
+	hylo_goal g = tu_goal(HYLO_MODE_GROUND, 2, 16, HYLO_MODE_GROUND, 28, 4, 1, 2.0, 4.5);
+
+	g.request_id = 7;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tu_speeds, 3);
+	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings, 4);
 	return g;
 }
 
 static inline hylo_goal tu_goal_chasm(void)
 {
-	hylo_goal g;
+	hylo_goal g = tu_goal(HYLO_MODE_GROUND, 5, 3, HYLO_MODE_GROUND, 55, 3, 2, 3.0, 7.0);
 
-	memset(&g, 0, sizeof g);
 	g.request_id = 8;
-	g.algorithm = HYLO_ASTAR;
-	g.start_mode = HYLO_MODE_GROUND;
-	g.start[0] = 5;
-	g.start[1] = 3;
-	g.goal_mode = HYLO_MODE_GROUND;
-	g.goal[0] = 55;
-	g.goal[1] = 3;
-	g.seed = 2;
-	g.spacing = 3.0;
-	g.air_spacing = 4.0;
-	g.guard_spacing = 4.0;
-	g.connect_radius = 7.0;
-	g.air_connect_radius = 9.0;
-	g.n_speeds = 2;
-	g.speeds = tu_speeds;
-	g.n_headings = 2;
-	g.headings = tu_headings_x;
-	g.n_air_speeds = 2;
-	g.air_speeds = tu_air_speeds;
+	g.sampling.air_spacing = 4.0;
+	g.sampling.guard_spacing = 4.0;
+	g.sampling.air_connect_radius = 9.0;
+	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tu_speeds, 2);
+	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings_x, 2);
+	tu_grid(g.sampling.air_speeds, &g.sampling.n_air_speeds, tu_air_speeds, 2);
 	return g;
 }
 
 static inline hylo_goal tu_goal_di(void)
 {
-	hylo_goal g;
+	hylo_goal g = tu_goal(HYLO_MODE_DI_POS, 0.8, 0.2, HYLO_MODE_DI_NEG, -0.8, 0.0, 3, 0.15, 0.35);
 
-	memset(&g, 0, sizeof g);
 	g.request_id = 9;
-	g.algorithm = HYLO_ASTAR;
-	g.start_mode = HYLO_MODE_DI_POS;
-	g.start[0] = 0.8;
-	g.start[1] = 0.2;
-	g.goal_mode = HYLO_MODE_DI_NEG;
-	g.goal[0] = -0.8;
-	g.goal[1] = 0.0;
-	g.seed = 3;
-	g.spacing = 0.15;
-	g.guard_spacing = 0.15;
-	g.connect_radius = 0.35;
 	return g;
 }
 

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -96,14 +97,14 @@ hylo_goal make_goal(double spacing)
 	g.goal_mode = HYLO_MODE_GROUND;
 	g.goal[0] = 97;
 	g.goal[1] = 30;
-	g.seed = 1;
-	g.spacing = spacing;
-	g.guard_spacing = spacing;
-	g.connect_radius = std::min(2.2 * spacing, hylo_model_synthetic_ground.max_distance_m);
-	g.n_speeds = 2;
-	g.speeds = kSpeeds;
-	g.n_headings = 4;
-	g.headings = kHeadings;
+	g.sampling.seed = 1;
+	g.sampling.spacing = spacing;
+	g.sampling.guard_spacing = spacing;
+	g.sampling.connect_radius = std::min(2.2 * spacing, hylo_model_synthetic_ground.max_distance_m);
+	g.sampling.n_speeds = std::size(kSpeeds);
+	std::copy(std::begin(kSpeeds), std::end(kSpeeds), g.sampling.speeds);
+	g.sampling.n_headings = std::size(kHeadings);
+	std::copy(std::begin(kHeadings), std::end(kHeadings), g.sampling.headings);
 	return g;
 }
 

@@ -212,8 +212,8 @@ hylo_goal nearby_goal(Bench &b, const hylo_goal &g)
 	static const double offsets[][2] = {{0, 1}, {0, -1}, {1, 0}, {-1, 0}, {1, 1}, {-1, -1}, {1, -1}, {-1, 1}};
 	for (const auto &o : offsets) {
 		hylo_goal n = g;
-		n.goal[0] += o[0] * g.spacing;
-		n.goal[1] += o[1] * g.spacing;
+		n.goal[0] += o[0] * g.sampling.spacing;
+		n.goal[1] += o[1] * g.sampling.spacing;
 		b.plan_goal(n, false);
 		if (b.plan->status == HYLO_OK && b.plan->outcome == HYLO_FOUND)
 			return n;

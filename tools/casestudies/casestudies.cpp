@@ -418,8 +418,8 @@ std::string di_study(const Options &opt, std::string &md)
 			g.start[j] = k.a[j];
 			g.goal[j] = k.b[j];
 		}
-		g.spacing = g.guard_spacing = spacings[i];
-		g.connect_radius = std::max(0.3, 0.6 * std::sqrt(spacings[i] / 0.2));
+		g.sampling.spacing = g.sampling.guard_spacing = spacings[i];
+		g.sampling.connect_radius = std::max(0.3, 0.6 * std::sqrt(spacings[i] / 0.2));
 		costs.solves = costs.failures = costs.skipped = 0;
 		auto t0 = std::chrono::steady_clock::now();
 		planner.plan_on(robot, sc, g);
@@ -433,7 +433,7 @@ std::string di_study(const Options &opt, std::string &md)
 			      static_cast<unsigned long long>(costs.solves), s);
 		md += row;
 		js += std::string(i ? "," : "") + "\n    {\"spacing\": " + num(spacings[i]) + ", \"connect_radius\": " +
-		      num(g.connect_radius) + ", \"graph_cost\": " + num(p.total_cost) + ", \"nodes\": " +
+		      num(g.sampling.connect_radius) + ", \"graph_cost\": " + num(p.total_cost) + ", \"nodes\": " +
 		      std::to_string(p.n_nodes) + ", \"edges_solved\": " + std::to_string(costs.solves) +
 		      ", \"edges_failed\": " + std::to_string(costs.failures) + ", \"edges_skipped\": " +
 		      std::to_string(costs.skipped) + ", \"seconds\": " + num(s) + "}";

@@ -30,6 +30,15 @@ inline hylo_map_view map_view(const Scene &sc)
 	return v;
 }
 
+// Copies a scene's grid into a goal's and returns its count; a grid longer
+// than HYLO_MAX_GRID is not copied, its count stays for the planner to refuse.
+inline uint32_t sampling_grid(hylo_real (&dst)[HYLO_MAX_GRID], const std::vector<double> &v)
+{
+	if (v.size() <= HYLO_MAX_GRID)
+		std::copy(v.begin(), v.end(), dst);
+	return static_cast<uint32_t>(v.size());
+}
+
 inline hylo_goal goal_of(const Scene &sc)
 {
 	const Goal &g = sc.goal;
@@ -42,18 +51,15 @@ inline hylo_goal goal_of(const Scene &sc)
 		q.start[k] = g.start.x[static_cast<size_t>(k)];
 		q.goal[k] = g.goal.x[static_cast<size_t>(k)];
 	}
-	q.seed = static_cast<uint64_t>(g.seed);
-	q.spacing = g.spacing_m;
-	q.air_spacing = g.air_spacing_m;
-	q.guard_spacing = g.guard_spacing_m;
-	q.connect_radius = g.connect_radius_m;
-	q.air_connect_radius = g.air_connect_radius_m;
-	q.n_speeds = static_cast<uint32_t>(g.speeds_mps.size());
-	q.speeds = g.speeds_mps.data();
-	q.n_headings = static_cast<uint32_t>(g.headings_rad.size());
-	q.headings = g.headings_rad.data();
-	q.n_air_speeds = static_cast<uint32_t>(g.air_speeds_mps.size());
-	q.air_speeds = g.air_speeds_mps.data();
+	q.sampling.seed = static_cast<uint64_t>(g.seed);
+	q.sampling.spacing = g.spacing_m;
+	q.sampling.air_spacing = g.air_spacing_m;
+	q.sampling.guard_spacing = g.guard_spacing_m;
+	q.sampling.connect_radius = g.connect_radius_m;
+	q.sampling.air_connect_radius = g.air_connect_radius_m;
+	q.sampling.n_speeds = sampling_grid(q.sampling.speeds, g.speeds_mps);
+	q.sampling.n_headings = sampling_grid(q.sampling.headings, g.headings_rad);
+	q.sampling.n_air_speeds = sampling_grid(q.sampling.air_speeds, g.air_speeds_mps);
 	q.time_budget_ms = g.time_budget_ms;
 	q.max_expansions = static_cast<uint64_t>(g.max_expansions);
 	q.suboptimality = g.suboptimality;

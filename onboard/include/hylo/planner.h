@@ -24,6 +24,7 @@
 #include "hylo/config.h"
 #include "hylo/map.h"
 #include "hylo/robot.h"
+#include "hylo/sampling.h"
 #include "hylo/status.h"
 #include "hylo/svr.h"
 #include "hylo/types.h"
@@ -51,13 +52,7 @@ typedef struct {
 	hylo_real start[HYLO_XS_DIM];   /* sampled coordinates */
 	int goal_mode;
 	hylo_real goal[HYLO_XS_DIM];
-	uint64_t seed;
-	hylo_real spacing, air_spacing, guard_spacing;
-	hylo_real connect_radius, air_connect_radius;
-	uint32_t n_speeds, n_headings, n_air_speeds;
-	const hylo_real *speeds;        /* n_speeds [m/s] */
-	const hylo_real *headings;      /* n_headings [rad] */
-	const hylo_real *air_speeds;    /* n_air_speeds [m/s] */
+	hylo_sampling sampling;         /* shapes the roadmap (hylo/sampling.h) */
 	hylo_real time_budget_ms;       /* 0: no limit (needs a clock otherwise) */
 	uint64_t max_expansions;        /* 0: no limit */
 	hylo_real suboptimality;        /* w >= 1: a plan costing at most w times the

@@ -22,26 +22,13 @@
 #include "hylo/map.h"
 #include "hylo/internal/poisson.h"
 #include "hylo/robot.h"
+#include "hylo/sampling.h"
 #include "hylo/status.h"
 #include "hylo/types.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* Sampling options: everything besides the map that shapes the roadmap. */
-typedef struct {
-	uint64_t seed;
-	hylo_real spacing;              /* Poisson radius: ground, water, phase plane */
-	hylo_real air_spacing;          /* Poisson radius: air */
-	hylo_real guard_spacing;        /* guard sample spacing */
-	hylo_real connect_radius;       /* ground, water, phase plane */
-	hylo_real air_connect_radius;   /* air */
-	uint32_t n_speeds, n_headings, n_air_speeds;
-	hylo_real speeds[HYLO_MAX_GRID];
-	hylo_real headings[HYLO_MAX_GRID];
-	hylo_real air_speeds[HYLO_MAX_GRID];
-} hylo_sampling;
 
 typedef enum {
 	HYLO_POS_SAMPLE = 0,   /* Poisson sample of a domain */
