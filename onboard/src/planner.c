@@ -111,6 +111,25 @@ hylo_real hylo_planner_clearance(const hylo_planner *pl)
 	return pl && pl->has_map ? pl->map.inflation : 0;
 }
 
+/* The start's and the goal's links and the heuristic belong to one roadmap
+ * (and goal): a new roadmap forgets them. */
+static void forget_terminals(hylo_planner *pl)
+{
+	memset(pl->links_goal, 0, sizeof pl->links_goal);
+	memset(pl->links_start, 0, sizeof pl->links_start);
+	pl->n_goal_adj = 0;
+	pl->n_start_adj = 0;
+	pl->h_valid = 0;
+}
+
+/* No roadmap, nor anything planned on one (a new map, or none yet). */
+static void forget_roadmap(hylo_planner *pl)
+{
+	pl->roadmap.built = 0;
+	pl->n_found = 0;
+	forget_terminals(pl);
+}
+
 hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_config *cfg)
 {
 	uint32_t k;
@@ -126,18 +145,12 @@ hylo_status hylo_planner_init(hylo_planner *pl, size_t size, const hylo_planner_
 	pl->has_map = 0;
 	pl->map_status = HYLO_E_NO_MAP;
 	pl->robot = NULL;
-	pl->roadmap.built = 0;
+	forget_roadmap(pl);
 	pl->cache.enabled = 0;
-	pl->h_valid = 0;
-	pl->n_found = 0;
 	pl->layers = 1;
 	pl->layer_stride = 0;
 	pl->layered_forward = NULL;
 	pl->h_layered = 0;
-	pl->n_goal_adj = 0;
-	pl->n_start_adj = 0;
-	memset(pl->links_goal, 0, sizeof pl->links_goal);
-	memset(pl->links_start, 0, sizeof pl->links_start);
 	if (hylo_planner_margin(cfg) < 0)
 		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
 				 "margin_m = %g: finite and > 0, 0 (the default, %g m) or HYLO_NO_MARGIN",
@@ -216,9 +229,7 @@ static hylo_status ingest_map(hylo_planner *pl, const hylo_map_view *map)
 	hylo_real margin;
 
 	pl->has_map = 0;
-	pl->roadmap.built = 0;
-	pl->h_valid = 0;
-	pl->n_found = 0;
+	forget_roadmap(pl);
 	pl->map_generation++;
 	st = hylo_map_ingest(&pl->map, map, &pl->reason);
 	if (st != HYLO_OK)
@@ -705,11 +716,7 @@ static hylo_status roadmap_for(hylo_planner *pl, const hylo_sampling *s, hylo_pl
 	if (st != HYLO_OK)
 		return st;
 	/* The old goal's links refer to positions that no longer exist. */
-	memset(pl->links_goal, 0, sizeof pl->links_goal);
-	memset(pl->links_start, 0, sizeof pl->links_start);
-	pl->n_goal_adj = 0;
-	pl->n_start_adj = 0;
-	pl->h_valid = 0;
+	forget_terminals(pl);
 	hylo_edge_cache_reset(&pl->cache, rm);
 	hylo_planner_bound_tables(pl);
 	return HYLO_OK;
