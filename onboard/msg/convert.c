@@ -131,17 +131,25 @@ int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome)
 	}
 }
 
+void hylo_msg_plan_empty(int64_t request_id, int64_t map_id, int8_t status, const char *reason,
+			 int64_t utime, hylo_plan_t *msg)
+{
+	memset(msg, 0, sizeof *msg);
+	msg->utime = utime;
+	msg->request_id = request_id;
+	msg->map_id = map_id;
+	msg->status = status;
+	msg->reason = (char *)reason;
+	msg->robot = "";
+}
+
 void hylo_msg_plan(const hylo_plan *plan, int64_t utime, hylo_plan_msg_buf *buf,
 		   hylo_plan_t *msg)
 {
 	uint32_t k, n = plan->n_waypoints;
 
-	memset(msg, 0, sizeof *msg);
-	msg->utime = utime;
-	msg->request_id = plan->request_id;
-	msg->map_id = plan->map_id;
-	msg->status = hylo_msg_plan_status(plan->status, plan->outcome);
-	msg->reason = (char *)plan->reason.text;
+	hylo_msg_plan_empty(plan->request_id, plan->map_id, hylo_msg_plan_status(plan->status, plan->outcome),
+			    plan->reason.text, utime, msg);
 	msg->robot = (char *)plan->robot;
 	msg->total_cost_j = plan->total_cost;
 	msg->suboptimality = plan->suboptimality;

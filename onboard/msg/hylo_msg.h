@@ -56,6 +56,14 @@ int8_t hylo_msg_plan_status(hylo_status status, hylo_outcome outcome);
 const char *hylo_msg_plan_status_name(int8_t status);
 
 /**
+ * A plan message without a plan (no waypoints, no statistics, robot ""):
+ * the answer to a goal that was not planned (refused, superseded). reason
+ * must outlive msg.
+ */
+void hylo_msg_plan_empty(int64_t request_id, int64_t map_id, int8_t status, const char *reason,
+			 int64_t utime, hylo_plan_t *msg);
+
+/**
  * Fills msg from plan (utime as given). msg's arrays point into plan and
  * buf, which must outlive msg. The plan's reason becomes msg->reason.
  */

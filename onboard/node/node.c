@@ -104,14 +104,8 @@ static void answer_now(hylo_node *node, int64_t request_id, int8_t status, int64
 	va_start(ap, fmt);
 	vsnprintf(reason, sizeof reason, fmt, ap);
 	va_end(ap);
-	memset(&msg, 0, sizeof msg);
-	msg.utime = utime_now();
-	msg.request_id = request_id;
-	msg.map_id = map_id;
-	msg.status = status;
-	msg.reason = reason;
+	hylo_msg_plan_empty(request_id, map_id, status, reason, utime_now(), &msg);
 	msg.superseded_by = superseded_by;
-	msg.robot = "";
 	publish(node, &msg);
 	node->n_answered++;
 	if (status == HYLO_PLAN_T_STATUS_SUPERSEDED)
