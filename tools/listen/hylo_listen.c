@@ -26,7 +26,6 @@ static volatile sig_atomic_t stop_requested;
 static int json, waypoints, stats;
 static long count;
 static const char *event_names[] = { "periodic", "map", "stop" };
-static const char *mode_names[] = { "none", "ground", "marine", "flight", "di_neg", "di_pos" };
 
 static void on_signal(int sig)
 {
@@ -39,9 +38,10 @@ static const char *status_str(int s)
 	return hylo_msg_plan_status_name((int8_t)s);
 }
 
+/* The library's mode names, and "none" for mode 0. */
 static const char *mode_str(int m)
 {
-	return m >= 0 && m < 6 ? mode_names[m] : "invalid";
+	return m == HYLO_MODE_NONE ? "none" : hylo_mode_str((hylo_mode)m);
 }
 
 /* JSON number: NaN and infinities are not JSON; they become null. */
@@ -69,6 +69,28 @@ static void jstr(const char *s)
 	putchar('"');
 }
 
+/* ,"name":v */
+static void jnum_field(const char *name, double v)
+{
+	printf(",\"%s\":", name);
+	jnum(v);
+}
+
+static void jstr_field(const char *name, const char *s)
+{
+	printf(",\"%s\":", name);
+	jstr(s);
+}
+
+/* A mode sequence: JSON strings between commas, or names between " > ". */
+static void print_modes(const int8_t *seq, int n, int as_json)
+{
+	int k;
+
+	for (k = 0; k < n; k++)
+		printf(as_json ? "%s\"%s\"" : "%s%s", k ? (as_json ? "," : " > ") : "", mode_str(seq[k]));
+}
+
 /* A plan as one JSON object (no newline). */
 static void plan_json(const hylo_plan_t *p)
 {
@@ -77,19 +99,14 @@ static void plan_json(const hylo_plan_t *p)
 	printf("{\"type\":\"plan\",\"request_id\":%lld,\"map_id\":%lld,\"status\":",
 	       (long long)p->request_id, (long long)p->map_id);
 	jstr(status_str(p->status));
-	printf(",\"reason\":");
-	jstr(p->reason);
+	jstr_field("reason", p->reason);
 	printf(",\"superseded_by\":%lld,\"robot\":", (long long)p->superseded_by);
 	jstr(p->robot);
-	printf(",\"total_cost_j\":");
-	jnum(p->total_cost_j);
-	printf(",\"suboptimality\":");
-	jnum(p->suboptimality);
-	printf(",\"lower_bound_j\":");
-	jnum(p->lower_bound_j);
+	jnum_field("total_cost_j", p->total_cost_j);
+	jnum_field("suboptimality", p->suboptimality);
+	jnum_field("lower_bound_j", p->lower_bound_j);
 	printf(",\"mode_sequence\":[");
-	for (k = 0; k < p->n_modes; k++)
-		printf("%s\"%s\"", k ? "," : "", mode_str(p->mode_sequence[k]));
+	print_modes(p->mode_sequence, p->n_modes, 1);
 	printf("],\"waypoints\":[");
 	for (k = 0; k < p->n_waypoints; k++) {
 		printf("%s{\"mode\":\"%s\",\"state\":[", k ? "," : "", mode_str(p->mode[k]));
@@ -131,8 +148,7 @@ static void print_plan_text(const hylo_plan_t *p)
 		if (p->status == HYLO_PLAN_T_STATUS_NOT_PROVEN && p->lower_bound_j > 0)
 			printf(" (the optimum is at least %.6g J)", p->lower_bound_j);
 		printf(", %d waypoints, modes ", p->n_waypoints);
-		for (k = 0; k < p->n_modes; k++)
-			printf("%s%s", k ? " > " : "", mode_str(p->mode_sequence[k]));
+		print_modes(p->mode_sequence, p->n_modes, 0);
 	} else {
 		printf(" (%s)", p->reason);
 	}
@@ -183,28 +199,18 @@ static void print_traj(const hylo_traj_t *t)
 		printf("{\"type\":\"traj\",\"request_id\":%lld,\"map_id\":%lld,\"status\":",
 		       (long long)t->request_id, (long long)t->map_id);
 		jstr(status_str(t->status));
-		printf(",\"reason\":");
-		jstr(t->reason);
-		printf(",\"robot\":");
-		jstr(t->robot);
-		printf(",\"energy_j\":");
-		jnum(t->energy_j);
-		printf(",\"replay_energy_j\":");
-		jnum(t->replay_energy_j);
-		printf(",\"replay_error\":");
-		jnum(t->replay_error);
-		printf(",\"method\":");
-		jstr(method_str(t->method));
-		printf(",\"gap_j\":");
-		jnum(t->gap_j);
+		jstr_field("reason", t->reason);
+		jstr_field("robot", t->robot);
+		jnum_field("energy_j", t->energy_j);
+		jnum_field("replay_energy_j", t->replay_energy_j);
+		jnum_field("replay_error", t->replay_error);
+		jstr_field("method", method_str(t->method));
+		jnum_field("gap_j", t->gap_j);
 		printf(",\"safe\":%s,\"body_radius_m\":", t->safe ? "true" : "false");
 		jnum(t->body_radius_m);
-		printf(",\"margin_m\":");
-		jnum(t->margin_m);
-		printf(",\"min_clearance_m\":");
-		jnum(t->min_clearance_m);
-		printf(",\"clearance_t_s\":");
-		jnum(t->clearance_t_s);
+		jnum_field("margin_m", t->margin_m);
+		jnum_field("min_clearance_m", t->min_clearance_m);
+		jnum_field("clearance_t_s", t->clearance_t_s);
 		printf(",\"clearance_xyz\":");
 		jrow(t->clearance_xyz, 3, 0);
 		printf(",\"t_s\":[");
@@ -246,8 +252,6 @@ static long received;
 static void on_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 			   const hylo_plan_alternative_t *a, void *u)
 {
-	int k;
-
 	(void)rbuf;
 	(void)ch;
 	(void)u;
@@ -261,8 +265,7 @@ static void on_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 		printf("  alternative %d of %d for plan %lld: %.6g J, %d waypoints, %d mode change%s, modes ",
 		       a->index + 1, a->count, (long long)a->request_id, a->plan.total_cost_j,
 		       a->plan.n_waypoints, a->mode_changes, a->mode_changes == 1 ? "" : "s");
-		for (k = 0; k < a->plan.n_modes; k++)
-			printf("%s%s", k ? " > " : "", mode_str(a->plan.mode_sequence[k]));
+		print_modes(a->plan.mode_sequence, a->plan.n_modes, 0);
 		putchar('\n');
 	}
 	fflush(stdout);
@@ -273,8 +276,6 @@ static void on_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 static void on_traj_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 				const hylo_traj_alternative_t *a, void *u)
 {
-	int k;
-
 	(void)rbuf;
 	(void)ch;
 	(void)u;
@@ -283,26 +284,19 @@ static void on_traj_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 		       "\"count\":%d,\"planned\":%d,\"mode_changes\":%d,\"mode_sequence\":[",
 		       (long long)a->request_id, (long long)a->map_id, a->index, a->count, a->planned,
 		       a->mode_changes);
-		for (k = 0; k < a->n_modes; k++)
-			printf("%s\"%s\"", k ? "," : "", mode_str(a->mode_sequence[k]));
+		print_modes(a->mode_sequence, a->n_modes, 1);
 		printf("],\"predicted_j\":");
 		jnum(a->predicted_j);
-		printf(",\"status\":");
-		jstr(status_str(a->status));
-		printf(",\"reason\":");
-		jstr(a->reason);
-		printf(",\"method\":");
-		jstr(a->status == HYLO_PLAN_T_STATUS_OK ? method_str(a->method) : "none");
-		printf(",\"smoothed_j\":");
-		jnum(a->smoothed_j);
-		printf(",\"gap_j\":");
-		jnum(a->gap_j);
+		jstr_field("status", status_str(a->status));
+		jstr_field("reason", a->reason);
+		jstr_field("method", a->status == HYLO_PLAN_T_STATUS_OK ? method_str(a->method) : "none");
+		jnum_field("smoothed_j", a->smoothed_j);
+		jnum_field("gap_j", a->gap_j);
 		printf(",\"chosen\":%d}\n", a->chosen);
 	} else {
 		printf("  smoothed alternative %d of %d for traj %lld (graph rank %d): ", a->index + 1, a->planned,
 		       (long long)a->request_id, a->index + 1);
-		for (k = 0; k < a->n_modes; k++)
-			printf("%s%s", k ? " > " : "", mode_str(a->mode_sequence[k]));
+		print_modes(a->mode_sequence, a->n_modes, 0);
 		printf(", predicted %.6g J, ", a->predicted_j);
 		if (a->status == HYLO_PLAN_T_STATUS_OK)
 			printf("smoothed %.6g J (%s)", a->smoothed_j, method_str(a->method));
@@ -351,8 +345,7 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_nod
 		jstr(ev);
 		printf(",\"map_id\":%lld,\"map_status\":", (long long)s->map_id);
 		jstr(status_str(s->map_status));
-		printf(",\"reason\":");
-		jstr(s->reason);
+		jstr_field("reason", s->reason);
 		printf(",\"current_map_id\":%lld,\"goals_received\":%lld,\"goals_answered\":%lld,"
 		       "\"goals_planned\":%lld,\"goals_superseded\":%lld,\"goals_refused\":%lld,"
 		       "\"queue_depth\":%d,\"queue_capacity\":%d,\"maps_received\":%lld,"
