@@ -148,11 +148,50 @@ static void sort_ids(uint32_t *a, uint32_t n)
 	}
 }
 
+/* A walk over the points in the bins that the disc of radius r around q
+ * touches (a superset of those within r): rows, then columns, then each
+ * bin's list. */
+typedef struct {
+	uint32_t bx0, bx1, by1, bx, by, id;
+} spatial_walk;
+
+static void walk_start(const hylo_spatial *g, hylo_point q, hylo_real r, spatial_walk *w)
+{
+	w->bx0 = spatial_col(q.x - r, g->x0, g->cell, g->nx);
+	w->bx1 = spatial_col(q.x + r, g->x0, g->cell, g->nx);
+	w->by = spatial_col(q.y - r, g->y0, g->cell, g->ny);
+	w->by1 = spatial_col(q.y + r, g->y0, g->cell, g->ny);
+	w->bx = w->bx0;
+	w->id = g->head[w->by * g->nx + w->bx];
+}
+
+/* The next point's id, or HYLO_SPATIAL_NONE at the end. */
+static uint32_t walk_next(const hylo_spatial *g, spatial_walk *w)
+{
+	uint32_t id;
+
+	while (w->id == HYLO_SPATIAL_NONE) {
+		if (w->bx < w->bx1) {
+			w->bx++;
+		} else if (w->by < w->by1) {
+			w->bx = w->bx0;
+			w->by++;
+		} else {
+			return HYLO_SPATIAL_NONE;
+		}
+		w->id = g->head[w->by * g->nx + w->bx];
+	}
+	id = w->id;
+	w->id = g->next[id];
+	return id;
+}
+
 hylo_status hylo_spatial_query(const hylo_spatial *g, const hylo_point *pts,
 			       hylo_point q, hylo_real radius,
 			       uint32_t *out, uint32_t cap, uint32_t *n)
 {
-	uint32_t bx0, bx1, by0, by1, bx, by, id, found = 0;
+	spatial_walk w;
+	uint32_t id, found = 0;
 	hylo_real r2 = radius * radius;
 
 	if (n)
@@ -163,23 +202,16 @@ hylo_status hylo_spatial_query(const hylo_spatial *g, const hylo_point *pts,
 		return HYLO_E_BAD_VALUE;
 	if (radius < 0 || g->nx == 0)
 		return HYLO_OK;
-	bx0 = spatial_col(q.x - radius, g->x0, g->cell, g->nx);
-	bx1 = spatial_col(q.x + radius, g->x0, g->cell, g->nx);
-	by0 = spatial_col(q.y - radius, g->y0, g->cell, g->ny);
-	by1 = spatial_col(q.y + radius, g->y0, g->cell, g->ny);
-	for (by = by0; by <= by1; by++)
-		for (bx = bx0; bx <= bx1; bx++)
-			for (id = g->head[by * g->nx + bx]; id != HYLO_SPATIAL_NONE;
-			     id = g->next[id]) {
-				if (!(spatial_d2(pts[id], q) <= r2))
-					continue;
-				if (found == cap) {
-					sort_ids(out, found);
-					*n = found;
-					return HYLO_E_CAP_SUCCESSORS;
-				}
-				out[found++] = id;
-			}
+	for (walk_start(g, q, radius, &w); (id = walk_next(g, &w)) != HYLO_SPATIAL_NONE;) {
+		if (!(spatial_d2(pts[id], q) <= r2))
+			continue;
+		if (found == cap) {
+			sort_ids(out, found);
+			*n = found;
+			return HYLO_E_CAP_SUCCESSORS;
+		}
+		out[found++] = id;
+	}
 	sort_ids(out, found);
 	*n = found;
 	return HYLO_OK;
@@ -188,20 +220,14 @@ hylo_status hylo_spatial_query(const hylo_spatial *g, const hylo_point *pts,
 int hylo_spatial_any_closer(const hylo_spatial *g, const hylo_point *pts,
 			    hylo_point q, hylo_real radius)
 {
-	uint32_t bx0, bx1, by0, by1, bx, by, id;
+	spatial_walk w;
+	uint32_t id;
 	hylo_real r2 = radius * radius;
 
 	if (!g || !pts || g->nx == 0 || !(radius > 0))
 		return 0;
-	bx0 = spatial_col(q.x - radius, g->x0, g->cell, g->nx);
-	bx1 = spatial_col(q.x + radius, g->x0, g->cell, g->nx);
-	by0 = spatial_col(q.y - radius, g->y0, g->cell, g->ny);
-	by1 = spatial_col(q.y + radius, g->y0, g->cell, g->ny);
-	for (by = by0; by <= by1; by++)
-		for (bx = bx0; bx <= bx1; bx++)
-			for (id = g->head[by * g->nx + bx]; id != HYLO_SPATIAL_NONE;
-			     id = g->next[id])
-				if (spatial_d2(pts[id], q) < r2)
-					return 1;
+	for (walk_start(g, q, radius, &w); (id = walk_next(g, &w)) != HYLO_SPATIAL_NONE;)
+		if (spatial_d2(pts[id], q) < r2)
+			return 1;
 	return 0;
 }
