@@ -40,34 +40,49 @@ static void heap_swap(hylo_search *s, uint32_t i, uint32_t j)
 	s->heap_pos[a] = j;
 }
 
-/* Each step halves i, so at most log2(HYLO_MAX_NODES) steps. */
-static void heap_up(hylo_search *s, uint32_t i)
+/* Two binary heaps share the sifting: the open list (heap_less, heap_swap)
+ * and the deferred groups (defer_less, defer_swap). */
+typedef int (*order_fn)(const hylo_search *s, uint32_t i, uint32_t j);
+typedef void (*swap_fn)(hylo_search *s, uint32_t i, uint32_t j);
+
+/* Each step halves i, so at most log2(size) steps. */
+static inline void sift_up(hylo_search *s, uint32_t i, order_fn less, swap_fn swap)
 {
 	while (i > 0) {
 		uint32_t p = (i - 1) / 2;
 
-		if (!heap_less(s, i, p))
+		if (!less(s, i, p))
 			break;
-		heap_swap(s, i, p);
+		swap(s, i, p);
 		i = p;
 	}
 }
 
-/* Each step at least doubles i, so at most log2(HYLO_MAX_NODES) steps. */
-static void heap_down(hylo_search *s, uint32_t i)
+/* Each step at least doubles i, so at most log2(n) steps. */
+static inline void sift_down(hylo_search *s, uint32_t i, uint32_t n, order_fn less, swap_fn swap)
 {
 	for (;;) {
 		uint32_t l = 2 * i + 1, r = l + 1, m = i;
 
-		if (l < s->heap_size && heap_less(s, l, m))
+		if (l < n && less(s, l, m))
 			m = l;
-		if (r < s->heap_size && heap_less(s, r, m))
+		if (r < n && less(s, r, m))
 			m = r;
 		if (m == i)
 			break;
-		heap_swap(s, i, m);
+		swap(s, i, m);
 		i = m;
 	}
+}
+
+static void heap_up(hylo_search *s, uint32_t i)
+{
+	sift_up(s, i, heap_less, heap_swap);
+}
+
+static void heap_down(hylo_search *s, uint32_t i)
+{
+	sift_down(s, i, s->heap_size, heap_less, heap_swap);
 }
 
 static void heap_push(hylo_search *s, uint32_t v, hylo_real f)
@@ -119,19 +134,13 @@ int hylo_search_defer(hylo_search *s, uint32_t u, uint32_t group, hylo_real key)
 	s->defer_group[i] = group;
 	s->defer_key[i] = key;
 	s->stats.deferred++;
-	/* Each step halves i: at most log2(HYLO_MAX_DEFERRED) steps. */
-	while (i > 0 && defer_less(s, i, (i - 1) / 2)) {
-		defer_swap(s, i, (i - 1) / 2);
-		i = (i - 1) / 2;
-	}
+	sift_up(s, i, defer_less, defer_swap);
 	return 1;
 }
 
 /* Removes the first deferred group into *u, *group. */
 static void defer_pop(hylo_search *s, uint32_t *u, uint32_t *group)
 {
-	uint32_t i = 0;
-
 	*u = s->defer_node[0];
 	*group = s->defer_group[0];
 	s->n_deferred--;
@@ -140,19 +149,7 @@ static void defer_pop(hylo_search *s, uint32_t *u, uint32_t *group)
 	s->defer_node[0] = s->defer_node[s->n_deferred];
 	s->defer_group[0] = s->defer_group[s->n_deferred];
 	s->defer_key[0] = s->defer_key[s->n_deferred];
-	/* Each step at least doubles i. */
-	for (;;) {
-		uint32_t l = 2 * i + 1, r = l + 1, m = i;
-
-		if (l < s->n_deferred && defer_less(s, l, m))
-			m = l;
-		if (r < s->n_deferred && defer_less(s, r, m))
-			m = r;
-		if (m == i)
-			break;
-		defer_swap(s, i, m);
-		i = m;
-	}
+	sift_down(s, 0, s->n_deferred, defer_less, defer_swap);
 }
 
 static uint32_t heap_pop(hylo_search *s)
