@@ -111,6 +111,30 @@ static void start(wire *w, const void *buf, int len, const char *what, int64_t h
 				  "another version of msgs/)", what);
 }
 
+/*
+ * Starts a message whose fingerprint and utime come before an int64 id:
+ * *id (when id is not NULL) is that id if it can be read, else unreadable.
+ */
+static void start_with_id(wire *w, const void *buf, int len, const char *what, int64_t hash,
+			  hylo_reason *r, int64_t *id, int64_t unreadable)
+{
+	if (id)
+		*id = unreadable;
+	start(w, buf, len, what, hash, r);
+	skip(w, 8, "utime");
+	if (w->st == HYLO_OK && w->len - w->pos >= 8 && id)
+		*id = be64(w->p + w->pos);
+}
+
+/* An array: its int32 count, then that many elements of size bytes. */
+static int32_t array_field(wire *w, long size, const char *count, const char *field)
+{
+	int32_t n = get_count(w, count);
+
+	skip(w, size * n, field);
+	return n;
+}
+
 static hylo_status finish(wire *w)
 {
 	if (w->st == HYLO_OK && w->pos != w->len)
@@ -126,22 +150,14 @@ hylo_status hylo_msg_check_goal(const void *buf, int len, int64_t *request_id,
 				hylo_reason *r)
 {
 	wire w;
-	int32_t n;
 
-	if (request_id)
-		*request_id = HYLO_GOAL_T_REQUEST_ID_UNREADABLE;
-	start(&w, buf, len, "goal_t", __hylo_goal_t_get_hash(), r);
-	skip(&w, 8, "utime");
-	if (w.st == HYLO_OK && w.len - w.pos >= 8 && request_id)
-		*request_id = be64(w.p + w.pos);
+	start_with_id(&w, buf, len, "goal_t", __hylo_goal_t_get_hash(), r, request_id,
+		      HYLO_GOAL_T_REQUEST_ID_UNREADABLE);
 	skip(&w, 8 + 8 + 8 + 1 + 1 + 6 * 8 + 1 + 6 * 8 + 8, "request_id .. seed");
 	skip(&w, 5 * 8, "spacing_m .. air_connect_radius_m");
-	n = get_count(&w, "n_speeds");
-	skip(&w, 8L * n, "speeds_mps");
-	n = get_count(&w, "n_headings");
-	skip(&w, 8L * n, "headings_rad");
-	n = get_count(&w, "n_air_speeds");
-	skip(&w, 8L * n, "air_speeds_mps");
+	array_field(&w, 8, "n_speeds", "speeds_mps");
+	array_field(&w, 8, "n_headings", "headings_rad");
+	array_field(&w, 8, "n_air_speeds", "air_speeds_mps");
 	skip(&w, 8, "time_budget_ms");
 	get_count(&w, "max_expansions");
 	skip(&w, 8, "suboptimality");
@@ -158,17 +174,11 @@ hylo_status hylo_msg_check_map(const void *buf, int len, int64_t *map_id, hylo_r
 	wire w;
 	int32_t n;
 
-	if (map_id)
-		*map_id = 0;
-	start(&w, buf, len, "map_t", __hylo_map_t_get_hash(), r);
-	skip(&w, 8, "utime");
-	if (w.st == HYLO_OK && w.len - w.pos >= 8 && map_id)
-		*map_id = be64(w.p + w.pos);
+	start_with_id(&w, buf, len, "map_t", __hylo_map_t_get_hash(), r, map_id, 0);
 	skip(&w, 8, "map_id");
 	string_field(&w, "robot");
 	skip(&w, 4 + 4 + 5 * 8, "nx .. max_step_m");
-	n = get_count(&w, "n_cells");
-	skip(&w, 1L * n, "terrain");
+	n = array_field(&w, 1, "n_cells", "terrain");
 	skip(&w, 4L * n, "height_m");
 	return finish(&w);
 }
