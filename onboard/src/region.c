@@ -3,31 +3,29 @@
 #include <math.h>
 #include <stdio.h>
 
-static const char *const coord_names[HYLO_MODE_COUNT][HYLO_XS_DIM] = {
-	[HYLO_MODE_GROUND] = { "px", "py", "vx", "theta" },
-	[HYLO_MODE_MARINE] = { "px", "py", "vx", "theta" },
-	[HYLO_MODE_FLIGHT] = { "px", "py", "pz", "vx", "vy", "vz" },
-	[HYLO_MODE_DI_NEG] = { "p", "v" },
-	[HYLO_MODE_DI_POS] = { "p", "v" },
-};
+/* Each sampled coordinate's name and unit. */
+typedef struct {
+	const char *name, *unit;
+} coord_info;
 
-static const char *const coord_units[HYLO_MODE_COUNT][HYLO_XS_DIM] = {
-	[HYLO_MODE_GROUND] = { "m", "m", "m/s", "rad" },
-	[HYLO_MODE_MARINE] = { "m", "m", "m/s", "rad" },
-	[HYLO_MODE_FLIGHT] = { "m", "m", "m", "m/s", "m/s", "m/s" },
+static const coord_info coords[HYLO_MODE_COUNT][HYLO_XS_DIM] = {
+	[HYLO_MODE_GROUND] = { { "px", "m" }, { "py", "m" }, { "vx", "m/s" }, { "theta", "rad" } },
+	[HYLO_MODE_MARINE] = { { "px", "m" }, { "py", "m" }, { "vx", "m/s" }, { "theta", "rad" } },
+	[HYLO_MODE_FLIGHT] = { { "px", "m" }, { "py", "m" }, { "pz", "m" },
+			       { "vx", "m/s" }, { "vy", "m/s" }, { "vz", "m/s" } },
 	/* the phase plane's units, as the map's (docs/models.md section 2) */
-	[HYLO_MODE_DI_NEG] = { "m", "m/s" },
-	[HYLO_MODE_DI_POS] = { "m", "m/s" },
+	[HYLO_MODE_DI_NEG] = { { "p", "m" }, { "v", "m/s" } },
+	[HYLO_MODE_DI_POS] = { { "p", "m" }, { "v", "m/s" } },
 };
 
 const char *hylo_coord_name(hylo_mode mode, unsigned k)
 {
-	return k < hylo_mode_dim(mode) ? coord_names[mode][k] : "?";
+	return k < hylo_mode_dim(mode) ? coords[mode][k].name : "?";
 }
 
 const char *hylo_coord_unit(hylo_mode mode, unsigned k)
 {
-	return k < hylo_mode_dim(mode) ? coord_units[mode][k] : "?";
+	return k < hylo_mode_dim(mode) ? coords[mode][k].unit : "?";
 }
 
 /* Rounding slack: a speed at its bound, given by its components, comes back
