@@ -179,7 +179,7 @@ tests/node/test_load.sh: $(GOAL_BURST)
 
 # goal_burst: the load client of tests/node/test_load.sh (and make bench).
 GOAL_BURST := $(BUILD)/test/node/goal_burst
-$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(MSG_OBJS) $(LCM_STAMP)
+$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(MSG_OBJS) $(YAML_LIBS) $(LCM_LIBS) -o $@
+	$(CXX) $(CXX17_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(YAML_LIBS) $(LCM_LIBS) -o $@
 ALL_TARGETS += $(GOAL_BURST)

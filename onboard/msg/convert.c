@@ -18,6 +18,23 @@ void hylo_msg_map_view(const hylo_map_t *msg, hylo_map_view *v)
 	v->height = msg->height_m;
 }
 
+void hylo_msg_map(const hylo_map_view *v, hylo_map_t *msg)
+{
+	memset(msg, 0, sizeof *msg);
+	msg->map_id = v->map_id;
+	msg->robot = (char *)v->robot;
+	msg->nx = v->nx;
+	msg->ny = v->ny;
+	msg->resolution_m = v->resolution;
+	msg->origin_x_m = v->origin_x;
+	msg->origin_y_m = v->origin_y;
+	msg->ceiling_m = v->ceiling;
+	msg->max_step_m = v->max_step;
+	msg->n_cells = v->n_cells;
+	msg->terrain = (int8_t *)v->terrain;
+	msg->height_m = (float *)v->height;
+}
+
 typedef char hylo_check_default_alternatives[HYLO_GOAL_T_DEFAULT_ALTERNATIVES == HYLO_DEFAULT_ALTERNATIVES ? 1 : -1];
 
 static uint32_t count(int32_t n)

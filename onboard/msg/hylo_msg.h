@@ -33,6 +33,10 @@ hylo_status hylo_msg_check_map(const void *buf, int len, int64_t *map_id, hylo_r
 /** A view of map message msg (no copy; valid while msg lives). */
 void hylo_msg_map_view(const hylo_map_t *msg, hylo_map_view *view);
 
+/** The map message of view v, the inverse of hylo_msg_map_view: utime 0,
+ * the arrays pointing into v's (valid while they live). */
+void hylo_msg_map(const hylo_map_view *v, hylo_map_t *msg);
+
 /** The goal of goal message msg (copied: the grids too). */
 void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *goal);
 

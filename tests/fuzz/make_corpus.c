@@ -17,21 +17,10 @@ static int n_written;
 
 static int enc_map(const tu_map *m, uint8_t *out, int cap)
 {
+	hylo_map_view v = tu_view(m);
 	hylo_map_t msg;
 
-	memset(&msg, 0, sizeof msg);
-	msg.map_id = m->map_id;
-	msg.robot = (char *)m->robot;
-	msg.nx = m->nx;
-	msg.ny = m->ny;
-	msg.resolution_m = m->res;
-	msg.origin_x_m = m->ox;
-	msg.origin_y_m = m->oy;
-	msg.ceiling_m = m->ceiling;
-	msg.max_step_m = m->max_step;
-	msg.n_cells = m->nx * m->ny;
-	msg.terrain = m->terrain;
-	msg.height_m = m->height;
+	hylo_msg_map(&v, &msg);
 	return hylo_map_t_encode(out, 0, cap, &msg);
 }
 

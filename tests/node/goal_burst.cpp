@@ -26,7 +26,9 @@
 #include "hylo_goal_t.h"
 #include "hylo_map_t.h"
 #include "hylo_node_status_t.h"
+#include "hylo_msg.h"
 #include "hylo_plan_t.h"
+#include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
 
 namespace {
@@ -142,17 +144,9 @@ int main(int argc, char **argv)
 	hylo_plan_t_subscription_set_queue_capacity(ps, 0);       // a test client: keep all
 	hylo_node_status_t_subscription_set_queue_capacity(ss, 0);
 
+	const hylo_map_view view = map_view(sc);
 	hylo_map_t map;
-	std::memset(&map, 0, sizeof map);
-	map.map_id = sc.map_id;
-	map.robot = const_cast<char *>(sc.robot.c_str());
-	map.nx = sc.nx;
-	map.ny = sc.ny;
-	map.resolution_m = sc.resolution_m;
-	map.max_step_m = sc.max_step_m;
-	map.n_cells = sc.nx * sc.ny;
-	map.terrain = sc.terrain.data();
-	map.height_m = sc.height_m.data();
+	hylo_msg_map(&view, &map);
 
 	if (n_maps > 0) {
 		// Maps at capacity: 512 x 512 cells of the scene's first cell's class.
@@ -189,36 +183,24 @@ int main(int argc, char **argv)
 		return 1;
 	}
 	const auto &g = sc.goal;
-	std::vector<double> speeds = g.speeds_mps, headings = g.headings_rad;
+	hylo_goal request = goal_of(sc);
+	request.map_id = sc.map_id;
 	hylo_goal_t goal;
-	std::memset(&goal, 0, sizeof goal);
-	goal.map_id = sc.map_id;
-	goal.start_mode = static_cast<int8_t>(g.start.mode);
-	goal.goal_mode = static_cast<int8_t>(g.goal.mode);
-	for (int k = 0; k < 6; k++) {
-		goal.start[k] = g.start.x[static_cast<size_t>(k)];
-		goal.goal[k] = g.goal.x[static_cast<size_t>(k)];
-	}
-	goal.seed = g.seed;
-	goal.spacing_m = g.spacing_m;
-	goal.guard_spacing_m = g.guard_spacing_m;
-	goal.connect_radius_m = g.connect_radius_m;
-	goal.n_speeds = static_cast<int32_t>(speeds.size());
-	goal.speeds_mps = speeds.data();
-	goal.n_headings = static_cast<int32_t>(headings.size());
-	goal.headings_rad = headings.data();
+	hylo_msg_goal(&request, &goal);
 
 	int sent = 0;
 	if (slow) {
 		// A new roadmap 25 times denser, searched by Dijkstra: a plan in progress.
-		hylo_goal_t s = goal;
-		s.request_id = 1;
+		hylo_goal dense = request;
+		dense.request_id = 1;
+		dense.algorithm = HYLO_DIJKSTRA;
+		dense.sampling.spacing = g.spacing_m / 2;
+		dense.sampling.guard_spacing = g.guard_spacing_m / 2;
+		dense.sampling.connect_radius = g.connect_radius_m / 1.4;
+		dense.sampling.seed = 12345;
+		hylo_goal_t s;
+		hylo_msg_goal(&dense, &s);
 		s.requester_id = 999999;
-		s.algorithm = HYLO_GOAL_T_ALGORITHM_DIJKSTRA;
-		s.spacing_m = g.spacing_m / 2;
-		s.guard_spacing_m = g.guard_spacing_m / 2;
-		s.connect_radius_m = g.connect_radius_m / 1.4;
-		s.seed = 12345;
 		hylo_goal_t_publish(lcm, "HYLO_GOAL", &s);
 		sent++;
 		pump(lcm, 20);   // the node has taken it

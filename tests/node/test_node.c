@@ -118,20 +118,10 @@ static void deliver(void)
 
 static void map_msg(const tu_map *m, hylo_map_t *msg)
 {
-	memset(msg, 0, sizeof *msg);
+	hylo_map_view v = tu_view(m);
+
+	hylo_msg_map(&v, msg);
 	msg->utime = 1;
-	msg->map_id = m->map_id;
-	msg->robot = (char *)m->robot;
-	msg->nx = m->nx;
-	msg->ny = m->ny;
-	msg->resolution_m = m->res;
-	msg->origin_x_m = m->ox;
-	msg->origin_y_m = m->oy;
-	msg->ceiling_m = m->ceiling;
-	msg->max_step_m = m->max_step;
-	msg->n_cells = m->nx * m->ny;
-	msg->terrain = m->terrain;
-	msg->height_m = m->height;
 }
 
 static void goal_msg(const hylo_goal *g, hylo_goal_t *msg)
