@@ -97,9 +97,9 @@ SCENE_OBJS := $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/tools/scene/hylo_sce
 
 $(BUILD)/obj/tools/scene/%.o: tools/scene/%.cpp $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(YAML_CFLAGS) $(LCM_CFLAGS) $(DEP_FLAGS) -I. -I$(LCM_GEN_DIR)/cpp -c $< -o $@
+	$(CXX) $(CXX17_FLAGS) $(YAML_CFLAGS) $(LCM_CFLAGS) $(DEP_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c -I$(LCM_GEN_DIR)/cpp -c $< -o $@
 
-$(HYLO_SCENE): $(SCENE_OBJS)
+$(HYLO_SCENE): $(SCENE_OBJS) $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(LDFLAGS) $^ $(YAML_LIBS) $(LCM_LIBS) -o $@
 

@@ -80,6 +80,12 @@ void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *g)
 	g->alternatives_within = msg->alternatives_within;
 }
 
+/* A grid's count on the wire: at most the HYLO_MAX_GRID entries a goal holds. */
+static int32_t wire_count(uint32_t n)
+{
+	return (int32_t)(n < HYLO_MAX_GRID ? n : HYLO_MAX_GRID);
+}
+
 void hylo_msg_goal(const hylo_goal *g, hylo_goal_t *msg)
 {
 	const hylo_sampling *s = &g->sampling;
@@ -98,11 +104,11 @@ void hylo_msg_goal(const hylo_goal *g, hylo_goal_t *msg)
 	msg->guard_spacing_m = s->guard_spacing;
 	msg->connect_radius_m = s->connect_radius;
 	msg->air_connect_radius_m = s->air_connect_radius;
-	msg->n_speeds = (int32_t)s->n_speeds;
+	msg->n_speeds = wire_count(s->n_speeds);
 	msg->speeds_mps = (double *)s->speeds;
-	msg->n_headings = (int32_t)s->n_headings;
+	msg->n_headings = wire_count(s->n_headings);
 	msg->headings_rad = (double *)s->headings;
-	msg->n_air_speeds = (int32_t)s->n_air_speeds;
+	msg->n_air_speeds = wire_count(s->n_air_speeds);
 	msg->air_speeds_mps = (double *)s->air_speeds;
 	msg->time_budget_ms = g->time_budget_ms;
 	msg->max_expansions = (int32_t)g->max_expansions;

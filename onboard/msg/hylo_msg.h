@@ -41,7 +41,9 @@ void hylo_msg_map(const hylo_map_view *v, hylo_map_t *msg);
 void hylo_msg_goal_view(const hylo_goal_t *msg, hylo_goal *goal);
 
 /** The goal message of goal g, the inverse of hylo_msg_goal_view: utime and
- * requester_id 0, the grids pointing into g (valid while g lives). */
+ * requester_id 0, the grids pointing into g (valid while g lives). A grid
+ * count above HYLO_MAX_GRID (which hylo_goal_check refuses) is sent as
+ * HYLO_MAX_GRID: g holds no more. */
 void hylo_msg_goal(const hylo_goal *g, hylo_goal_t *msg);
 
 /* Storage a plan message points into. */

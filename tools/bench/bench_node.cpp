@@ -19,12 +19,11 @@
 
 #include <lcm/lcm.h>
 
-#include "hylo_goal_t.h"
-#include "hylo_map_t.h"
-#include "hylo_plan_t.h"
+#include "hylo_msg.h"
 #include "node/node.h"
 #include "node/registry.h"
 #include "tools/bench/results.hpp"
+#include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
 
 namespace {
@@ -45,45 +44,23 @@ Stats stats(std::vector<double> v)
 		v[std::min(n - 1, static_cast<size_t>(0.99 * static_cast<double>(n)))]};
 }
 
+// The scene's map and goal messages; they point into sc and request.
 struct Messages {
 	hylo::scene::Scene sc;
+	hylo_map_view view;
+	hylo_goal request;
 	hylo_map_t map;
 	hylo_goal_t goal;
-	std::vector<double> speeds, headings;
 };
 
 void make_messages(Messages &m)
 {
 	m.sc = hylo::scene::load(kScene);
-	std::memset(&m.map, 0, sizeof m.map);
-	m.map.map_id = m.sc.map_id;
-	m.map.robot = const_cast<char *>(m.sc.robot.c_str());
-	m.map.nx = m.sc.nx;
-	m.map.ny = m.sc.ny;
-	m.map.resolution_m = m.sc.resolution_m;
-	m.map.max_step_m = m.sc.max_step_m;
-	m.map.n_cells = m.sc.nx * m.sc.ny;
-	m.map.terrain = m.sc.terrain.data();
-	m.map.height_m = m.sc.height_m.data();
-	const auto &g = m.sc.goal;
-	m.speeds = g.speeds_mps;
-	m.headings = g.headings_rad;
-	std::memset(&m.goal, 0, sizeof m.goal);
-	m.goal.map_id = m.sc.map_id;
-	m.goal.start_mode = static_cast<int8_t>(g.start.mode);
-	m.goal.goal_mode = static_cast<int8_t>(g.goal.mode);
-	for (int k = 0; k < 6; k++) {
-		m.goal.start[k] = g.start.x[static_cast<size_t>(k)];
-		m.goal.goal[k] = g.goal.x[static_cast<size_t>(k)];
-	}
-	m.goal.seed = g.seed;
-	m.goal.spacing_m = g.spacing_m;
-	m.goal.guard_spacing_m = g.guard_spacing_m;
-	m.goal.connect_radius_m = g.connect_radius_m;
-	m.goal.n_speeds = static_cast<int32_t>(m.speeds.size());
-	m.goal.speeds_mps = m.speeds.data();
-	m.goal.n_headings = static_cast<int32_t>(m.headings.size());
-	m.goal.headings_rad = m.headings.data();
+	m.view = map_view(m.sc);
+	hylo_msg_map(&m.view, &m.map);
+	m.request = goal_of(m.sc);
+	m.request.map_id = m.sc.map_id;
+	hylo_msg_goal(&m.request, &m.goal);
 }
 
 // Varies the start between requests so no two are identical.

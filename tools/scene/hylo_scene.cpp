@@ -8,8 +8,8 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "hylo/goal_t.hpp"
-#include "hylo/map_t.hpp"
+#include "hylo_msg.h"
+#include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
 
 namespace {
@@ -38,64 +38,17 @@ void usage(FILE *f)
 		"  --help                 this text\n");
 }
 
+void wire_grid(const std::vector<double> &v, int32_t *n, double **values)
+{
+	*n = static_cast<int32_t>(v.size());
+	*values = const_cast<double *>(v.data());
+}
+
 int64_t utime_now()
 {
 	struct timespec t;
 	clock_gettime(CLOCK_REALTIME, &t);
 	return static_cast<int64_t>(t.tv_sec) * 1000000 + t.tv_nsec / 1000;
-}
-
-hylo::map_t map_message(const Scene &sc)
-{
-	hylo::map_t m;
-	m.utime = utime_now();
-	m.map_id = sc.map_id;
-	m.robot = sc.robot;
-	m.nx = sc.nx;
-	m.ny = sc.ny;
-	m.resolution_m = sc.resolution_m;
-	m.origin_x_m = sc.origin_x_m;
-	m.origin_y_m = sc.origin_y_m;
-	m.ceiling_m = sc.ceiling_m;
-	m.max_step_m = sc.max_step_m;
-	m.n_cells = sc.nx * sc.ny;
-	m.terrain = sc.terrain;
-	m.height_m = sc.height_m;
-	return m;
-}
-
-hylo::goal_t goal_message(const Scene &sc, int64_t request_id)
-{
-	const hylo::scene::Goal &g = sc.goal;
-	hylo::goal_t m;
-	m.utime = utime_now();
-	m.request_id = request_id;
-	m.map_id = sc.map_id;
-	m.algorithm = static_cast<int8_t>(g.algorithm);
-	m.start_mode = static_cast<int8_t>(g.start.mode);
-	m.goal_mode = static_cast<int8_t>(g.goal.mode);
-	for (int k = 0; k < 6; k++) {
-		m.start[k] = g.start.x[static_cast<size_t>(k)];
-		m.goal[k] = g.goal.x[static_cast<size_t>(k)];
-	}
-	m.seed = g.seed;
-	m.spacing_m = g.spacing_m;
-	m.air_spacing_m = g.air_spacing_m;
-	m.guard_spacing_m = g.guard_spacing_m;
-	m.connect_radius_m = g.connect_radius_m;
-	m.air_connect_radius_m = g.air_connect_radius_m;
-	m.n_speeds = static_cast<int32_t>(g.speeds_mps.size());
-	m.speeds_mps = g.speeds_mps;
-	m.n_headings = static_cast<int32_t>(g.headings_rad.size());
-	m.headings_rad = g.headings_rad;
-	m.n_air_speeds = static_cast<int32_t>(g.air_speeds_mps.size());
-	m.air_speeds_mps = g.air_speeds_mps;
-	m.time_budget_ms = g.time_budget_ms;
-	m.suboptimality = g.suboptimality;
-	m.max_expansions = g.max_expansions;
-	m.alternatives = static_cast<int8_t>(g.alternatives);
-	m.alternatives_within = g.alternatives_within;
-	return m;
 }
 
 void summary(const Scene &sc)
@@ -200,14 +153,28 @@ int run(int argc, char **argv)
 			     url.empty() ? "(default)" : url.c_str());
 		return 1;
 	}
-	hylo::map_t map = map_message(sc);
-	if (lcm.publish(prefix + "HYLO_MAP", &map) != 0) {
+	const hylo_map_view view = map_view(sc);
+	hylo_map_t map;
+	hylo_msg_map(&view, &map);
+	map.utime = utime_now();
+	if (hylo_map_t_publish(lcm.getUnderlyingLCM(), (prefix + "HYLO_MAP").c_str(), &map) != 0) {
 		std::fprintf(stderr, "hylo-scene: publishing the map failed\n");
 		return 1;
 	}
 	if (with_goal) {
-		hylo::goal_t goal = goal_message(sc, request_id);
-		if (lcm.publish(prefix + "HYLO_GOAL", &goal) != 0) {
+		hylo_goal request = goal_of(sc);
+		request.request_id = request_id;
+		request.map_id = sc.map_id;
+		hylo_goal_t goal;
+		hylo_msg_goal(&request, &goal);
+		goal.utime = utime_now();
+		// As the scene says: alternatives 0 is the default, and a grid may be
+		// longer than a hylo_goal holds (the node refuses it then).
+		goal.alternatives = static_cast<int8_t>(sc.goal.alternatives);
+		wire_grid(sc.goal.speeds_mps, &goal.n_speeds, &goal.speeds_mps);
+		wire_grid(sc.goal.headings_rad, &goal.n_headings, &goal.headings_rad);
+		wire_grid(sc.goal.air_speeds_mps, &goal.n_air_speeds, &goal.air_speeds_mps);
+		if (hylo_goal_t_publish(lcm.getUnderlyingLCM(), (prefix + "HYLO_GOAL").c_str(), &goal) != 0) {
 			std::fprintf(stderr, "hylo-scene: publishing the goal failed\n");
 			return 1;
 		}
