@@ -2,25 +2,20 @@
 # (tests/scenes/), and the models'
 # accuracy on the edges the planner asks for (tools/accuracy/).
 
-# Test: no edge the planner evaluates on a committed scene lies outside its
-# model's trained region.
+# Tests on the committed scenes (tests/scenes/): no edge the planner
+# evaluates lies outside its model's trained region (test_trained_region);
+# every path planned keeps its robot's body and the default margin from every
+# hazard, hylo/clearance.h (test_plan_clearance).
 TRAINED_REGION_TEST := $(BUILD)/test/scenes/test_trained_region
-$(TRAINED_REGION_TEST): tests/scenes/test_trained_region.cpp tools/scene/planner_view.hpp tools/scene/committed.hpp \
-		$(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
-	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
-ALL_TARGETS += $(TRAINED_REGION_TEST)
-TESTS += $(TRAINED_REGION_TEST)
-
-# Test: every path planned on a committed scene keeps its robot's body and
-# the default margin from every hazard (hylo/clearance.h).
 PLAN_CLEARANCE_TEST := $(BUILD)/test/scenes/test_plan_clearance
-$(PLAN_CLEARANCE_TEST): tests/scenes/test_plan_clearance.cpp tools/scene/planner_view.hpp tools/scene/committed.hpp \
-		$(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+SCENE_TESTS := $(TRAINED_REGION_TEST) $(PLAN_CLEARANCE_TEST)
+$(SCENE_TESTS): $(BUILD)/test/scenes/%: tests/scenes/%.cpp tests/scenes/scene_suite.hpp tools/scene/planner_view.hpp \
+		tools/scene/committed.hpp $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/registry.o \
+		$(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(NODE_INC) $< $(filter %.o %.a,$^) $(YAML_LIBS) -lm -o $@
-ALL_TARGETS += $(PLAN_CLEARANCE_TEST)
-TESTS += $(PLAN_CLEARANCE_TEST)
+ALL_TARGETS += $(SCENE_TESTS)
+TESTS += $(SCENE_TESTS)
 
 # Benchmark: the models' errors on the edges the planner evaluates and the
 # edges of its plans, against the trainer's exact solves

@@ -11,24 +11,18 @@
 
 #include "hylo/planner.h"
 #include "tests/tap.hpp"
+#include "tests/scenes/scene_suite.hpp"
 #include "tools/scene/committed.hpp"
 #include "tools/scene/planner_view.hpp"
 
 int main(int argc, char **argv)
 {
-	std::unique_ptr<hylo::scene::CommittedPlanner> committed;
-	try {
-		committed.reset(new hylo::scene::CommittedPlanner);
-	} catch (const std::exception &e) {
-		check(false, "a planner with every committed model", e.what());
+	SceneSuite suite;
+	if (!open_suite(argc, argv, suite))
 		return 1;
-	}
-	hylo_planner *pl = committed->get();
-	std::unique_ptr<hylo_plan> plan(new hylo_plan);
-	std::vector<std::string> scenes(argv + 1, argv + argc);
-	if (scenes.empty())
-		scenes = hylo::scene::committed_scenes();
-	check(scenes.size() >= 8, "the committed scenes", std::to_string(scenes.size()) + " scene files");
+	hylo_planner *pl = suite.committed->get();
+	const std::unique_ptr<hylo_plan> &plan = suite.plan;
+	const std::vector<std::string> &scenes = suite.scenes;
 	for (const std::string &path : scenes) {
 		const hylo::scene::Scene sc = hylo::scene::load(path);
 		const hylo_map_view v = hylo::scene::map_view(sc);
