@@ -49,8 +49,8 @@ TESTS += $(HEADER_PARSE_TEST)
 # The committed models' envelopes against their own predictions
 # (tests/export/test_envelope_models.c), through the node's model registry.
 ENVELOPE_MODELS_TEST := $(BUILD)/test/export/test_envelope_models
-$(ENVELOPE_MODELS_TEST): tests/export/test_envelope_models.c $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
+$(ENVELOPE_MODELS_TEST): tests/export/test_envelope_models.c tools/cost/random_edge.h $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CC) $(C99_FLAGS) $(LDFLAGS) $(ONBOARD_INC) $< $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
+	$(CC) $(C99_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) $< $(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB) $(CMOCKA_LIBS) -lm -o $@
 ALL_TARGETS += $(ENVELOPE_MODELS_TEST)
 TESTS += $(ENVELOPE_MODELS_TEST)

@@ -27,54 +27,10 @@
 #include "hylo/envelope.h"
 #include "hylo/features.h"
 #include "node/registry.h"
+#include "tools/cost/random_edge.h"
 
-#define PI 3.14159265358979323846
 #define EDGES 20000
 #define MAX_VALUES 300000
-
-static uint64_t rng_state;
-
-static double uniform(double lo, double hi)
-{
-	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
-	return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
-}
-
-static double node(const hylo_svr_envelope *e)
-{
-	uint32_t i = (uint32_t)uniform(0, e->n_v);
-
-	return e->v_min + (i < e->n_v ? i : e->n_v - 1) * e->v_step;
-}
-
-/* Random edge `tail -> head` of mode within m's training range. */
-static void random_edge(const hylo_svr_model *m, hylo_mode mode, double *tail, double *head)
-{
-	const hylo_svr_envelope *e = m->envelope;
-	double r = m->max_distance_m, s1 = node(e), s2 = node(e);
-
-	if (mode == HYLO_MODE_FLIGHT) {
-		double dh, dz, phi = uniform(-PI, PI), a1 = uniform(-PI, PI), a2 = uniform(-PI, PI);
-		int k;
-
-		do {
-			dh = uniform(0, r);
-			dz = uniform(-r, r);
-		} while (dh * dh + dz * dz > r * r);
-		for (k = 0; k < 3; k++)
-			tail[k] = uniform(-50, 50);
-		tail[3] = s1 * cos(a1), tail[4] = s1 * sin(a1), tail[5] = 0;
-		head[0] = tail[0] + dh * cos(phi), head[1] = tail[1] + dh * sin(phi), head[2] = tail[2] + dz;
-		head[3] = s2 * cos(a2), head[4] = s2 * sin(a2), head[5] = 0;
-	} else {
-		double d = uniform(0, r), bearing = uniform(-PI, PI);
-
-		tail[0] = uniform(-50, 50), tail[1] = uniform(-50, 50), tail[2] = s1;
-		tail[3] = uniform(-PI, PI);
-		head[0] = tail[0] + d * cos(tail[3] + bearing), head[1] = tail[1] + d * sin(tail[3] + bearing);
-		head[2] = s2, head[3] = uniform(-PI, PI);
-	}
-}
 
 static float scaled[MAX_VALUES];
 
@@ -133,7 +89,7 @@ static void check_model(const hylo_registry_model *r)
 	for (i = 0; i < EDGES; i++) {
 		double tail[HYLO_XS_DIM], head[HYLO_XS_DIM], f[HYLO_MAX_FEATURES], cost, bound;
 
-		random_edge(m, r->mode, tail, head);
+		random_edge(m, r->mode, EDGE_RANDOM, tail, head);
 		hylo_features(r->mode, tail, head, f);
 		cost = hylo_svr_predict(m, f);
 		bound = hylo_envelope_of_edge(m, r->mode, tail, head);

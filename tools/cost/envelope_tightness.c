@@ -24,62 +24,11 @@
 #include "hylo/envelope.h"
 #include "hylo/features.h"
 #include "node/registry.h"
+#include "random_edge.h"
 
-#define PI 3.14159265358979323846
 #define MAX_EDGES 1000000
 
-static uint64_t rng_state;
-
-static double uniform(double lo, double hi)
-{
-	rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
-	return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1.0p-53;
-}
-
-static double node(const hylo_svr_envelope *e)
-{
-	uint32_t i = (uint32_t)uniform(0, e->n_v);
-
-	return e->v_min + (i < e->n_v ? i : e->n_v - 1) * e->v_step;
-}
-
-enum kind { RANDOM, ALIGNED, TURNING };
-
 static const char *kind_name[] = { "random", "aligned", "turning" };
-
-static void random_edge(const hylo_svr_model *m, hylo_mode mode, enum kind kind, double *t, double *h)
-{
-	double r = m->max_distance_m, s1 = node(m->envelope), s2 = node(m->envelope);
-
-	if (mode == HYLO_MODE_FLIGHT) {
-		double dh, dz, phi = uniform(-PI, PI), a1 = uniform(-PI, PI), a2 = uniform(-PI, PI);
-		int k;
-
-		do {
-			dh = uniform(0, r);
-			dz = uniform(-r, r);
-		} while (dh * dh + dz * dz > r * r);
-		if (kind == ALIGNED)
-			a1 = a2 = phi;
-		else if (kind == TURNING)
-			a1 = phi + PI + uniform(-PI / 18, PI / 18);
-		for (k = 0; k < 3; k++)
-			t[k] = uniform(-50, 50);
-		t[3] = s1 * cos(a1), t[4] = s1 * sin(a1), t[5] = 0;
-		h[0] = t[0] + dh * cos(phi), h[1] = t[1] + dh * sin(phi), h[2] = t[2] + dz;
-		h[3] = s2 * cos(a2), h[4] = s2 * sin(a2), h[5] = 0;
-	} else {
-		double d = uniform(0, r), bearing = uniform(-PI, PI), turn = uniform(-PI, PI);
-
-		if (kind == ALIGNED)
-			bearing = turn = 0;
-		else if (kind == TURNING)
-			bearing = PI + uniform(-PI / 18, PI / 18);
-		t[0] = uniform(-50, 50), t[1] = uniform(-50, 50), t[2] = s1, t[3] = uniform(-PI, PI);
-		h[0] = t[0] + d * cos(t[3] + bearing), h[1] = t[1] + d * sin(t[3] + bearing);
-		h[2] = s2, h[3] = t[3] + turn;
-	}
-}
 
 static int compare(const void *a, const void *b)
 {
@@ -96,7 +45,7 @@ static double quantile(double *v, int n, double q)
 static double env_ratio[MAX_EDGES], floor_ratio[MAX_EDGES];
 
 /* Returns the number of edges below the envelope. */
-static int measure(const hylo_registry_model *r, enum kind kind, int n, uint64_t seed)
+static int measure(const hylo_registry_model *r, enum edge_kind kind, int n, uint64_t seed)
 {
 	const hylo_svr_model *m = r->model;
 	double least = INFINITY;
@@ -176,9 +125,9 @@ int main(int argc, char **argv)
 		       r->mode == HYLO_MODE_FLIGHT ? "m" : "rad", e->v_step,
 		       e->n_d * e->n_z * e->n_v * e->n_v, (unsigned)(e->n_d * e->n_z * e->n_v * e->n_v * sizeof(float)),
 		       n);
-		bad |= measure(r, RANDOM, n, seed) > 0;
-		bad |= measure(r, ALIGNED, n, seed + 1) > 0;
-		bad |= measure(r, TURNING, n, seed + 2) > 0;
+		bad |= measure(r, EDGE_RANDOM, n, seed) > 0;
+		bad |= measure(r, EDGE_ALIGNED, n, seed + 1) > 0;
+		bad |= measure(r, EDGE_TURNING, n, seed + 2) > 0;
 	}
 	return bad;
 }
