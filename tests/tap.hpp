@@ -5,6 +5,8 @@
 #define HYLO_TESTS_TAP_HPP
 
 #include <cstdio>
+#include <functional>
+#include <stdexcept>
 #include <string>
 
 namespace tap {
@@ -21,6 +23,17 @@ inline void check(bool ok, const std::string &name, const std::string &why = "")
 			std::printf("# %s\n", why.c_str());
 	}
 	std::fflush(stdout);
+}
+
+// f throws std::invalid_argument with needle in its message.
+inline void check_throws(const std::function<void()> &f, const std::string &needle, const std::string &name)
+{
+	try {
+		f();
+		check(false, name, "no exception");
+	} catch (const std::invalid_argument &e) {
+		check(std::string(e.what()).find(needle) != std::string::npos, name, e.what());
+	}
 }
 
 inline int tap_finish()

@@ -17,16 +17,6 @@
 
 namespace {
 
-void check_throws(const std::function<void()> &f, const std::string &needle, const std::string &name)
-{
-	try {
-		f();
-		check(false, name, "no exception");
-	} catch (const std::invalid_argument &e) {
-		check(std::string(e.what()).find(needle) != std::string::npos, name, e.what());
-	}
-}
-
 struct Data {
 	std::vector<double> x, cost;
 	std::vector<bool> feasible;

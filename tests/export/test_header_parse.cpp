@@ -21,16 +21,6 @@ using namespace hylo::trainer;
 
 namespace {
 
-void check_throws(const std::function<void()> &f, const std::string &needle, const std::string &name)
-{
-	try {
-		f();
-		check(false, name, "no exception");
-	} catch (const std::invalid_argument &e) {
-		check(std::string(e.what()).find(needle) != std::string::npos, name, e.what());
-	}
-}
-
 SvrExport small(const std::string &mode, int nf)
 {
 	SvrExport m;
