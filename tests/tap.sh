@@ -20,3 +20,12 @@ tap_check() {
 }
 
 tap_finish() { echo "1..$TAP_N"; [ "$TAP_FAILED" -eq 0 ]; }
+
+# tap_need_netns NAME...: where no network namespace can be created, reports
+# the named checks as skipped (never as passed) and ends the test.
+tap_need_netns() {
+  unshare --net true 2>/dev/null && return 0
+  local n
+  for n in "$@"; do tap_skip "$n" "cannot create a network namespace here"; done
+  tap_finish; exit
+}

@@ -17,10 +17,7 @@ NAMES=("a plan in progress while 100 goals arrive: 101 answers, none missing or 
        "a map at capacity (512 x 512 cells) over udpm:// is taken 20 of 20 times"
        "the node says so when the kernel caps its receive buffer")
 
-if ! unshare --net true 2>/dev/null; then
-  for n in "${NAMES[@]}"; do tap_skip "$n" "cannot create a network namespace here"; done
-  tap_finish; exit
-fi
+tap_need_netns "${NAMES[@]}"
 
 unshare --net env B="$B" T="$T" bash -c '
 set -u

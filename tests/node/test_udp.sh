@@ -17,10 +17,7 @@ NAMES=("node answers the scene publisher's goal over UDP"
        "live plans equal the library's answers (plan_check on the lcm-logger log)"
        "logplayer replay into a new node gives identical plans")
 
-if ! unshare --net true 2>/dev/null; then
-  for n in "${NAMES[@]}"; do tap_skip "$n" "cannot create a network namespace here"; done
-  tap_finish; exit
-fi
+tap_need_netns "${NAMES[@]}"
 PY=.venv/bin/python
 [ -x "$PY" ] && "$PY" -c "import lcm, yaml" 2>/dev/null || PY=""
 
