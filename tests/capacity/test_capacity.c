@@ -133,9 +133,7 @@ static int setup(void **state)
 	if (!pl || !plan)
 		return -1;
 	tu_robots(robots, &costs);
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TU_N_ROBOTS;
+	cfg = tu_config(robots, TU_N_ROBOTS);
 	if (hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		return -1;
 	tu_river(&river);

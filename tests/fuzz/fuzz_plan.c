@@ -35,9 +35,7 @@ static void init(void)
 	if (!planner || !plan)
 		abort();
 	tu_robots(robots, &costs);
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TU_N_ROBOTS;
+	cfg = tu_config(robots, TU_N_ROBOTS);
 	if (hylo_planner_init(planner, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		abort();
 }

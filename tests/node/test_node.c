@@ -758,9 +758,7 @@ static int setup(void **state)
 	if (!planner || !reference || !plan || !ref_plan || !buf || !lcm)
 		return -1;
 	tu_robots(robots, &costs);
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TU_N_ROBOTS;
+	cfg = tu_config(robots, TU_N_ROBOTS);
 	if (hylo_planner_init(planner, TU_PLANNER_BYTES, &cfg) != HYLO_OK ||
 	    hylo_planner_init(reference, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		return -1;

@@ -125,9 +125,7 @@ static void test_planner_never_allocates(void **state)
 	tu_river(&maps[0]);
 	tu_chasm(&maps[1]);
 	tu_di(&maps[2]);
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TU_N_ROBOTS;
+	cfg = tu_config(robots, TU_N_ROBOTS);
 
 	calls = 0;
 	armed = 1;

@@ -28,9 +28,7 @@ static void init_planner(hylo_planner *pl)
 {
 	hylo_planner_config cfg;
 
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TU_N_ROBOTS;
+	cfg = tu_config(robots, TU_N_ROBOTS);
 	assert_int_equal(hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg), HYLO_OK);
 }
 
@@ -645,9 +643,7 @@ static void test_feasibility_classifier(void **state)
 	{
 		hylo_planner_config cfg;
 
-		memset(&cfg, 0, sizeof cfg);
-		cfg.robots = robots;
-		cfg.n_robots = TU_N_ROBOTS;
+		cfg = tu_config(robots, TU_N_ROBOTS);
 		assert_int_equal(hylo_planner_init(planner, TU_PLANNER_BYTES, &cfg), HYLO_E_BAD_VALUE);
 		assert_non_null(strstr(hylo_planner_reason(planner), "feasibility"));
 	}

@@ -33,9 +33,7 @@ static hylo_status init_with(hylo_real margin_m)
 {
 	hylo_planner_config cfg;
 
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TU_N_ROBOTS;
+	cfg = tu_config(robots, TU_N_ROBOTS);
 	cfg.margin_m = margin_m;
 	return hylo_planner_init(planner, TU_PLANNER_BYTES, &cfg);
 }

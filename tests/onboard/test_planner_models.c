@@ -50,9 +50,7 @@ static hylo_planner_config config(hylo_clock_fn clock)
 {
 	hylo_planner_config cfg;
 
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TM_N_ROBOTS;
+	cfg = tu_config(robots, TM_N_ROBOTS);
 	cfg.clock = clock;
 	return cfg;
 }

@@ -30,24 +30,17 @@ static inline hylo_mode_model tm_mode(hylo_mode mode, const hylo_svr_model *m, c
 static inline void tm_robots(hylo_robot robots[TM_N_ROBOTS])
 {
 	memset(robots, 0, TM_N_ROBOTS * sizeof *robots);
-	robots[0].name = "ambot";
-	robots[0].n_modes = 2;
-	robots[0].modes[0] = tm_mode(HYLO_MODE_GROUND, &hylo_model_ambot_ground,
-					&hylo_model_ambot_ground_feasibility);
-	robots[0].modes[1] = tm_mode(HYLO_MODE_MARINE, &hylo_model_ambot_marine,
-					&hylo_model_ambot_marine_feasibility);
-	robots[1].name = "drivocopter";
-	robots[1].n_modes = 2;
-	robots[1].modes[0] = tm_mode(HYLO_MODE_GROUND, &hylo_model_drivocopter_ground,
-					&hylo_model_drivocopter_ground_feasibility);
-	robots[1].modes[1] = tm_mode(HYLO_MODE_FLIGHT, &hylo_model_drivocopter_flight,
-					&hylo_model_drivocopter_flight_feasibility);
+	tu_robot2(&robots[0], "ambot",
+		  tm_mode(HYLO_MODE_GROUND, &hylo_model_ambot_ground, &hylo_model_ambot_ground_feasibility),
+		  tm_mode(HYLO_MODE_MARINE, &hylo_model_ambot_marine, &hylo_model_ambot_marine_feasibility));
+	tu_robot2(&robots[1], "drivocopter",
+		  tm_mode(HYLO_MODE_GROUND, &hylo_model_drivocopter_ground, &hylo_model_drivocopter_ground_feasibility),
+		  tm_mode(HYLO_MODE_FLIGHT, &hylo_model_drivocopter_flight, &hylo_model_drivocopter_flight_feasibility));
 	robots[1].switch_cost[0] = HYLO_MODEL_DRIVOCOPTER_FLIGHT_TAKEOFF_J;
 	robots[1].switch_cost[1] = HYLO_MODEL_DRIVOCOPTER_FLIGHT_LANDING_J;
-	robots[2].name = "di";
-	robots[2].n_modes = 2;
-	robots[2].modes[0] = tm_mode(HYLO_MODE_DI_NEG, &hylo_model_di_di_neg, &hylo_model_di_di_neg_feasibility);
-	robots[2].modes[1] = tm_mode(HYLO_MODE_DI_POS, &hylo_model_di_di_pos, &hylo_model_di_di_pos_feasibility);
+	tu_robot2(&robots[2], "di",
+		  tm_mode(HYLO_MODE_DI_NEG, &hylo_model_di_di_neg, &hylo_model_di_di_neg_feasibility),
+		  tm_mode(HYLO_MODE_DI_POS, &hylo_model_di_di_pos, &hylo_model_di_di_pos_feasibility));
 }
 
 /* 14 m x 8 m of ground with water at x in [5, 9). */

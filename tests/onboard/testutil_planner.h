@@ -173,6 +173,15 @@ static inline hylo_mode_model tu_mode(hylo_mode mode, tu_cost *tc)
 	return mm;
 }
 
+/* Names robot r and gives it the two modes a and b. */
+static inline void tu_robot2(hylo_robot *r, const char *name, hylo_mode_model a, hylo_mode_model b)
+{
+	r->name = name;
+	r->n_modes = 2;
+	r->modes[0] = a;
+	r->modes[1] = b;
+}
+
 /* ambot, drivocopter, di, a ground-only rover, all on one cost context, and
  * a ghost robot that has no cost model. */
 #define TU_N_ROBOTS 5
@@ -185,26 +194,28 @@ static inline void tu_robots(hylo_robot robots[TU_N_ROBOTS], tu_cost *tc)
 	tc->rate[HYLO_MODE_DI_NEG] = 1.0;
 	tc->rate[HYLO_MODE_DI_POS] = 2.0;
 	memset(robots, 0, TU_N_ROBOTS * sizeof *robots);
-	robots[0].name = "ambot";
-	robots[0].n_modes = 2;
-	robots[0].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
-	robots[0].modes[1] = tu_mode(HYLO_MODE_MARINE, tc);
-	robots[1].name = "drivocopter";
-	robots[1].n_modes = 2;
-	robots[1].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
-	robots[1].modes[1] = tu_mode(HYLO_MODE_FLIGHT, tc);
+	tu_robot2(&robots[0], "ambot", tu_mode(HYLO_MODE_GROUND, tc), tu_mode(HYLO_MODE_MARINE, tc));
+	tu_robot2(&robots[1], "drivocopter", tu_mode(HYLO_MODE_GROUND, tc), tu_mode(HYLO_MODE_FLIGHT, tc));
 	robots[1].switch_cost[0] = 300; /* takeoff */
 	robots[1].switch_cost[1] = 150; /* landing */
-	robots[2].name = "di";
-	robots[2].n_modes = 2;
-	robots[2].modes[0] = tu_mode(HYLO_MODE_DI_NEG, tc);
-	robots[2].modes[1] = tu_mode(HYLO_MODE_DI_POS, tc);
+	tu_robot2(&robots[2], "di", tu_mode(HYLO_MODE_DI_NEG, tc), tu_mode(HYLO_MODE_DI_POS, tc));
 	robots[3].name = "rover";
 	robots[3].n_modes = 1;
 	robots[3].modes[0] = tu_mode(HYLO_MODE_GROUND, tc);
 	robots[4].name = "ghost";
 	robots[4].n_modes = 1;
 	robots[4].modes[0].mode = HYLO_MODE_GROUND;
+}
+
+/* A planner config for n robots: no clock, the default margin. */
+static inline hylo_planner_config tu_config(const hylo_robot *robots, uint32_t n)
+{
+	hylo_planner_config cfg;
+
+	memset(&cfg, 0, sizeof cfg);
+	cfg.robots = robots;
+	cfg.n_robots = n;
+	return cfg;
 }
 
 static const hylo_real tu_speeds[] = { 0.0, 0.5, 1.0 };

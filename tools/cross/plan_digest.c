@@ -55,9 +55,7 @@ static int model_plans(void)
 	int k, rc = 0;
 
 	tm_robots(robots);
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TM_N_ROBOTS;
+	cfg = tu_config(robots, TM_N_ROBOTS);
 	size = hylo_planner_size(&cfg);
 	pl = malloc(size);
 	if (!pl || !plan || hylo_planner_init(pl, size, &cfg) != HYLO_OK)
@@ -100,9 +98,7 @@ int main(void)
 	tu_robots(robots, &costs);
 	robots[2].modes[0].model = &hylo_model_di_di_neg;   /* di on the trained SVRs */
 	robots[2].modes[1].model = &hylo_model_di_di_pos;
-	memset(&cfg, 0, sizeof cfg);
-	cfg.robots = robots;
-	cfg.n_robots = TU_N_ROBOTS;
+	cfg = tu_config(robots, TU_N_ROBOTS);
 	if (hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		return 1;
 	tu_river(&maps[0]);
