@@ -75,9 +75,8 @@ static void test_wrap_works(void **state)
 	assert_int_equal(calls, 2);
 }
 
-static void run_scenes(hylo_planner *pl, hylo_plan *plan, tu_map *maps, int n_maps)
+static void run_scenes(hylo_planner *pl, hylo_plan *plan, tu_map *maps, hylo_goal *goals, int n_maps)
 {
-	hylo_goal goals[3] = { tu_goal_river(), tu_goal_chasm(), tu_goal_di() };
 	hylo_goal bad;
 	hylo_map_view v;
 	int k, alg;
@@ -110,7 +109,8 @@ static void test_planner_never_allocates(void **state)
 	hylo_robot robots[TU_N_ROBOTS];
 	hylo_planner_config cfg;
 	tu_cost costs;
-	tu_map maps[3];
+	tu_map maps[TU_N_SCENES];
+	hylo_goal goals[TU_N_SCENES];
 	int k;
 
 	(void)state;
@@ -122,18 +122,16 @@ static void test_planner_never_allocates(void **state)
 		coef[k] = 0.5 + 0.1 * (k % 5);
 	tu_robots(robots, &costs);
 	robots[0].modes[0].model = &model;   /* ambot drives on the SVR */
-	tu_river(&maps[0]);
-	tu_chasm(&maps[1]);
-	tu_di(&maps[2]);
+	tu_scenes(maps, goals);
 	cfg = tu_config(robots, TU_N_ROBOTS);
 
 	calls = 0;
 	armed = 1;
 	assert_int_equal(hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg), HYLO_OK);
-	run_scenes(pl, plan, maps, 3);
+	run_scenes(pl, plan, maps, goals, TU_N_SCENES);
 	armed = 0;
 	assert_int_equal(calls, 0);
-	for (k = 0; k < 3; k++)
+	for (k = 0; k < TU_N_SCENES; k++)
 		tu_map_free(&maps[k]);
 	free(plan);
 	free(pl);

@@ -288,4 +288,18 @@ static inline hylo_goal tu_goal_di(void)
 	return g;
 }
 
+/* The three scenes of the fixtures, each with its goal: river, chasm, di
+ * (free the maps with tu_map_free). */
+#define TU_N_SCENES 3
+
+static inline void tu_scenes(tu_map maps[TU_N_SCENES], hylo_goal goals[TU_N_SCENES])
+{
+	tu_river(&maps[0]);
+	tu_chasm(&maps[1]);
+	tu_di(&maps[2]);
+	goals[0] = tu_goal_river();
+	goals[1] = tu_goal_chasm();
+	goals[2] = tu_goal_di();
+}
+
 #endif

@@ -88,9 +88,9 @@ int main(void)
 	hylo_robot robots[TU_N_ROBOTS];
 	hylo_planner_config cfg;
 	tu_cost costs;
-	tu_map maps[3];
-	hylo_goal goals[3];
-	const char *names[3] = { "river", "chasm", "di" };
+	tu_map maps[TU_N_SCENES];
+	hylo_goal goals[TU_N_SCENES];
+	const char *names[TU_N_SCENES] = { "river", "chasm", "di" };
 	int k, alg;
 
 	if (!pl || !plan)
@@ -101,13 +101,8 @@ int main(void)
 	cfg = tu_config(robots, TU_N_ROBOTS);
 	if (hylo_planner_init(pl, TU_PLANNER_BYTES, &cfg) != HYLO_OK)
 		return 1;
-	tu_river(&maps[0]);
-	tu_chasm(&maps[1]);
-	tu_di(&maps[2]);
-	goals[0] = tu_goal_river();
-	goals[1] = tu_goal_chasm();
-	goals[2] = tu_goal_di();
-	for (k = 0; k < 3; k++) {
+	tu_scenes(maps, goals);
+	for (k = 0; k < TU_N_SCENES; k++) {
 		hylo_map_view v = tu_view(&maps[k]);
 
 		if (hylo_planner_set_map(pl, &v) != HYLO_OK)
@@ -119,7 +114,7 @@ int main(void)
 			print_plan(names[k], alg ? "dijkstra" : "astar", plan);
 		}
 	}
-	for (k = 0; k < 3; k++)
+	for (k = 0; k < TU_N_SCENES; k++)
 		tu_map_free(&maps[k]);
 	free(pl);
 	free(plan);
