@@ -75,8 +75,7 @@ static inline hylo_goal tm_river_goal(void)
 {
 	hylo_goal g = tu_goal(HYLO_MODE_GROUND, 1, 4, HYLO_MODE_GROUND, 13, 5, 3, 2.0, 3.5);
 
-	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tu_speeds, 3);
-	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings, 4);
+	tu_grids(&g.sampling, tu_speeds, 3, tu_headings, 4, NULL, 0);
 	return g;
 }
 
@@ -86,9 +85,7 @@ static inline hylo_goal tm_chasm_goal(void)
 
 	g.sampling.air_spacing = 3.0;
 	g.sampling.air_connect_radius = 6.0;
-	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tm_fast, 2);
-	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings_x, 2);
-	tu_grid(g.sampling.air_speeds, &g.sampling.n_air_speeds, tu_air_speeds, 2);
+	tu_grids(&g.sampling, tm_fast, 2, tu_headings_x, 2, tu_air_speeds, 2);
 	return g;
 }
 

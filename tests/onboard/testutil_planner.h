@@ -248,12 +248,23 @@ static inline hylo_goal tu_goal(int start_mode, hylo_real sx, hylo_real sy, int 
 }
 
 /* Sets a sampling grid (speeds, headings or air_speeds) and its count to
- * the n values of v (n <= HYLO_MAX_GRID). */
+ * the n values of v (n <= HYLO_MAX_GRID; v may be NULL when n is 0). */
 static inline void tu_grid(hylo_real grid[HYLO_MAX_GRID], uint32_t *count, const hylo_real *v,
 			   uint32_t n)
 {
-	memcpy(grid, v, n * sizeof *grid);
+	if (n)
+		memcpy(grid, v, n * sizeof *grid);
 	*count = n;
+}
+
+/* The three grids of s at once. */
+static inline void tu_grids(hylo_sampling *s, const hylo_real *speeds, uint32_t n_speeds,
+			    const hylo_real *headings, uint32_t n_headings, const hylo_real *air_speeds,
+			    uint32_t n_air_speeds)
+{
+	tu_grid(s->speeds, &s->n_speeds, speeds, n_speeds);
+	tu_grid(s->headings, &s->n_headings, headings, n_headings);
+	tu_grid(s->air_speeds, &s->n_air_speeds, air_speeds, n_air_speeds);
 }
 
 static inline hylo_goal tu_goal_river(void)
@@ -261,8 +272,7 @@ static inline hylo_goal tu_goal_river(void)
 	hylo_goal g = tu_goal(HYLO_MODE_GROUND, 2, 16, HYLO_MODE_GROUND, 28, 4, 1, 2.0, 4.5);
 
 	g.request_id = 7;
-	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tu_speeds, 3);
-	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings, 4);
+	tu_grids(&g.sampling, tu_speeds, 3, tu_headings, 4, NULL, 0);
 	return g;
 }
 
@@ -274,9 +284,7 @@ static inline hylo_goal tu_goal_chasm(void)
 	g.sampling.air_spacing = 4.0;
 	g.sampling.guard_spacing = 4.0;
 	g.sampling.air_connect_radius = 9.0;
-	tu_grid(g.sampling.speeds, &g.sampling.n_speeds, tu_speeds, 2);
-	tu_grid(g.sampling.headings, &g.sampling.n_headings, tu_headings_x, 2);
-	tu_grid(g.sampling.air_speeds, &g.sampling.n_air_speeds, tu_air_speeds, 2);
+	tu_grids(&g.sampling, tu_speeds, 2, tu_headings_x, 2, tu_air_speeds, 2);
 	return g;
 }
 
