@@ -406,9 +406,6 @@ static hylo_status check_reals(const hylo_real *v, uint32_t n, const char *field
 
 hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r)
 {
-	static const char *const grid_names[3] = { "speeds_mps", "headings_rad", "air_speeds_mps" };
-	const hylo_real *grids[3];
-	uint32_t counts[3], k;
 	hylo_status st;
 
 	if (!g)
@@ -449,21 +446,9 @@ hylo_status hylo_goal_check(const hylo_goal *g, hylo_reason *r)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "alternatives %lu: at most HYLO_MAX_ALTERNATIVES = %d",
 				 (unsigned long)g->alternatives, HYLO_MAX_ALTERNATIVES);
-	grids[0] = g->sampling.speeds;
-	grids[1] = g->sampling.headings;
-	grids[2] = g->sampling.air_speeds;
-	counts[0] = g->sampling.n_speeds;
-	counts[1] = g->sampling.n_headings;
-	counts[2] = g->sampling.n_air_speeds;
-	for (k = 0; k < 3; k++) {
-		if (counts[k] > HYLO_MAX_GRID)
-			return hylo_fail(r, HYLO_E_CAP_GRID,
-					 "%s has %u entries, more than HYLO_MAX_GRID = %d",
-					 grid_names[k], (unsigned)counts[k], HYLO_MAX_GRID);
-		st = check_reals(grids[k], counts[k], grid_names[k], 0, r);
-		if (st != HYLO_OK)
-			return st;
-	}
+	st = hylo_sampling_check_grids(&g->sampling, r);
+	if (st != HYLO_OK)
+		return st;
 	hylo_reason_clear(r);
 	return HYLO_OK;
 }

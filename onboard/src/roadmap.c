@@ -117,18 +117,42 @@ int hylo_sampling_equal(const hylo_sampling *a, const hylo_sampling *b)
 	       grid_equal(a->air_speeds, b->air_speeds, a->n_air_speeds);
 }
 
+hylo_status hylo_sampling_check_grids(const hylo_sampling *s, hylo_reason *r)
+{
+	static const char *const names[3] = { "speeds_mps", "headings_rad", "air_speeds_mps" };
+	const hylo_real *grids[3];
+	uint32_t counts[3], k, i;
+
+	grids[0] = s->speeds;
+	grids[1] = s->headings;
+	grids[2] = s->air_speeds;
+	counts[0] = s->n_speeds;
+	counts[1] = s->n_headings;
+	counts[2] = s->n_air_speeds;
+	for (k = 0; k < 3; k++) {
+		if (counts[k] > HYLO_MAX_GRID)
+			return hylo_fail(r, HYLO_E_CAP_GRID,
+					 "%s has %u entries, more than HYLO_MAX_GRID = %d",
+					 names[k], (unsigned)counts[k], HYLO_MAX_GRID);
+		for (i = 0; i < counts[k]; i++)
+			if (!isfinite(grids[k][i]))
+				return hylo_fail(r, HYLO_E_BAD_VALUE, "%s[%d] = %g must be finite",
+						 names[k], (int)i, grids[k][i]);
+	}
+	return HYLO_OK;
+}
+
+/* A grid that has passed hylo_sampling_check_grids: non-empty where the
+ * robot needs it, >= 0 where it holds speeds' magnitudes. */
 static hylo_status check_grid(const char *name, const hylo_real *v, uint32_t n,
 			      int need, int non_negative, hylo_reason *r)
 {
 	uint32_t i;
 
-	if (n > HYLO_MAX_GRID)
-		return hylo_fail(r, HYLO_E_CAP_GRID, "%s has %u entries, more than HYLO_MAX_GRID = %d",
-				 name, (unsigned)n, HYLO_MAX_GRID);
 	if (need && n == 0)
 		return hylo_fail(r, HYLO_E_BAD_VALUE, "%s is empty", name);
 	for (i = 0; i < n; i++) {
-		if (!isfinite(v[i]) || (non_negative && v[i] < 0))
+		if (non_negative && v[i] < 0)
 			return hylo_fail(r, HYLO_E_BAD_VALUE, "%s[%u] = %g is not a valid value",
 					 name, (unsigned)i, v[i]);
 	}
@@ -191,7 +215,9 @@ static hylo_status check_sampling(const hylo_robot *robot, const hylo_sampling *
 	if (robot->n_modes == 2 && !finite_positive(s->guard_spacing))
 		return hylo_fail(r, HYLO_E_BAD_VALUE, "guard_spacing_m = %g must be finite and > 0",
 				 s->guard_spacing);
-	st = check_grid("speeds_mps", s->speeds, s->n_speeds, planar, 0, r);
+	st = hylo_sampling_check_grids(s, r);
+	if (st == HYLO_OK)
+		st = check_grid("speeds_mps", s->speeds, s->n_speeds, planar, 0, r);
 	if (st == HYLO_OK)
 		st = check_grid("headings_rad", s->headings, s->n_headings, planar || flight, 0, r);
 	if (st == HYLO_OK)

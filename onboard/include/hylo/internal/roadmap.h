@@ -142,6 +142,13 @@ hylo_real hylo_roadmap_distance(hylo_point a, hylo_point b);
 /** 1 when the two samplings are identical (the roadmap can be reused). */
 int hylo_sampling_equal(const hylo_sampling *a, const hylo_sampling *b);
 
+/**
+ * Checks s's grids as hylo_goal_check does (it calls this): each at most
+ * HYLO_MAX_GRID entries (HYLO_E_CAP_GRID), every entry finite. The checks
+ * that need the robot are hylo_roadmap_build's.
+ */
+hylo_status hylo_sampling_check_grids(const hylo_sampling *s, hylo_reason *r);
+
 #ifdef __cplusplus
 }
 #endif
