@@ -41,16 +41,24 @@ static void set(tu_map *m)
 	assert_int_equal(hylo_planner_set_map(pl, &v), HYLO_OK);
 }
 
+/* Goal g sampled with other spacings, radius and grid sizes (the fixture's
+ * grids cut to n_speeds and n_headings entries). */
+static hylo_goal resampled(hylo_goal g, hylo_real spacing, hylo_real guard_spacing,
+			   hylo_real connect_radius, uint32_t n_speeds, uint32_t n_headings)
+{
+	g.sampling.spacing = spacing;
+	g.sampling.guard_spacing = guard_spacing;
+	g.sampling.connect_radius = connect_radius;
+	g.sampling.n_speeds = n_speeds;
+	g.sampling.n_headings = n_headings;
+	return g;
+}
+
 /* A request that fits, answered correctly after each failure. */
 static void fits(void)
 {
-	hylo_goal g = tu_goal_river();
+	hylo_goal g = resampled(tu_goal_river(), 3, 3, 5, 1, 2);
 
-	g.sampling.spacing = 3;
-	g.sampling.guard_spacing = 3;
-	g.sampling.connect_radius = 5;
-	g.sampling.n_speeds = 1;
-	g.sampling.n_headings = 2;
 	set(&river);
 	assert_int_equal(hylo_planner_plan(pl, &g, plan), HYLO_OK);
 	assert_int_equal(plan->outcome, HYLO_FOUND);
@@ -58,67 +66,54 @@ static void fits(void)
 
 static void test_positions(void **state)
 {
-	hylo_goal g = tu_goal_river();
+	hylo_goal g = resampled(tu_goal_river(), 0.5, 2, 4.5, 3, 4);
 
 	(void)state;
 	set(&river);
-	g.sampling.spacing = 0.5;
 	expect_cap(HYLO_E_CAP_POSITIONS, &g);
 	fits();
 }
 
 static void test_nodes(void **state)
 {
-	hylo_goal g = tu_goal_river();
+	/* 241 positions x 12 combinations */
+	hylo_goal g = resampled(tu_goal_river(), 1.5, 1.5, 3, 3, 4);
 
 	(void)state;
 	set(&river);
-	g.sampling.spacing = 1.5;     /* 241 positions x 12 combinations */
-	g.sampling.guard_spacing = 1.5;
-	g.sampling.connect_radius = 3;
 	expect_cap(HYLO_E_CAP_NODES, &g);
 	fits();
 }
 
 static void test_adjacency(void **state)
 {
-	hylo_goal g = tu_goal_river();
+	/* 215 positions, about 9000 neighbour entries */
+	hylo_goal g = resampled(tu_goal_river(), 1.5, 4, 10, 1, 1);
 
 	(void)state;
 	set(&river);
-	g.sampling.spacing = 1.5;     /* 215 positions, about 9000 neighbour entries */
-	g.sampling.guard_spacing = 4;
-	g.sampling.connect_radius = 10;
-	g.sampling.n_speeds = 1;
-	g.sampling.n_headings = 1;
 	expect_cap(HYLO_E_CAP_ADJACENCY, &g);
 	fits();
 }
 
 static void test_successors(void **state)
 {
-	hylo_goal g = tu_goal_river();
+	/* about 26 neighbours x 12 combinations */
+	hylo_goal g = resampled(tu_goal_river(), 3, 3, 14, 3, 4);
 
 	(void)state;
 	set(&river);
-	g.sampling.spacing = 3;       /* about 26 neighbours x 12 combinations */
-	g.sampling.guard_spacing = 3;
-	g.sampling.connect_radius = 14;
-	g.sampling.n_speeds = 3;
-	g.sampling.n_headings = 4;
 	expect_cap(HYLO_E_CAP_SUCCESSORS, &g);
 	fits();
 }
 
 static void test_waypoints(void **state)
 {
-	hylo_goal g = tu_goal_di();
+	/* a path of about 22 waypoints */
+	hylo_goal g = resampled(tu_goal_di(), 0.1, 0.1, 0.15, 0, 0);
 
 	(void)state;
 	set(&di);
-	g.sampling.spacing = 0.1;     /* a path of about 22 waypoints */
-	g.sampling.guard_spacing = 0.1;
-	g.sampling.connect_radius = 0.15;
 	expect_cap(HYLO_E_CAP_WAYPOINTS, &g);
 	fits();
 }
