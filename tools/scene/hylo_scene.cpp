@@ -6,6 +6,8 @@
 #include <ctime>
 #include <string>
 
+#include <unistd.h>
+
 #include <lcm/lcm-cpp.hpp>
 
 #include "hylo_msg.h"
@@ -168,6 +170,7 @@ int run(int argc, char **argv)
 		hylo_goal_t goal;
 		hylo_msg_goal(&request, &goal);
 		goal.utime = utime_now();
+		goal.requester_id = getpid();   // as hylo_client.py: each publisher its own queue slot
 		// As the scene says: alternatives 0 is the default, and a grid may be
 		// longer than a hylo_goal holds (the node refuses it then).
 		goal.alternatives = static_cast<int8_t>(sc.goal.alternatives);
