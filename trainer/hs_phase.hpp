@@ -27,9 +27,10 @@
 
 #include <IpTNLP.hpp>
 
-#include "trainer/collocation.hpp"
 #include "trainer/hyperdual.hpp"
 #include "trainer/models.hpp"
+#include "trainer/problem.hpp"
+#include "trainer/solution.hpp"
 
 namespace hylo::trainer::internal {
 
