@@ -11,11 +11,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include <IpIpoptApplication.hpp>
-#include <IpSolveStatistics.hpp>
-#include <IpTNLP.hpp>
-
 #include "trainer/hs_phase.hpp"
+#include "trainer/ipopt_nlp.hpp"
 #include "trainer/models.hpp"
 #include "trainer/replay.hpp"
 
@@ -26,278 +23,11 @@ using internal::Index;
 using internal::Number;
 using internal::PhaseBlock;
 using internal::PhaseSetup;
-
-// A linear row resolved to variable indices of the stacked problem.
-struct Row {
-	std::vector<std::pair<int, double>> terms;
-	double lo = 0, hi = 0;
-};
-
-// The Ipopt problem: phases stacked (variables and constraints in phase
-// order), then the linear rows joining them. Held by SmartPtr, one per solve.
-class CollocationNlp : public Ipopt::TNLP {
-public:
-	CollocationNlp(std::vector<std::unique_ptr<PhaseBlock>> phases, std::vector<Row> rows)
-		: ph_(std::move(phases)), rows_(std::move(rows))
-	{
-		for (const auto &p : ph_) {
-			vo_.push_back(nvar_);
-			co_.push_back(ncon_);
-			nvar_ += p->nvar();
-			ncon_ += p->ncon();
-		}
-	}
-
-	int var_offset(size_t phase) const { return vo_[phase]; }
-	const PhaseBlock &phase(size_t k) const { return *ph_[k]; }
-	size_t n_phases() const { return ph_.size(); }
-	// Start from z (a solution of the same size) instead of the guess.
-	void warm_start(const std::vector<double> &z) { warm_ = z; }
-	const std::vector<double> &solution() const { return z_; }
-
-	bool get_nlp_info(Index &n, Index &m, Index &nnz_jac, Index &nnz_h, IndexStyleEnum &style) override
-	{
-		n = nvar_;
-		m = ncon_ + static_cast<int>(rows_.size());
-		nnz_jac = 0;
-		nnz_h = 0;
-		for (const auto &p : ph_) {
-			nnz_jac += p->nnz_jac();
-			nnz_h += p->nnz_h();
-		}
-		for (const Row &r : rows_)
-			nnz_jac += static_cast<int>(r.terms.size());
-		style = TNLP::C_STYLE;
-		return true;
-	}
-
-	bool get_bounds_info(Index, Number *xl, Number *xu, Index, Number *gl, Number *gu) override
-	{
-		for (size_t k = 0; k < ph_.size(); k++)
-			ph_[k]->bounds(xl + vo_[k], xu + vo_[k], gl + co_[k], gu + co_[k]);
-		for (size_t i = 0; i < rows_.size(); i++) {
-			gl[ncon_ + static_cast<int>(i)] = rows_[i].lo;
-			gu[ncon_ + static_cast<int>(i)] = rows_[i].hi;
-		}
-		return true;
-	}
-
-	bool get_starting_point(Index n, bool, Number *z, bool, Number *, Number *, Index, bool,
-				Number *) override
-	{
-		if (warm_.size() == static_cast<size_t>(n)) {
-			std::copy(warm_.begin(), warm_.end(), z);
-			return true;
-		}
-		for (size_t k = 0; k < ph_.size(); k++)
-			ph_[k]->start(z + vo_[k]);
-		return true;
-	}
-
-	bool get_scaling_parameters(Number &obj_scaling, bool &use_x_scaling, Index, Number *x_scaling,
-				    bool &use_g_scaling, Index, Number *g_scaling) override
-	{
-		double T = 0;
-		for (const auto &p : ph_)
-			T += p->T_guess();
-		obj_scaling = 1.0 / std::max(1.0, T * 10.0);
-		use_x_scaling = true;
-		use_g_scaling = true;
-		for (size_t k = 0; k < ph_.size(); k++)
-			ph_[k]->scaling(x_scaling + vo_[k], g_scaling + co_[k]);
-		for (size_t i = 0; i < rows_.size(); i++)
-			g_scaling[ncon_ + static_cast<int>(i)] = 1.0;
-		return true;
-	}
-
-	bool eval_f(Index, const Number *z, bool new_x, Number &obj) override
-	{
-		obj = 0;
-		for (size_t k = 0; k < ph_.size(); k++)
-			obj += ph_[k]->objective(z + vo_[k], new_x);
-		return true;
-	}
-
-	bool eval_grad_f(Index, const Number *z, bool new_x, Number *g) override
-	{
-		for (size_t k = 0; k < ph_.size(); k++)
-			ph_[k]->gradient(z + vo_[k], new_x, g + vo_[k]);
-		return true;
-	}
-
-	bool eval_g(Index, const Number *z, bool new_x, Index, Number *g) override
-	{
-		for (size_t k = 0; k < ph_.size(); k++)
-			ph_[k]->constraints(z + vo_[k], new_x, g + co_[k]);
-		for (size_t i = 0; i < rows_.size(); i++) {
-			double s = 0;
-			for (const auto &t : rows_[i].terms)
-				s += t.second * z[t.first];
-			g[ncon_ + static_cast<int>(i)] = s;
-		}
-		return true;
-	}
-
-	bool eval_jac_g(Index, const Number *z, bool new_x, Index, Index, Index *iRow, Index *jCol,
-			Number *v) override
-	{
-		int e = 0;
-		for (size_t k = 0; k < ph_.size(); k++) {
-			if (v)
-				ph_[k]->jac_values(z + vo_[k], new_x, v + e);
-			else
-				ph_[k]->jac_structure(iRow + e, jCol + e, vo_[k], co_[k]);
-			e += ph_[k]->nnz_jac();
-		}
-		for (size_t i = 0; i < rows_.size(); i++)
-			for (const auto &t : rows_[i].terms) {
-				if (v) {
-					v[e] = t.second;
-				} else {
-					iRow[e] = ncon_ + static_cast<int>(i);
-					jCol[e] = t.first;
-				}
-				e++;
-			}
-		return true;
-	}
-
-	// The rows are linear: only the phases contribute to the Hessian.
-	bool eval_h(Index, const Number *z, bool, Number sigma, Index, const Number *lambda, bool, Index,
-		    Index *iRow, Index *jCol, Number *v) override
-	{
-		int e = 0;
-		for (size_t k = 0; k < ph_.size(); k++) {
-			if (v)
-				ph_[k]->hess_values(z + vo_[k], sigma, lambda + co_[k], v + e);
-			else
-				ph_[k]->hess_structure(iRow + e, jCol + e, vo_[k]);
-			e += ph_[k]->nnz_h();
-		}
-		return true;
-	}
-
-	void finalize_solution(Ipopt::SolverReturn, Index n, const Number *z, const Number *,
-			       const Number *, Index, const Number *, const Number *, Number,
-			       const Ipopt::IpoptData *, Ipopt::IpoptCalculatedQuantities *) override
-	{
-		z_.assign(z, z + n);
-	}
-
-	// Phase k of the solution.
-	void fill(size_t k, Solution &s) { ph_[k]->fill(z_.data() + vo_[k], s); }
-	// The solution with the phases marked in `which` on meshes of twice the
-	// segments, the others as they are.
-	std::vector<double> refined(const std::vector<bool> &which) const
-	{
-		std::vector<double> out;
-		for (size_t k = 0; k < ph_.size(); k++) {
-			const Number *z = z_.data() + vo_[k];
-			std::vector<double> r = which[k] ? ph_[k]->refine(z) : std::vector<double>(z, z + ph_[k]->nvar());
-			out.insert(out.end(), r.begin(), r.end());
-		}
-		return out;
-	}
-
-private:
-	std::vector<std::unique_ptr<PhaseBlock>> ph_;
-	std::vector<Row> rows_;
-	std::vector<int> vo_, co_;
-	int nvar_ = 0, ncon_ = 0;
-	std::vector<double> z_, warm_;
-};
-
-// Sets o by the type Ipopt registered for its name; false if there is none,
-// the value does not parse as that type, or Ipopt refuses it (silently).
-bool set_ipopt_option(Ipopt::IpoptApplication &app, const IpoptOption &o)
-{
-	Ipopt::SmartPtr<const Ipopt::RegisteredOption> reg = app.RegOptions()->GetOption(o.name);
-	if (!Ipopt::IsValid(reg))
-		return false;
-	Ipopt::SmartPtr<Ipopt::OptionsList> list = app.Options();
-	const char *begin = o.value.c_str(), *end = begin + o.value.size();
-	switch (reg->Type()) {
-	case Ipopt::OT_Number: {
-		double v = 0;
-		auto r = std::from_chars(begin, end, v);
-		return r.ec == std::errc() && r.ptr == end && list->SetNumericValue(o.name, v, true, true);
-	}
-	case Ipopt::OT_Integer: {
-		int v = 0;
-		auto r = std::from_chars(begin, end, v);
-		return r.ec == std::errc() && r.ptr == end && list->SetIntegerValue(o.name, v, true, true);
-	}
-	case Ipopt::OT_String:
-		return list->SetStringValue(o.name, o.value, true, true);
-	default:
-		return false;
-	}
-}
-
-// Ipopt's mumps_permuting_scaling (MUMPS ICNTL(6)): Ipopt's default lets
-// MUMPS choose; 0 skips the column permutation and scaling (MC64).
-constexpr int kMumpsChoosesPermutingScaling = 7;
-
-Ipopt::SmartPtr<Ipopt::IpoptApplication> make_app(const SolveOptions &opt, bool warm, int permuting_scaling)
-{
-	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
-	bool ok = app->Options()->SetIntegerValue("print_level", 0);
-	ok = ok && app->Options()->SetStringValue("sb", "yes");
-	ok = ok && app->Options()->SetNumericValue("tol", opt.tol);
-	ok = ok && app->Options()->SetIntegerValue("max_iter", opt.max_iter);
-	ok = ok && app->Options()->SetStringValue("linear_solver", "mumps");
-	ok = ok && app->Options()->SetIntegerValue("mumps_permuting_scaling", permuting_scaling);
-	ok = ok && app->Options()->SetStringValue("nlp_scaling_method", "user-scaling");
-	if (opt.objective_scale != 1)
-		ok = ok && app->Options()->SetNumericValue("obj_scaling_factor", opt.objective_scale);
-	// Monotone barrier from a small start: the adaptive strategy hit the
-	// iteration limit on stiff friction terms (docs/decisions.md).
-	ok = ok && app->Options()->SetStringValue("mu_strategy", "monotone");
-	// A warm start is already near the optimum: a small barrier keeps it there.
-	ok = ok && app->Options()->SetNumericValue("mu_init", warm ? 1e-5 : 1e-2);
-	if (warm) {
-		ok = ok && app->Options()->SetNumericValue("bound_push", 1e-6);
-		ok = ok && app->Options()->SetNumericValue("bound_frac", 1e-6);
-	}
-	if (!opt.derivative_test_file.empty()) {
-		ok = ok && app->Options()->SetStringValue("derivative_test", "second-order");
-		ok = ok && app->Options()->SetNumericValue("derivative_test_perturbation", opt.derivative_test_perturbation);
-		ok = ok && app->Options()->SetNumericValue("derivative_test_tol", 1e-4);
-		ok = ok && app->Options()->SetStringValue("output_file", opt.derivative_test_file);
-		ok = ok && app->Options()->SetIntegerValue("file_print_level", 5);
-		ok = ok && app->Options()->SetIntegerValue("print_level", 0);
-		ok = ok && app->Options()->SetIntegerValue("max_iter", 0);
-	}
-	for (const IpoptOption &o : opt.ipopt_options)
-		ok = ok && set_ipopt_option(*app, o);
-	if (!ok)
-		throw std::logic_error("an Ipopt option was refused");
-	// An empty options file name: never read ./ipopt.opt (docs/deps.md).
-	if (app->Initialize("") != Ipopt::Solve_Succeeded)
-		throw std::runtime_error("Ipopt failed to initialize");
-	return app;
-}
-
-bool succeeded(Ipopt::ApplicationReturnStatus st)
-{
-	return st == Ipopt::Solve_Succeeded || st == Ipopt::Solved_To_Acceptable_Level;
-}
-
-const char *status_text(Ipopt::ApplicationReturnStatus st)
-{
-	switch (st) {
-	case Ipopt::Solve_Succeeded: return "solved";
-	case Ipopt::Solved_To_Acceptable_Level: return "solved to acceptable level";
-	case Ipopt::Infeasible_Problem_Detected: return "infeasible";
-	case Ipopt::Maximum_Iterations_Exceeded: return "maximum iterations";
-	case Ipopt::Restoration_Failed: return "restoration failed";
-	case Ipopt::Error_In_Step_Computation: return "error in step computation";
-	case Ipopt::Maximum_CpuTime_Exceeded: return "maximum cpu time";
-	case Ipopt::Diverging_Iterates: return "diverging iterates";
-	case Ipopt::Invalid_Number_Detected: return "invalid number";
-	default: return "failed";
-	}
-}
+using internal::kMumpsChoosesPermutingScaling;
+using internal::NlpSettings;
+using internal::NlpStatus;
+using internal::Row;
+using internal::StackedNlp;
 
 // What the solver needs of a mode outside the model templates.
 struct ModeInfo {
@@ -447,7 +177,7 @@ struct Stacked {
 	std::vector<LinearRow> rows;
 };
 
-Ipopt::SmartPtr<CollocationNlp> build(const Stacked &p, double relax)
+std::unique_ptr<StackedNlp> build(const Stacked &p, double relax)
 {
 	std::vector<std::unique_ptr<PhaseBlock>> blocks;
 	std::vector<int> offset;
@@ -468,7 +198,7 @@ Ipopt::SmartPtr<CollocationNlp> build(const Stacked &p, double relax)
 		}
 		rows.push_back(std::move(r));
 	}
-	return new CollocationNlp(std::move(blocks), std::move(rows));
+	return std::make_unique<StackedNlp>(std::move(blocks), std::move(rows));
 }
 
 // A start: every phase's duration guess, and the states phase 0's guess runs
@@ -525,24 +255,20 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	// A step that runs out of its own limit gives its start up.
 	const bool give_up = step_opt.max_iter < opt.max_iter || opt.step_max_iter > 0;
 	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
-		       Ipopt::SmartPtr<CollocationNlp> &nlp, bool warm, const SolveOptions &o) {
+		       std::unique_ptr<StackedNlp> &nlp, bool warm, const SolveOptions &o) {
 		nlp = build(p, relax);
-		if (!start.empty())
-			nlp->warm_start(start);
-		auto app = make_app(o, warm, permuting_scaling);
-		Ipopt::ApplicationReturnStatus st = app->OptimizeTNLP(nlp);
-		int it = Ipopt::IsValid(app->Statistics()) ? app->Statistics()->IterationCount() : 0;
+		NlpStatus st = nlp->solve(o, start, NlpSettings{warm, permuting_scaling});
 		if (debug)
 			std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n",
-				     p.setups[0].T_guess, p.setups[0].segments, relax, status_text(st), it);
-		return std::make_pair(st, it);
+				     p.setups[0].T_guess, p.setups[0].segments, relax, st.text(), st.iterations);
+		return st;
 	};
 	// A start after its continuation on the coarse mesh: the cost (with the
 	// switches') and duration it reached there.
 	struct Coarse {
 		Stacked p;
-		Ipopt::SmartPtr<CollocationNlp> nlp;
-		std::pair<Ipopt::ApplicationReturnStatus, int> res{Ipopt::Solve_Succeeded, 0};
+		std::unique_ptr<StackedNlp> nlp;
+		NlpStatus res;   // a success of no iterations until a solve
 		double cost = 0, T = 0;
 	};
 	std::string last_status = "no start";   // Ipopt's status of the last start that failed
@@ -572,13 +298,13 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)
 				continue;
 			c.res = run(p, relax, start, c.nlp, !start.empty(), step_opt);
-			if (succeeded(c.res.first))
+			if (c.res.succeeded())
 				start = c.nlp->solution();
 			else if (give_up)
 				break;
 		}
-		if (!succeeded(c.res.first)) {
-			last_status = status_text(c.res.first);
+		if (!c.res.succeeded()) {
+			last_status = c.res.text();
 			return false;
 		}
 		best.converged_starts++;
@@ -599,14 +325,14 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 	auto refine = [&](Coarse &c) {
 		best.refined_starts++;
 		Stacked &p = c.p;
-		Ipopt::SmartPtr<CollocationNlp> &nlp = c.nlp;
-		std::pair<Ipopt::ApplicationReturnStatus, int> res = c.res;
-		int iterations = res.second;
+		std::unique_ptr<StackedNlp> &nlp = c.nlp;
+		NlpStatus res = c.res;
+		int iterations = res.iterations;
 		for (int refinement = 0;; refinement++) {
 			MultiPhaseSolution s;
 			s.modes = p.modes;
-			s.status = static_cast<int>(res.first);
-			s.status_text = status_text(res.first);
+			s.status = res.status;
+			s.status_text = res.text();
 			s.iterations = iterations;
 			bool all_ok = true;
 			std::vector<bool> failed(p.setups.size(), false);
@@ -657,9 +383,9 @@ MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const s
 				if (failed[k])
 					p.setups[k].segments *= 2;
 			res = run(p, 1.0, fine, nlp, true, step_opt);
-			iterations += res.second;
-			if (!succeeded(res.first)) {
-				rejection += "; then the finer mesh failed (" + std::string(status_text(res.first)) + ")";
+			iterations += res.iterations;
+			if (!res.succeeded()) {
+				rejection += "; then the finer mesh failed (" + std::string(res.text()) + ")";
 				return;
 			}
 		}
@@ -988,22 +714,6 @@ Guess transplanted_guess(const Trajectory &traj, double T, const std::vector<dou
 	g.path.front() = a;   // exactly, not to rounding
 	g.path.back() = b;
 	return g;
-}
-
-IpoptOption parse_ipopt_option(const std::string &text)
-{
-	size_t eq = text.find('=');
-	if (eq == std::string::npos || eq == 0)
-		throw std::invalid_argument("'" + text + "' is not NAME=VALUE");
-	IpoptOption o{text.substr(0, eq), text.substr(eq + 1)};
-	// No console journal: Ipopt would print the option's documentation.
-	Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication(false);
-	if (!Ipopt::IsValid(app->RegOptions()->GetOption(o.name)))
-		throw std::invalid_argument("Ipopt has no option '" + o.name + "'");
-	if (!set_ipopt_option(*app, o))
-		throw std::invalid_argument("Ipopt refuses '" + o.value + "' for " + o.name +
-					    " (its type, range or list of values)");
-	return o;
 }
 
 std::string solve_options_text(const SolveOptions &opt)
