@@ -13,7 +13,9 @@
 
 #include "trainer/hs_phase.hpp"
 #include "trainer/ipopt_nlp.hpp"
+#include "trainer/mode_config.hpp"
 #include "trainer/models.hpp"
+#include "trainer/starts.hpp"
 #include "trainer/replay.hpp"
 
 namespace hylo::trainer {
@@ -28,145 +30,8 @@ using internal::NlpSettings;
 using internal::NlpStatus;
 using internal::Row;
 using internal::StackedNlp;
-
-// What the solver needs of a mode outside the model templates.
-struct ModeInfo {
-	int nx = 0, nu = 0;
-	bool smoothed = false;
-	Bounds bounds;
-	std::function<std::unique_ptr<PhaseBlock>(double relax, const PhaseSetup &)> make;
-	std::function<std::vector<double>(const double *xs)> full_state;
-	std::function<double(const double *a, const double *b)> distance;   // between full states
-	double typical_speed = 1;
-	std::vector<double> continuation = {100.0, 10.0, 3.0, 1.0};  // smoothing multipliers, to 1
-	int refinements = 0;          // the parameter file's solver: {refinements: N}
-	int min_segments = 0;         // a start's mesh has at least these segments
-	double max_step_s = 0;        // > 0: and segments of at most this guessed duration [s]
-	bool first_accepted = false;  // keep the first start that passes, try no more
-	int step_max_iter = 0;        // > 0: a continuation step's iteration limit; a start
-				      // whose step fails is given up
-	int mumps_permuting_scaling = kMumpsChoosesPermutingScaling;
-	// Set: the initial guess of a phase guessed as a straight line a -> b,
-	// given its duration T (the start's).
-	std::function<std::vector<std::vector<double>>(const std::vector<double> &a,
-						       const std::vector<double> &b, double T)> path_guess;
-	// Set: the initial guesses of a BVP a -> b besides the straight line
-	// (solve_bvp_strategies).
-	std::function<std::vector<Guess>(const std::vector<double> &a, const std::vector<double> &b)> strategy_guesses;
-};
-
-constexpr double kPi = 3.14159265358979323846;
-
-// Planar modes, x = (px, py, vx, vy, theta, omega, ...). Paths that differ in
-// strategy, not only in duration; from each start Ipopt stays in the basin
-// it starts in, so a basin no start leads into is never found:
-// - backing up with the start's heading, through the midpoint, and driving
-//   forward facing the goal (from the straight line alone, goals behind the
-//   robot often ended in a worse local optimum; docs/decisions.md, "Training
-//   labels"); durations from the path length;
-// - (issue #35) backing up with the start's heading at twice that duration;
-//   reversing towards the goal, the rear facing it, through the midpoint;
-//   and turning on the spot to that heading, reversing, turning on the spot
-//   to the goal's heading. Their headings are wound to the nearest the mean
-//   of the start's and the goal's (theta is not wrapped: the goal's is
-//   reached as given). Durations add the turns at 2 rad/s (through the
-//   midpoint) or 1 rad/s (on the spot). On the first 12 Ambot ground
-//   samples these three found basins 25% (sample 0, 131 -> 98 J) and 23%
-//   (sample 10, 144 -> 111 J) below every other start's (docs/decisions.md).
-// point(px, py, v, theta) is the mode's full state there (vy = omega = 0;
-// marine's paddle speeds at their steady value for v).
-std::vector<Guess> planar_strategy_guesses(
-	const std::vector<double> &a, const std::vector<double> &b, const Bounds &bd, double speed,
-	const std::function<std::vector<double>(double, double, double, double)> &point)
-{
-	std::vector<double> mid = a;
-	mid[0] = 0.5 * (a[0] + b[0]);
-	mid[1] = 0.5 * (a[1] + b[1]);
-	mid[3] = mid[5] = 0;
-	std::vector<double> back = mid, face = mid;
-	back[2] = std::max(-speed, bd.x_lo[2]);
-	face[2] = std::min(speed, bd.x_hi[2]);
-	double bearing = std::atan2(b[1] - a[1], b[0] - a[0]);
-	face[4] = a[4] + std::remainder(bearing - a[4], 2 * kPi);
-	const double d = std::hypot(b[0] - a[0], b[1] - a[1]);
-	// duration_guess of a path through the midpoint (its length is d).
-	const double T = std::max(bd.T_min * 2, d / speed);
-	std::vector<Guess> out = {{T, {a, back, b}}, {T, {a, face, b}}};
-	out.push_back({2 * T, {a, back, b}});
-	const double mean = 0.5 * (a[4] + b[4]);
-	const double h = mean + std::remainder(bearing + kPi - mean, 2 * kPi);
-	const double turn = std::fabs(h - a[4]) + std::fabs(b[4] - h);
-	const double rev = std::max(-speed, bd.x_lo[2]);
-	out.push_back({T + 0.5 * turn, {a, point(mid[0], mid[1], rev, h), b}});
-	out.push_back({T + turn,
-		       {a, point(a[0], a[1], 0, h), point(mid[0], mid[1], rev, h), point(b[0], b[1], 0, h), b}});
-	for (Guess &g : out)
-		g.T = std::min(g.T, bd.T_max);
-	return out;
-}
-
-template <class M>
-ModeInfo info_of(const M &model)
-{
-	ModeInfo i;
-	i.nx = M::NX;
-	i.nu = M::NU;
-	i.smoothed = M::kSmoothed;
-	i.bounds = model.bounds();
-	i.make = [model](double relax, const PhaseSetup &s) -> std::unique_ptr<PhaseBlock> {
-		M m = model;
-		m.relax = relax;
-		return std::make_unique<internal::HsPhase<M>>(m, s);
-	};
-	i.full_state = [model](const double *xs) {
-		auto a = model.full_state(xs);
-		return std::vector<double>(a.begin(), a.end());
-	};
-	i.distance = [model](const double *a, const double *b) { return model.position_distance(a, b); };
-	i.typical_speed = model.typical_speed();
-	return i;
-}
-
-ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
-{
-	if (!known_mode(mode))
-		throw std::invalid_argument("unknown mode '" + mode + "' (ground, marine, flight, di_neg, di_pos)");
-	const ModeParams &p = robot.mode(mode);
-	ModeInfo i = mode == "ground"   ? info_of(GroundModel(p, robot.g))
-		     : mode == "marine" ? info_of(MarineModel(p, robot.g))
-		     : mode == "flight" ? info_of(FlightModel(p, robot.g))
-					: info_of(DiModel(p, mode == "di_pos"));
-	i.refinements = p.refinements;
-	// Flight: segments of at most 20 ms (the rotors' time constant is 13 ms),
-	// the Hermite guess with fine continuation steps, the first start that
-	// passes, and no MC64 in MUMPS (2.2x less CPU, same labels); each
-	// measured in docs/decisions.md, "Flight training: five changes".
-	if (mode == "flight") {
-		i.mumps_permuting_scaling = 0;
-		i.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
-		i.min_segments = 80;
-		i.max_step_s = 0.02;
-		i.first_accepted = true;
-		i.step_max_iter = 400;
-		FlightModel fm(p, robot.g);
-		i.path_guess = [fm](const std::vector<double> &a, const std::vector<double> &b, double T) {
-			return fm.path_guess(a, b, T, 16);
-		};
-	}
-	if (mode == "ground" || mode == "marine") {
-		Bounds bd = i.bounds;
-		double speed = i.typical_speed;
-		auto full = i.full_state;
-		i.strategy_guesses = [bd, speed, full](const std::vector<double> &a, const std::vector<double> &b) {
-			auto point = [&full](double px, double py, double v, double th) {
-				const double xs[4] = {px, py, v, th};
-				return full(xs);
-			};
-			return planar_strategy_guesses(a, b, bd, speed, point);
-		};
-	}
-	return i;
-}
+using internal::ModeInfo;
+using internal::Start;
 
 // One stacked problem as the engine sees it: modes, their setups and the
 // rows by knot reference (resolved per mesh, since offsets change).
@@ -200,13 +65,6 @@ std::unique_ptr<StackedNlp> build(const Stacked &p, double relax)
 	}
 	return std::make_unique<StackedNlp>(std::move(blocks), std::move(rows));
 }
-
-// A start: every phase's duration guess, and the states phase 0's guess runs
-// through (empty: the base's).
-struct Start {
-	std::vector<double> T;
-	std::vector<std::vector<double>> path;
-};
 
 // Solves from each start: continuation over the smoothing on the coarse
 // mesh, then mesh refinement until every phase's replay passes. Keeps the
@@ -452,9 +310,8 @@ void check_state(const std::vector<double> &v, const Bounds &bd, const std::stri
 // Throws std::invalid_argument unless ps's corridor boxes have the mode's
 // position dimensions, intervals inside [0, 1] and non-empty boxes, and
 // boxes whose intervals overlap intersect (their knots would have no room).
-void check_corridor(const PhaseSpec &ps, const std::string &where)
+void check_corridor(const PhaseSpec &ps, size_t dims, const std::string &where)
 {
-	const size_t dims = ps.mode == "flight" ? 3 : ps.mode == "ground" || ps.mode == "marine" ? 2 : 0;
 	for (size_t i = 0; i < ps.corridor.size(); i++) {
 		const CorridorBox &b = ps.corridor[i];
 		std::string box = where + ": corridor box " + std::to_string(i);
@@ -484,81 +341,19 @@ void check_corridor(const PhaseSpec &ps, const std::string &where)
 
 }  // namespace
 
-bool known_mode(const std::string &m)
-{
-	return m == "ground" || m == "marine" || m == "flight" || m == "di_neg" || m == "di_pos";
-}
-
-namespace {
-const char *const kModeNames[] = {"", "ground", "marine", "flight", "di_neg", "di_pos"};
-}  // namespace
-
-std::string mode_name(int m)
-{
-	return m >= 1 && m <= 5 ? kModeNames[m] : "";
-}
-
-int mode_number(const std::string &mode)
-{
-	for (int m = 1; m <= 5; m++)
-		if (mode == kModeNames[m])
-			return m;
-	return 0;
-}
-
-int sampled_dim(const std::string &m)
-{
-	if (m == "ground" || m == "marine")
-		return 4;
-	if (m == "flight")
-		return 6;
-	if (m == "di_neg" || m == "di_pos")
-		return 2;
-	return 0;
-}
-
-int state_dim(const std::string &m)
-{
-	if (m == "ground")
-		return GroundModel::NX;
-	if (m == "marine")
-		return MarineModel::NX;
-	if (m == "flight")
-		return FlightModel::NX;
-	return known_mode(m) ? DiModel::NX : 0;
-}
-
-int input_dim(const std::string &m)
-{
-	if (m == "ground")
-		return GroundModel::NU;
-	if (m == "marine")
-		return MarineModel::NU;
-	if (m == "flight")
-		return FlightModel::NU;
-	return known_mode(m) ? DiModel::NU : 0;
-}
-
 std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs)
 {
-	return mode_info(mode, robot).full_state(xs);
+	return internal::mode_info(mode, robot).full_state(xs);
 }
 
 std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
 								 const RobotParams &robot)
 {
-	Bounds b = mode_info(mode, robot).bounds;
+	Bounds b = internal::mode_info(mode, robot).bounds;
 	return {b.x_lo, b.x_hi};
 }
 
 namespace {
-
-// The duration guess of a phase whose guess path has the given length (not
-// clamped to T_max).
-double duration_guess(const ModeInfo &info, double length)
-{
-	return std::max(info.bounds.T_min * 2, length / info.typical_speed);
-}
 
 // The BVP x1s -> x2s of mode as a one-phase stacked problem.
 struct Bvp {
@@ -570,7 +365,7 @@ struct Bvp {
 Bvp bvp(const std::string &mode, const RobotParams &robot, const double *x1s, const double *x2s,
 	const SolveOptions &opt)
 {
-	Bvp v{mode_info(mode, robot), {}, {}, {}};
+	Bvp v{internal::mode_info(mode, robot), {}, {}, {}};
 	v.a = v.info.full_state(x1s);
 	v.b = v.info.full_state(x2s);
 	check_state(v.a, v.info.bounds, mode);
@@ -609,9 +404,7 @@ Solution solve_from_guesses(const RobotParams &robot, const Bvp &v, const SolveO
 {
 	if (guesses.empty())
 		return line;
-	std::vector<Start> starts;
-	for (const Guess &g : guesses)
-		starts.push_back({{std::min(std::max(g.T, v.info.bounds.T_min), v.info.bounds.T_max)}, g.path});
+	std::vector<Start> starts = internal::guess_starts(v.info.bounds, guesses);
 	double incumbent = line.converged ? line.cost : std::numeric_limits<double>::infinity();
 	Solution s = phase_solution(solve_stacked(robot, v.p, starts, 0, opt, incumbent));
 	Solution out = s.converged && (!line.converged || s.cost < line.cost) ? s : line;
@@ -636,15 +429,9 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 		   const double *x2s, const SolveOptions &opt)
 {
 	Bvp v = bvp(mode, robot, x1s, x2s, opt);
-	const Bounds &bd = v.info.bounds;
-	std::vector<double> guesses = opt.T_guesses;
-	if (guesses.empty()) {
-		double base = duration_guess(v.info, v.info.distance(v.a.data(), v.b.data()));
-		guesses = {base, 2 * base, 0.5 * base + bd.T_min};
-	}
-	std::vector<Start> starts;
-	for (double T : guesses)
-		starts.push_back({{std::min(std::max(T, bd.T_min), bd.T_max)}, {}});
+	const double duration = internal::duration_guess(v.info.bounds, v.info.typical_speed,
+							 v.info.distance(v.a.data(), v.b.data()));
+	std::vector<Start> starts = internal::line_starts(v.info.bounds, opt.T_guesses, duration);
 	Solution line = phase_solution(solve_stacked(robot, v.p, starts, 0, opt));
 	return opt.strategy_starts ? add_strategies(robot, v, opt, line) : line;
 }
@@ -660,60 +447,8 @@ Solution solve_bvp_guesses(const std::string &mode, const RobotParams &robot, co
 			   const Solution &incumbent)
 {
 	Bvp v = bvp(mode, robot, x1s, x2s, opt);
-	const size_t nx = static_cast<size_t>(v.info.nx);
-	auto same = [](const std::vector<double> &x, const std::vector<double> &y) {
-		for (size_t k = 0; k < x.size(); k++)
-			if (std::fabs(x[k] - y[k]) > 1e-9 * std::max(1.0, std::fabs(y[k])))
-				return false;
-		return true;
-	};
-	for (size_t g = 0; g < guesses.size(); g++) {
-		const auto &path = guesses[g].path;
-		std::string where = "guess " + std::to_string(g) + " of a " + mode + " BVP: ";
-		if (path.size() < 2)
-			throw std::invalid_argument(where + "its path needs at least two states");
-		for (const auto &x : path)
-			if (x.size() != nx)
-				throw std::invalid_argument(where + "a state has " + std::to_string(x.size()) +
-							    " components, the mode has " + std::to_string(nx));
-		if (!same(path.front(), v.a) || !same(path.back(), v.b))
-			throw std::invalid_argument(where + "its path does not run from the BVP's start to its goal");
-		if (!(guesses[g].T > 0) || !std::isfinite(guesses[g].T))
-			throw std::invalid_argument(where + "its duration is not positive");
-	}
+	internal::check_guesses(mode, guesses, v.a, v.b);
 	return solve_from_guesses(robot, v, opt, guesses, incumbent);
-}
-
-Guess transplanted_guess(const Trajectory &traj, double T, const std::vector<double> &a,
-			 const std::vector<double> &b, int points)
-{
-	const size_t nx = static_cast<size_t>(traj.nx), n = traj.t.size();
-	if (points < 2 || n < 2 || a.size() != nx || b.size() != nx || traj.x.size() != n * nx)
-		throw std::invalid_argument("transplanted_guess: a trajectory of " + std::to_string(n) +
-					    " times and states of " + std::to_string(traj.nx) + " for boundary states of " +
-					    std::to_string(a.size()) + " and " + std::to_string(b.size()) + ", " +
-					    std::to_string(points) + " points");
-	const double t0 = traj.t.front(), t1 = traj.t.back();
-	auto state_at = [&](double t, size_t k) {
-		size_t i = static_cast<size_t>(std::upper_bound(traj.t.begin(), traj.t.end(), t) - traj.t.begin());
-		i = std::min(std::max<size_t>(i, 1), n - 1);
-		double ta = traj.t[i - 1], tb = traj.t[i], w = tb > ta ? (t - ta) / (tb - ta) : 0;
-		w = std::min(std::max(w, 0.0), 1.0);
-		return traj.x[(i - 1) * nx + k] + w * (traj.x[i * nx + k] - traj.x[(i - 1) * nx + k]);
-	};
-	Guess g;
-	g.T = T;
-	for (int p = 0; p < points; p++) {
-		double s = static_cast<double>(p) / (points - 1);
-		std::vector<double> x(nx);
-		for (size_t k = 0; k < nx; k++)
-			x[k] = state_at(t0 + s * (t1 - t0), k) + (1 - s) * (a[k] - traj.x[k]) +
-			       s * (b[k] - traj.x[(n - 1) * nx + k]);
-		g.path.push_back(std::move(x));
-	}
-	g.path.front() = a;   // exactly, not to rounding
-	g.path.back() = b;
-	return g;
 }
 
 std::string solve_options_text(const SolveOptions &opt)
@@ -747,7 +482,7 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 	Stacked p;
 	for (size_t k = 0; k < prob.phases.size(); k++) {
 		const PhaseSpec &ps = prob.phases[k];
-		ModeInfo info = mode_info(ps.mode, robot);
+		ModeInfo info = internal::mode_info(ps.mode, robot);
 		const size_t nx = static_cast<size_t>(info.nx);
 		std::string where = "phase " + std::to_string(k) + " (" + ps.mode + ")";
 		if (ps.guess.size() < 2)
@@ -774,8 +509,8 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 		double length = 0;
 		for (size_t i = 1; i < ps.guess.size(); i++)
 			length += info.distance(ps.guess[i - 1].data(), ps.guess[i].data());
-		s.T_guess = ps.T_guess > 0 ? ps.T_guess : duration_guess(info, length);
-		check_corridor(ps, where);
+		s.T_guess = ps.T_guess > 0 ? ps.T_guess : internal::duration_guess(info.bounds, info.typical_speed, length);
+		check_corridor(ps, static_cast<size_t>(info.position_dims), where);
 		s.corridor = ps.corridor;
 		s.guess_by_arc_length = !ps.corridor.empty() && !ps.guess_timed;
 		p.modes.push_back(ps.mode);
@@ -790,15 +525,13 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 							    " component " + std::to_string(t.first.component) +
 							    ", which does not exist");
 	p.rows = prob.rows;
-	std::vector<Start> starts;
-	for (double f : prob.T_scales) {
-		Start st;
-		for (size_t k = 0; k < p.setups.size(); k++) {
-			const Bounds &bd = p.info[k].bounds;
-			st.T.push_back(std::min(std::max(f * p.setups[k].T_guess, bd.T_min), bd.T_max));
-		}
-		starts.push_back(st);
+	std::vector<Bounds> bounds;
+	std::vector<double> T_guesses;
+	for (size_t k = 0; k < p.setups.size(); k++) {
+		bounds.push_back(p.info[k].bounds);
+		T_guesses.push_back(p.setups[k].T_guess);
 	}
+	std::vector<Start> starts = internal::scaled_starts(bounds, T_guesses, prob.T_scales);
 	MultiPhaseSolution out = solve_stacked(robot, p, starts, prob.switch_cost, opt);
 	out.notes = prob.notes;
 	return out;

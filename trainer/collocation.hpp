@@ -11,17 +11,14 @@
 #include <utility>
 #include <vector>
 
+#include "trainer/modes.hpp"
 #include "trainer/params.hpp"
 #include "trainer/problem.hpp"
 #include "trainer/replay.hpp"
 #include "trainer/solution.hpp"
+#include "trainer/starts.hpp"   // transplanted_guess
 
 namespace hylo::trainer {
-
-// NAME=VALUE as an Ipopt option, checked against Ipopt's registered options
-// (the name known, the value of its type and in its range or list). Throws
-// std::invalid_argument saying what is wrong.
-IpoptOption parse_ipopt_option(const std::string &text);
 
 // The fields of opt that can change a solve's result, one "name: value" line
 // each (newline-terminated): what a dataset's .meta records of the solver.
@@ -29,14 +26,6 @@ IpoptOption parse_ipopt_option(const std::string &text);
 // nor strategy_starts: only ground and marine have strategies, and their
 // datasets' meta says so itself ("starts: 3").
 std::string solve_options_text(const SolveOptions &opt);
-
-// Mode names the trainer knows and their sampled dimension (docs/models.md section 7).
-bool known_mode(const std::string &mode);
-int sampled_dim(const std::string &mode);
-// Modes as numbered in goal_t (MODE_*) and onboard (hylo_mode); "" or 0 for
-// an unknown one.
-std::string mode_name(int goal_mode);
-int mode_number(const std::string &mode);
 
 // Solves the BVP x1s -> x2s (sampled coordinates, sampled_dim(mode) each) of
 // mode with the robot's parameters. Several initial guesses (straight lines
@@ -52,7 +41,7 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 // marine: through the midpoint backing up, and facing the goal; backing up
 // at twice the duration; reversing towards the goal through the midpoint,
 // and turning on the spot, reversing, turning on the spot; one duration
-// guess each, planar_strategy_guesses in collocation.cpp): returns their best if it is cheaper than line, the
+// guess each, planar_strategy_guesses in starts.cpp): returns their best if it is cheaper than line, the
 // straight-line starts' result (solve_bvp without strategy_starts, or a
 // dataset row made by it), else line. Starts, refined starts and seconds
 // add up. With opt.refine_within finite, line's cost prunes their
@@ -69,18 +58,8 @@ Solution solve_bvp_guesses(const std::string &mode, const RobotParams &robot, co
 			   const double *x2s, const SolveOptions &opt, const std::vector<Guess> &guesses,
 			   const Solution &incumbent);
 
-// A solution's path as a guess for another BVP a -> b of its mode (full
-// states): its states at `points` (>= 2) uniformly spaced times, each moved
-// by (1 - s) (a - x(0)) + s (b - x(T)) at time fraction s, so that the path
-// runs from a to b; the solution's duration. The memory-of-motion warm start
-// of the repair stage (dataset.hpp, repair).
-Guess transplanted_guess(const Trajectory &traj, double T, const std::vector<double> &a,
-			 const std::vector<double> &b, int points);
-
-// State and input sizes of a mode, and the full state its sampled
-// coordinates stand for (the virtual constraints of docs/models.md section 7).
-int state_dim(const std::string &mode);
-int input_dim(const std::string &mode);
+// The full state a mode's sampled coordinates stand for (the virtual
+// constraints of docs/models.md section 7).
 std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs);
 // The mode's state bounds (lo, hi), state_dim each.
 std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,

@@ -9,8 +9,6 @@
 #include <IpSolveStatistics.hpp>
 #include <IpTNLP.hpp>
 
-#include "trainer/collocation.hpp"
-
 namespace hylo::trainer {
 namespace internal {
 

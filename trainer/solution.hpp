@@ -35,6 +35,11 @@ struct IpoptOption {
 	std::string name, value;
 };
 
+// NAME=VALUE as an Ipopt option, checked against Ipopt's registered options
+// (the name known, the value of its type and in its range or list). Throws
+// std::invalid_argument saying what is wrong. (ipopt_nlp.cpp)
+IpoptOption parse_ipopt_option(const std::string &text);
+
 // Fields that can change a result are recorded in a dataset's .meta
 // (solve_options_text): a new one must be added there.
 struct SolveOptions {
