@@ -2,299 +2,23 @@
 
 #include <algorithm>
 #include <charconv>
-#include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <functional>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 
 #include "trainer/hs_phase.hpp"
-#include "trainer/ipopt_nlp.hpp"
 #include "trainer/mode_config.hpp"
 #include "trainer/models.hpp"
+#include "trainer/solve_strategy.hpp"
 #include "trainer/starts.hpp"
-#include "trainer/replay.hpp"
 
 namespace hylo::trainer {
 namespace {
 
-using internal::Index;
-using internal::Number;
-using internal::PhaseBlock;
-using internal::PhaseSetup;
-using internal::kMumpsChoosesPermutingScaling;
-using internal::NlpSettings;
-using internal::NlpStatus;
-using internal::Row;
-using internal::StackedNlp;
 using internal::ModeInfo;
+using internal::PhaseSetup;
+using internal::Stacked;
 using internal::Start;
-
-// One stacked problem as the engine sees it: modes, their setups and the
-// rows by knot reference (resolved per mesh, since offsets change).
-struct Stacked {
-	std::vector<std::string> modes;
-	std::vector<ModeInfo> info;
-	std::vector<PhaseSetup> setups;
-	std::vector<LinearRow> rows;
-};
-
-std::unique_ptr<StackedNlp> build(const Stacked &p, double relax)
-{
-	std::vector<std::unique_ptr<PhaseBlock>> blocks;
-	std::vector<int> offset;
-	int n = 0;
-	for (size_t k = 0; k < p.setups.size(); k++) {
-		blocks.push_back(p.info[k].make(relax, p.setups[k]));
-		offset.push_back(n);
-		n += blocks.back()->nvar();
-	}
-	std::vector<Row> rows;
-	for (const LinearRow &lr : p.rows) {
-		Row r;
-		r.lo = lr.lo;
-		r.hi = lr.hi;
-		for (const auto &t : lr.terms) {
-			size_t k = static_cast<size_t>(t.first.phase);
-			r.terms.emplace_back(offset[k] + blocks[k]->state_var(t.first.last, t.first.component), t.second);
-		}
-		rows.push_back(std::move(r));
-	}
-	return std::make_unique<StackedNlp>(std::move(blocks), std::move(rows));
-}
-
-// Solves from each start: continuation over the smoothing on the coarse
-// mesh, then mesh refinement until every phase's replay passes. Keeps the
-// cheapest. With opt.refine_within finite, a start is not refined whose
-// coarse cost is that fraction above the cheaper of the best refined result
-// and incumbent (a cost already known for the problem).
-MultiPhaseSolution solve_stacked(const RobotParams &robot, Stacked base, const std::vector<Start> &starts,
-				 double switch_cost, const SolveOptions &opt,
-				 double incumbent = std::numeric_limits<double>::infinity())
-{
-	auto t0 = std::chrono::steady_clock::now();
-	MultiPhaseSolution best;
-	best.modes = base.modes;
-	best.cost = std::numeric_limits<double>::infinity();
-	const bool debug = opt.debug;
-	bool smoothed = false, first_accepted = true;
-	for (const ModeInfo &i : base.info) {
-		smoothed = smoothed || i.smoothed;
-		first_accepted = first_accepted && i.first_accepted;
-	}
-	// Per-mode solver settings: the most mesh doublings any phase's mode asks
-	// for, and the union of their continuation steps.
-	int refinements = opt.refinements;
-	std::vector<double> levels;
-	for (const ModeInfo &i : base.info) {
-		refinements = std::max(refinements, i.refinements);
-		levels.insert(levels.end(), i.continuation.begin(), i.continuation.end());
-	}
-	std::sort(levels.begin(), levels.end(), std::greater<double>());
-	levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
-	// MUMPS's permutation and scaling as the mode sets it in single-mode
-	// BVPs; multi-phase problems keep it (without it a chasm crossing failed;
-	// docs/decisions.md, "Flight training: five changes").
-	const int permuting_scaling = base.info.size() == 1 ? base.info[0].mumps_permuting_scaling
-								 : kMumpsChoosesPermutingScaling;
-	// A continuation or refinement step's options: the tightest iteration
-	// limit a phase's mode sets.
-	SolveOptions step_opt = opt;
-	for (const ModeInfo &i : base.info)
-		if (i.step_max_iter > 0)
-			step_opt.max_iter = std::min(step_opt.max_iter, i.step_max_iter);
-	// Smoothing: a long plan's steps can need more than flight's 400
-	// (docs/decisions.md, "Smoothing long plans").
-	if (opt.step_max_iter > 0)
-		step_opt.max_iter = opt.step_max_iter;
-	// A step that runs out of its own limit gives its start up.
-	const bool give_up = step_opt.max_iter < opt.max_iter || opt.step_max_iter > 0;
-	auto run = [&](const Stacked &p, double relax, const std::vector<double> &start,
-		       std::unique_ptr<StackedNlp> &nlp, bool warm, const SolveOptions &o) {
-		nlp = build(p, relax);
-		NlpStatus st = nlp->solve(o, start, NlpSettings{warm, permuting_scaling});
-		if (debug)
-			std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n",
-				     p.setups[0].T_guess, p.setups[0].segments, relax, st.text(), st.iterations);
-		return st;
-	};
-	// A start after its continuation on the coarse mesh: the cost (with the
-	// switches') and duration it reached there.
-	struct Coarse {
-		Stacked p;
-		std::unique_ptr<StackedNlp> nlp;
-		NlpStatus res;   // a success of no iterations until a solve
-		double cost = 0, T = 0;
-	};
-	std::string last_status = "no start";   // Ipopt's status of the last start that failed
-	auto coarse = [&](const Start &st, Coarse &c) {
-		const std::vector<double> &Ts = st.T;
-		Stacked &p = c.p;
-		p = base;
-		if (!st.path.empty())
-			p.setups[0].guess = st.path;
-		for (size_t k = 0; k < p.setups.size(); k++) {
-			p.setups[k].T_guess = Ts[k];
-			const ModeInfo &i = p.info[k];
-			double step = i.max_step_s > 0 && opt.max_step_s > 0 ? opt.max_step_s : i.max_step_s;
-			int by_step = step > 0 ? static_cast<int>(std::ceil(Ts[k] / step)) : 0;
-			if (opt.derivative_test_file.empty())   // the checker needs no fine mesh, only exact derivatives
-				p.setups[k].segments = std::max({p.setups[k].segments, i.min_segments, by_step});
-			if (i.path_guess && p.setups[k].guess.size() == 2) {
-				p.setups[k].guess = i.path_guess(p.setups[k].guess[0], p.setups[k].guess[1], Ts[k]);
-				p.setups[k].guess_by_arc_length = false;
-			}
-		}
-		best.starts++;
-		// Continuation: smoother problems first, each starting the next; the
-		// last (1) has docs/models.md's exact constants.
-		std::vector<double> start;
-		for (double relax : levels) {
-			if ((!smoothed || !opt.continuation || !opt.derivative_test_file.empty()) && relax != 1.0)
-				continue;
-			c.res = run(p, relax, start, c.nlp, !start.empty(), step_opt);
-			if (c.res.succeeded())
-				start = c.nlp->solution();
-			else if (give_up)
-				break;
-		}
-		if (!c.res.succeeded()) {
-			last_status = c.res.text();
-			return false;
-		}
-		best.converged_starts++;
-		c.cost = switch_cost;
-		for (size_t k = 0; k < p.setups.size(); k++) {
-			Solution ph;
-			c.nlp->fill(k, ph);
-			c.cost += ph.cost;
-			c.T += ph.T;
-		}
-		return true;
-	};
-	// Mesh refinement until the replays agree: each finer mesh starts from
-	// the coarser solution (its knots and midpoints become knots). Keeps the
-	// result if it is the cheapest so far.
-	std::string rejection;   // why the last rejected solution was rejected
-	double rejected_cost = std::numeric_limits<double>::infinity();
-	auto refine = [&](Coarse &c) {
-		best.refined_starts++;
-		Stacked &p = c.p;
-		std::unique_ptr<StackedNlp> &nlp = c.nlp;
-		NlpStatus res = c.res;
-		int iterations = res.iterations;
-		for (int refinement = 0;; refinement++) {
-			MultiPhaseSolution s;
-			s.modes = p.modes;
-			s.status = res.status;
-			s.status_text = res.text();
-			s.iterations = iterations;
-			bool all_ok = true;
-			std::vector<bool> failed(p.setups.size(), false);
-			for (size_t k = 0; k < p.setups.size(); k++) {
-				Solution ph;
-				nlp->fill(k, ph);
-				ph.status = s.status;
-				ph.status_text = s.status_text;
-				ph.iterations = iterations;
-				if (opt.replay) {
-					replay(p.modes[k], robot, ph, opt.replay_state_tol);
-					if (debug)
-						std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g: %s\n",
-							     p.modes[k].c_str(), ph.replay_error, ph.replay_cost, ph.cost,
-							     replay_verdict(ph).c_str());
-					if (!ph.replay_ok && all_ok)
-						rejection = "phase " + std::to_string(k) + " (" + p.modes[k] + ", " +
-							    std::to_string(p.setups[k].segments) + " segments): " +
-							    replay_verdict(ph);
-					all_ok = all_ok && ph.replay_ok;
-					failed[k] = !ph.replay_ok;
-				}
-				ph.converged = !opt.replay || ph.replay_ok;
-				s.cost += ph.cost;
-				s.T += ph.T;
-				s.replay_cost += ph.replay_cost;
-				s.replay_error = std::max(s.replay_error, ph.replay_error);
-				s.phases.push_back(std::move(ph));
-			}
-			if (all_ok) {
-				s.converged = true;
-				s.cost += switch_cost;
-				s.replay_cost += switch_cost;
-				if (s.cost < best.cost) {
-					s.starts = best.starts;
-					s.converged_starts = best.converged_starts;
-					s.refined_starts = best.refined_starts;
-					best = std::move(s);
-				}
-				return;
-			}
-			rejected_cost = std::min(rejected_cost, s.cost + switch_cost);
-			if (refinement >= refinements)
-				return;
-			// Only the phases whose replay failed get the finer mesh.
-			std::vector<double> fine = nlp->refined(failed);
-			for (size_t k = 0; k < p.setups.size(); k++)
-				if (failed[k])
-					p.setups[k].segments *= 2;
-			res = run(p, 1.0, fine, nlp, true, step_opt);
-			iterations += res.iterations;
-			if (!res.succeeded()) {
-				rejection += "; then the finer mesh failed (" + std::string(res.text()) + ")";
-				return;
-			}
-		}
-	};
-	if (first_accepted || !std::isfinite(opt.refine_within)) {
-		// Each start in turn, refined as soon as it converges.
-		for (const Start &st : starts) {
-			if (best.converged && first_accepted)
-				break;
-			Coarse c;
-			bool ok = coarse(st, c);
-			if (!opt.derivative_test_file.empty())
-				return best;
-			if (ok)
-				refine(c);
-		}
-	} else {
-		// Every start on the coarse mesh first. A start that reached an
-		// earlier one's solution (cost and duration to 1e-6) is not refined
-		// again, nor one whose coarse cost is more than refine_within above
-		// the best refined result: refinement lowers costs by a few percent.
-		std::vector<Coarse> reached;
-		for (const Start &st : starts) {
-			Coarse c;
-			bool ok = coarse(st, c);
-			if (!opt.derivative_test_file.empty())
-				return best;
-			auto same = [&](const Coarse &o) {
-				return std::fabs(o.cost - c.cost) <= 1e-6 * std::fabs(o.cost) &&
-				       std::fabs(o.T - c.T) <= 1e-6 * o.T;
-			};
-			if (ok && std::none_of(reached.begin(), reached.end(), same))
-				reached.push_back(std::move(c));
-		}
-		std::stable_sort(reached.begin(), reached.end(),
-				 [](const Coarse &a, const Coarse &b) { return a.cost < b.cost; });
-		for (Coarse &c : reached)
-			if (c.cost <= std::min(best.converged ? best.cost : incumbent, incumbent) * (1 + opt.refine_within))
-				refine(c);
-	}
-	if (!best.converged) {
-		best.cost = 0;
-		best.status_text = best.converged_starts ? "replay rejected every solution" : "no start converged";
-		best.rejection = rejection;
-		best.rejected_cost = rejected_cost;
-		if (!best.converged_starts)
-			best.rejection = "Ipopt: " + last_status;
-	}
-	best.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-	return best;
-}
 
 // Throws std::invalid_argument unless v has n finite components inside [lo, hi].
 void check_state(const std::vector<double> &v, const Bounds &bd, const std::string &mode)
@@ -307,53 +31,7 @@ void check_state(const std::vector<double> &v, const Bounds &bd, const std::stri
 						    "] of mode " + mode);
 }
 
-// Throws std::invalid_argument unless ps's corridor boxes have the mode's
-// position dimensions, intervals inside [0, 1] and non-empty boxes, and
-// boxes whose intervals overlap intersect (their knots would have no room).
-void check_corridor(const PhaseSpec &ps, size_t dims, const std::string &where)
-{
-	for (size_t i = 0; i < ps.corridor.size(); i++) {
-		const CorridorBox &b = ps.corridor[i];
-		std::string box = where + ": corridor box " + std::to_string(i);
-		if (dims == 0)
-			throw std::invalid_argument(box + ": mode " + ps.mode + " has no corridor");
-		if (b.lo.size() != dims || b.hi.size() != dims)
-			throw std::invalid_argument(box + " has " + std::to_string(b.lo.size()) + " and " +
-						    std::to_string(b.hi.size()) + " bounds, the mode's position " +
-						    std::to_string(dims));
-		if (!(b.tau0 >= 0 && b.tau0 <= b.tau1 && b.tau1 <= 1))
-			throw std::invalid_argument(box + ": interval [" + std::to_string(b.tau0) + ", " +
-						    std::to_string(b.tau1) + "] is not inside [0, 1]");
-		for (size_t k = 0; k < dims; k++)
-			if (!(b.lo[k] <= b.hi[k]))
-				throw std::invalid_argument(box + " is empty along component " + std::to_string(k));
-		for (size_t j = 0; j < i; j++) {
-			const CorridorBox &a = ps.corridor[j];
-			if (a.tau1 < b.tau0 || b.tau1 < a.tau0)
-				continue;
-			for (size_t k = 0; k < dims; k++)
-				if (std::max(a.lo[k], b.lo[k]) > std::min(a.hi[k], b.hi[k]))
-					throw std::invalid_argument(box + " and box " + std::to_string(j) +
-								    " overlap in time but not in space");
-		}
-	}
-}
-
-}  // namespace
-
-std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs)
-{
-	return internal::mode_info(mode, robot).full_state(xs);
-}
-
-std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
-								 const RobotParams &robot)
-{
-	Bounds b = internal::mode_info(mode, robot).bounds;
-	return {b.x_lo, b.x_hi};
-}
-
-namespace {
+// ---- single-mode BVPs ---------------------------------------------------
 
 // The BVP x1s -> x2s of mode as a one-phase stacked problem.
 struct Bvp {
@@ -404,9 +82,9 @@ Solution solve_from_guesses(const RobotParams &robot, const Bvp &v, const SolveO
 {
 	if (guesses.empty())
 		return line;
-	std::vector<Start> starts = internal::guess_starts(v.info.bounds, guesses);
 	double incumbent = line.converged ? line.cost : std::numeric_limits<double>::infinity();
-	Solution s = phase_solution(solve_stacked(robot, v.p, starts, 0, opt, incumbent));
+	Solution s = phase_solution(
+		internal::solve_stacked(robot, v.p, internal::guess_starts(v.info.bounds, guesses), 0, opt, incumbent));
 	Solution out = s.converged && (!line.converged || s.cost < line.cost) ? s : line;
 	out.starts = line.starts + s.starts;
 	out.converged_starts = line.converged_starts + s.converged_starts;
@@ -423,7 +101,128 @@ Solution add_strategies(const RobotParams &robot, const Bvp &v, const SolveOptio
 	return solve_from_guesses(robot, v, opt, v.info.strategy_guesses(v.a, v.b), line);
 }
 
+// ---- multi-phase problems -------------------------------------------------
+
+// Throws std::invalid_argument unless ps's corridor boxes have the mode's
+// position dimensions, intervals inside [0, 1] and non-empty boxes, and
+// boxes whose intervals overlap intersect (their knots would have no room).
+void check_corridor(const PhaseSpec &ps, size_t dims, const std::string &where)
+{
+	for (size_t i = 0; i < ps.corridor.size(); i++) {
+		const CorridorBox &b = ps.corridor[i];
+		std::string box = where + ": corridor box " + std::to_string(i);
+		if (dims == 0)
+			throw std::invalid_argument(box + ": mode " + ps.mode + " has no corridor");
+		if (b.lo.size() != dims || b.hi.size() != dims)
+			throw std::invalid_argument(box + " has " + std::to_string(b.lo.size()) + " and " +
+						    std::to_string(b.hi.size()) + " bounds, the mode's position " +
+						    std::to_string(dims));
+		if (!(b.tau0 >= 0 && b.tau0 <= b.tau1 && b.tau1 <= 1))
+			throw std::invalid_argument(box + ": interval [" + std::to_string(b.tau0) + ", " +
+						    std::to_string(b.tau1) + "] is not inside [0, 1]");
+		for (size_t k = 0; k < dims; k++)
+			if (!(b.lo[k] <= b.hi[k]))
+				throw std::invalid_argument(box + " is empty along component " + std::to_string(k));
+		for (size_t j = 0; j < i; j++) {
+			const CorridorBox &a = ps.corridor[j];
+			if (a.tau1 < b.tau0 || b.tau1 < a.tau0)
+				continue;
+			for (size_t k = 0; k < dims; k++)
+				if (std::max(a.lo[k], b.lo[k]) > std::min(a.hi[k], b.hi[k]))
+					throw std::invalid_argument(box + " and box " + std::to_string(j) +
+								    " overlap in time but not in space");
+		}
+	}
+}
+
+// Throws std::invalid_argument unless the guess has at least two states of nx components.
+void check_guess(const PhaseSpec &ps, size_t nx, const std::string &where)
+{
+	if (ps.guess.size() < 2)
+		throw std::invalid_argument(where + ": the initial guess needs at least two states");
+	for (const auto &g : ps.guess)
+		if (g.size() != nx)
+			throw std::invalid_argument(where + ": a guess state has " + std::to_string(g.size()) +
+						    " components, the mode has " + std::to_string(nx));
+}
+
+// A knot's bounds as given (nx components) or, empty, the mode's.
+std::vector<double> knot_bounds(const std::vector<double> &v, const std::vector<double> &mode_bounds, size_t nx,
+				const char *what, const std::string &where)
+{
+	if (v.empty())
+		return mode_bounds;
+	if (v.size() != nx)
+		throw std::invalid_argument(where + ": " + what + " has " + std::to_string(v.size()) +
+					    " components, the mode has " + std::to_string(nx));
+	return v;
+}
+
+// Phase k of a problem as the transcription's setup, checked.
+PhaseSetup phase_setup(const PhaseSpec &ps, const ModeInfo &info, const std::string &where)
+{
+	const size_t nx = static_cast<size_t>(info.nx);
+	check_guess(ps, nx, where);
+	PhaseSetup s;
+	s.segments = ps.segments;
+	s.guess = ps.guess;
+	s.first_lo = knot_bounds(ps.first_lo, info.bounds.x_lo, nx, "first_lo", where);
+	s.first_hi = knot_bounds(ps.first_hi, info.bounds.x_hi, nx, "first_hi", where);
+	s.last_lo = knot_bounds(ps.last_lo, info.bounds.x_lo, nx, "last_lo", where);
+	s.last_hi = knot_bounds(ps.last_hi, info.bounds.x_hi, nx, "last_hi", where);
+	double length = 0;
+	for (size_t i = 1; i < ps.guess.size(); i++)
+		length += info.distance(ps.guess[i - 1].data(), ps.guess[i].data());
+	s.T_guess = ps.T_guess > 0 ? ps.T_guess : internal::duration_guess(info.bounds, info.typical_speed, length);
+	check_corridor(ps, static_cast<size_t>(info.position_dims), where);
+	s.corridor = ps.corridor;
+	s.guess_by_arc_length = !ps.corridor.empty() && !ps.guess_timed;
+	return s;
+}
+
+// Throws std::invalid_argument for a row naming a phase or component p does not have.
+void check_rows(const std::vector<LinearRow> &rows, const Stacked &p)
+{
+	for (const LinearRow &r : rows)
+		for (const auto &t : r.terms)
+			if (t.first.phase < 0 || static_cast<size_t>(t.first.phase) >= p.setups.size() ||
+			    t.first.component < 0 || t.first.component >= p.info[static_cast<size_t>(t.first.phase)].nx)
+				throw std::invalid_argument("a linear row names phase " + std::to_string(t.first.phase) +
+							    " component " + std::to_string(t.first.component) +
+							    ", which does not exist");
+}
+
+// The problem as the strategy sees it, checked.
+Stacked stacked(const RobotParams &robot, const MultiPhaseProblem &prob)
+{
+	if (prob.phases.empty())
+		throw std::invalid_argument("a multi-phase problem needs at least one phase");
+	Stacked p;
+	for (size_t k = 0; k < prob.phases.size(); k++) {
+		const PhaseSpec &ps = prob.phases[k];
+		ModeInfo info = internal::mode_info(ps.mode, robot);
+		p.setups.push_back(phase_setup(ps, info, "phase " + std::to_string(k) + " (" + ps.mode + ")"));
+		p.modes.push_back(ps.mode);
+		p.info.push_back(std::move(info));
+	}
+	check_rows(prob.rows, p);
+	p.rows = prob.rows;
+	return p;
+}
+
 }  // namespace
+
+std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs)
+{
+	return internal::mode_info(mode, robot).full_state(xs);
+}
+
+std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
+								 const RobotParams &robot)
+{
+	Bounds b = internal::mode_info(mode, robot).bounds;
+	return {b.x_lo, b.x_hi};
+}
 
 Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
 		   const double *x2s, const SolveOptions &opt)
@@ -432,7 +231,7 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 	const double duration = internal::duration_guess(v.info.bounds, v.info.typical_speed,
 							 v.info.distance(v.a.data(), v.b.data()));
 	std::vector<Start> starts = internal::line_starts(v.info.bounds, opt.T_guesses, duration);
-	Solution line = phase_solution(solve_stacked(robot, v.p, starts, 0, opt));
+	Solution line = phase_solution(internal::solve_stacked(robot, v.p, starts, 0, opt));
 	return opt.strategy_starts ? add_strategies(robot, v, opt, line) : line;
 }
 
@@ -477,62 +276,15 @@ std::string solve_options_text(const SolveOptions &opt)
 MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhaseProblem &prob,
 				    const SolveOptions &opt)
 {
-	if (prob.phases.empty())
-		throw std::invalid_argument("a multi-phase problem needs at least one phase");
-	Stacked p;
-	for (size_t k = 0; k < prob.phases.size(); k++) {
-		const PhaseSpec &ps = prob.phases[k];
-		ModeInfo info = internal::mode_info(ps.mode, robot);
-		const size_t nx = static_cast<size_t>(info.nx);
-		std::string where = "phase " + std::to_string(k) + " (" + ps.mode + ")";
-		if (ps.guess.size() < 2)
-			throw std::invalid_argument(where + ": the initial guess needs at least two states");
-		for (const auto &g : ps.guess)
-			if (g.size() != nx)
-				throw std::invalid_argument(where + ": a guess state has " + std::to_string(g.size()) +
-							    " components, the mode has " + std::to_string(nx));
-		PhaseSetup s;
-		s.segments = ps.segments;
-		s.guess = ps.guess;
-		auto bound = [&](const std::vector<double> &v, const std::vector<double> &dflt, const char *what) {
-			if (v.empty())
-				return dflt;
-			if (v.size() != nx)
-				throw std::invalid_argument(where + ": " + what + " has " + std::to_string(v.size()) +
-							    " components, the mode has " + std::to_string(nx));
-			return v;
-		};
-		s.first_lo = bound(ps.first_lo, info.bounds.x_lo, "first_lo");
-		s.first_hi = bound(ps.first_hi, info.bounds.x_hi, "first_hi");
-		s.last_lo = bound(ps.last_lo, info.bounds.x_lo, "last_lo");
-		s.last_hi = bound(ps.last_hi, info.bounds.x_hi, "last_hi");
-		double length = 0;
-		for (size_t i = 1; i < ps.guess.size(); i++)
-			length += info.distance(ps.guess[i - 1].data(), ps.guess[i].data());
-		s.T_guess = ps.T_guess > 0 ? ps.T_guess : internal::duration_guess(info.bounds, info.typical_speed, length);
-		check_corridor(ps, static_cast<size_t>(info.position_dims), where);
-		s.corridor = ps.corridor;
-		s.guess_by_arc_length = !ps.corridor.empty() && !ps.guess_timed;
-		p.modes.push_back(ps.mode);
-		p.info.push_back(std::move(info));
-		p.setups.push_back(std::move(s));
-	}
-	for (const LinearRow &r : prob.rows)
-		for (const auto &t : r.terms)
-			if (t.first.phase < 0 || static_cast<size_t>(t.first.phase) >= p.setups.size() ||
-			    t.first.component < 0 || t.first.component >= p.info[static_cast<size_t>(t.first.phase)].nx)
-				throw std::invalid_argument("a linear row names phase " + std::to_string(t.first.phase) +
-							    " component " + std::to_string(t.first.component) +
-							    ", which does not exist");
-	p.rows = prob.rows;
+	Stacked p = stacked(robot, prob);
 	std::vector<Bounds> bounds;
 	std::vector<double> T_guesses;
 	for (size_t k = 0; k < p.setups.size(); k++) {
 		bounds.push_back(p.info[k].bounds);
 		T_guesses.push_back(p.setups[k].T_guess);
 	}
-	std::vector<Start> starts = internal::scaled_starts(bounds, T_guesses, prob.T_scales);
-	MultiPhaseSolution out = solve_stacked(robot, p, starts, prob.switch_cost, opt);
+	MultiPhaseSolution out = internal::solve_stacked(robot, p, internal::scaled_starts(bounds, T_guesses, prob.T_scales),
+							 prob.switch_cost, opt);
 	out.notes = prob.notes;
 	return out;
 }
