@@ -162,28 +162,42 @@ double quantile(std::vector<double> v, double q)
 	return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-}  // namespace
+// ---- the cost model's steps (fit_cost) ----------------------------------
 
-FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<double> &cost,
-		   const FitOptions &opt, SvrExport &out)
+void check_costs(const std::vector<double> &cost, const FitOptions &opt)
 {
-	auto t0 = Clock::now();
-	size_t n = cost.size();
-	check_data(nf, x, n, static_cast<size_t>(std::max(10, 2 * opt.folds)), opt.folds);
-	for (size_t i = 0; i < n; i++)
+	for (size_t i = 0; i < cost.size(); i++)
 		if (!std::isfinite(cost[i]) || !(cost[i] > 0))
 			throw std::invalid_argument("fit: cost of sample " + std::to_string(i) + " is " +
 						    std::to_string(cost[i]) + ", not a positive number");
 	if (opt.C.empty() || opt.gamma.empty() || opt.epsilon.empty())
 		throw std::invalid_argument("fit: empty hyperparameter grid");
-	silence();
+}
 
+// The held-out rows and the training rows, from the seed.
+struct Split {
+	std::vector<size_t> test, train;
+};
+
+Split split(size_t n, const FitOptions &opt)
+{
 	std::vector<size_t> perm = permutation(n, opt.seed);
 	size_t n_test = std::max<size_t>(1, static_cast<size_t>(opt.test_fraction * static_cast<double>(n)));
-	std::vector<size_t> test(perm.begin(), perm.begin() + static_cast<long>(n_test));
-	std::vector<size_t> train(perm.begin() + static_cast<long>(n_test), perm.end());
+	return {std::vector<size_t>(perm.begin(), perm.begin() + static_cast<long>(n_test)),
+		std::vector<size_t>(perm.begin() + static_cast<long>(n_test), perm.end())};
+}
 
-	// Labels: standardized log cost (relative errors matter; costs span decades).
+// Labels: standardized log cost (relative errors matter; costs span decades),
+// with the training rows' mean and scale.
+struct LogLabels {
+	double mean = 0, scale = 1;
+	std::vector<double> target;   // per row (and per mirror image, with_symmetries)
+	double cost(double label) const { return std::exp(label * scale + mean); }
+};
+
+LogLabels log_labels(const std::vector<double> &cost, const std::vector<size_t> &train)
+{
+	const size_t n = cost.size();
 	std::vector<double> logc(n);
 	for (size_t i = 0; i < n; i++)
 		logc[i] = std::log(cost[i]);
@@ -196,13 +210,19 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	double lscale = std::sqrt(var / static_cast<double>(train.size()));
 	if (!(lscale > 1e-12))
 		lscale = 1;
-	std::vector<double> target(n);
+	LogLabels l{mean, lscale, std::vector<double>(n)};
 	for (size_t i = 0; i < n; i++)
-		target[i] = (logc[i] - mean) / lscale;
-	// The mirror images: rows n*(s+1) + i of xa are row i flipped by
-	// symmetry s; with_images(idx) adds them to a list of fitted rows.
+		l.target[i] = (logc[i] - mean) / lscale;
+	return l;
+}
+
+// The mirror images: rows n*(s+1) + i of the returned features are row i
+// flipped by symmetry s; labels repeat.
+std::vector<double> with_symmetries(int nf, const std::vector<double> &x, size_t n,
+				    const std::vector<std::vector<double>> &symmetries, std::vector<double> &target)
+{
 	std::vector<double> xa = x;
-	for (const std::vector<double> &sg : opt.symmetries) {
+	for (const std::vector<double> &sg : symmetries) {
 		if (sg.size() != static_cast<size_t>(nf))
 			throw std::invalid_argument("fit: a symmetry has " + std::to_string(sg.size()) +
 						    " signs for " + std::to_string(nf) + " features");
@@ -210,46 +230,73 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 			for (size_t k = 0; k < sg.size(); k++)
 				xa.push_back(sg[k] * x[i * sg.size() + k]);
 	}
-	for (size_t s = 0; s < opt.symmetries.size(); s++)
+	for (size_t s = 0; s < symmetries.size(); s++)
 		target.insert(target.end(), target.begin(), target.begin() + static_cast<long>(n));
-	auto with_images = [&](const std::vector<size_t> &idx) {
-		std::vector<size_t> all = idx;
-		for (size_t s = 1; s <= opt.symmetries.size(); s++)
-			for (size_t i : idx)
-				all.push_back(s * n + i);
-		return all;
-	};
-	const std::vector<size_t> train_all = with_images(train);
-	std::vector<double> offset, scale;
-	standardization(nf, xa, train_all, offset, scale);
+	return xa;
+}
 
-	// Cross-validation on a deterministic subset of the training split.
-	std::vector<size_t> cv(train.begin(),
-			       train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
-	struct Point { double C, gamma, eps, err, median; };
+// Rows idx and their mirror images (with_symmetries).
+std::vector<size_t> with_images(const std::vector<size_t> &idx, size_t n, size_t symmetries)
+{
+	std::vector<size_t> all = idx;
+	for (size_t s = 1; s <= symmetries; s++)
+		for (size_t i : idx)
+			all.push_back(s * n + i);
+	return all;
+}
+
+// The rows with their images, standardized, as the fits see them.
+struct CostData {
+	int nf = 0;
+	size_t n = 0, symmetries = 0;
+	std::vector<double> xa;           // features with the mirror images
+	LogLabels labels;
+	std::vector<double> offset, scale;   // feature standardization
+	const std::vector<double> *cost = nullptr;
+};
+
+// A grid point and its cross-validated relative errors.
+struct Point { double C, gamma, eps, err, median; };
+
+std::vector<Point> grid_of(const FitOptions &opt)
+{
 	std::vector<Point> grid;
 	for (double C : opt.C)
 		for (double g : opt.gamma)
 			for (double e : opt.epsilon)
 				grid.push_back({C, g, e, 0, 0});
+	return grid;
+}
+
+// One fold's fit at a grid point: the relative errors of its validation rows.
+std::vector<double> fold_errors(const CostData &d, const std::vector<size_t> &cv, const Point &pt, size_t f,
+				size_t k)
+{
+	std::vector<size_t> fit_idx, val_idx;
+	for (size_t i = 0; i < cv.size(); i++)
+		(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
+	Problem p(d.nf, d.xa, with_images(fit_idx, d.n, d.symmetries), d.labels.target, d.offset, d.scale);
+	svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
+	svm_model *m = svm_train(&p.prob, &par);
+	Problem v(d.nf, d.xa, val_idx, d.labels.target, d.offset, d.scale);
+	std::vector<double> rel;
+	for (size_t r = 0; r < val_idx.size(); r++) {
+		double pred = d.labels.cost(svm_predict(m, v.rows[r]));
+		rel.push_back(std::fabs(pred - (*d.cost)[val_idx[r]]) / (*d.cost)[val_idx[r]]);
+	}
+	svm_free_and_destroy_model(&m);
+	return rel;
+}
+
+// Cross-validation of every grid point on cv (k folds): their mean and
+// median relative errors. Returns the best mean's index.
+size_t cross_validate(const CostData &d, const std::vector<size_t> &cv, std::vector<Point> &grid,
+		      const FitOptions &opt)
+{
 	size_t k = static_cast<size_t>(opt.folds);
 	std::vector<std::vector<double>> fold_rel(grid.size() * k);   // per validation sample
-	parallel_for(grid.size() * k, opt.jobs, [&](size_t job) {
-		const Point &pt = grid[job / k];
-		size_t f = job % k;
-		std::vector<size_t> fit_idx, val_idx;
-		for (size_t i = 0; i < cv.size(); i++)
-			(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
-		Problem p(nf, xa, with_images(fit_idx), target, offset, scale);
-		svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
-		svm_model *m = svm_train(&p.prob, &par);
-		Problem v(nf, xa, val_idx, target, offset, scale);
-		for (size_t r = 0; r < val_idx.size(); r++) {
-			double pred = std::exp(svm_predict(m, v.rows[r]) * lscale + mean);
-			fold_rel[job].push_back(std::fabs(pred - cost[val_idx[r]]) / cost[val_idx[r]]);
-		}
-		svm_free_and_destroy_model(&m);
-	});
+	parallel_for(grid.size() * k, opt.jobs,
+		     [&](size_t job) { fold_rel[job] = fold_errors(d, cv, grid[job / k], job % k, k); });
 	size_t best = 0;
 	for (size_t g = 0; g < grid.size(); g++) {
 		std::vector<double> all;
@@ -269,50 +316,95 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 		for (const Point &pt : grid)
 			std::fprintf(stderr, "cv: C %g gamma %g epsilon %g: relative error mean %.5f, median %.5f\n",
 				     pt.C, pt.gamma, pt.eps, pt.err, pt.median);
-	// The sparse choice (large models only): the widest tube whose median
-	// error is within the budget and whose mean error is near the best; else
-	// the best.
+	return best;
+}
+
+// The sparse choice (large models only): the widest tube whose median error
+// is within the budget and whose mean error is near the best; else the best.
+size_t sparse_choice(const std::vector<Point> &grid, size_t best, size_t n_train, const FitOptions &opt)
+{
 	size_t chosen = best;
-	for (size_t g = 0; train.size() > opt.sparse_min_train && g < grid.size(); g++)
+	for (size_t g = 0; n_train > opt.sparse_min_train && g < grid.size(); g++)
 		if (grid[g].median <= opt.sparse_median && grid[g].err <= grid[best].err * (1 + opt.sparse_mean_slack) &&
 		    (grid[g].eps > grid[chosen].eps ||
 		     (grid[g].eps == grid[chosen].eps && grid[g].err < grid[chosen].err)))
 			chosen = g;
-	best = chosen;
+	return chosen;
+}
 
-	// The final fit on the whole training split.
-	Problem p(nf, xa, train_all, target, offset, scale);
-	svm_parameter par = params(EPSILON_SVR, grid[best].C, grid[best].gamma, grid[best].eps);
-	svm_model *m = svm_train(&p.prob, &par);
-	FitReport rep;
-	rep.n_train = train.size();
-	rep.n_test = test.size();
-	rep.n_sv = static_cast<size_t>(m->l);
-	rep.C = grid[best].C;
-	rep.gamma = grid[best].gamma;
-	rep.epsilon = grid[best].eps;
-	rep.cv_mean_rel_error = grid[best].err;
-	Problem t(nf, x, test, target, offset, scale);
+// The held-out errors of model m.
+void test_errors(const svm_model *m, const CostData &d, const std::vector<double> &x,
+		 const std::vector<size_t> &test, FitReport &rep)
+{
+	Problem t(d.nf, x, test, d.labels.target, d.offset, d.scale);
 	std::vector<double> rel;
 	for (size_t r = 0; r < test.size(); r++) {
-		double pred = std::exp(svm_predict(m, t.rows[r]) * lscale + mean);
-		double c = cost[test[r]];
+		double pred = d.labels.cost(svm_predict(m, t.rows[r]));
+		double c = (*d.cost)[test[r]];
 		rep.mae += std::fabs(pred - c) / static_cast<double>(test.size());
 		rel.push_back(std::fabs(pred - c) / c);
 	}
 	rep.median_rel_error = quantile(rel, 0.5);
 	rep.p95_rel_error = quantile(rel, 0.95);
 	rep.max_rel_error = *std::max_element(rel.begin(), rel.end());
+}
 
-	out.n_features = nf;
+// Model m with d's standardization as an export's model fields.
+void export_model(const svm_model *m, const CostData &d, SvrExport &out)
+{
+	out.n_features = d.nf;
 	out.gamma = m->param.gamma;
 	out.rho = m->rho[0];
-	take(m, nf, 1.0, out.sv, out.coef);
-	out.feature_offset = offset;
-	out.feature_scale = scale;
-	out.label_offset = mean;
-	out.label_scale = lscale;
+	take(m, d.nf, 1.0, out.sv, out.coef);
+	out.feature_offset = d.offset;
+	out.feature_scale = d.scale;
+	out.label_offset = d.labels.mean;
+	out.label_scale = d.labels.scale;
 	out.label_log = true;
+}
+
+}  // namespace
+
+FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<double> &cost,
+		   const FitOptions &opt, SvrExport &out)
+{
+	auto t0 = Clock::now();
+	const size_t n = cost.size();
+	check_data(nf, x, n, static_cast<size_t>(std::max(10, 2 * opt.folds)), opt.folds);
+	check_costs(cost, opt);
+	silence();
+	const Split sp = split(n, opt);
+	CostData d;
+	d.nf = nf;
+	d.n = n;
+	d.symmetries = opt.symmetries.size();
+	d.cost = &cost;
+	d.labels = log_labels(cost, sp.train);
+	d.xa = with_symmetries(nf, x, n, opt.symmetries, d.labels.target);
+	const std::vector<size_t> train_all = with_images(sp.train, n, d.symmetries);
+	standardization(nf, d.xa, train_all, d.offset, d.scale);
+
+	// Cross-validation on a deterministic subset of the training split.
+	std::vector<size_t> cv(sp.train.begin(),
+			       sp.train.begin() + static_cast<long>(std::min(sp.train.size(), opt.cv_max_samples)));
+	std::vector<Point> grid = grid_of(opt);
+	const size_t best = cross_validate(d, cv, grid, opt);
+	const Point &pt = grid[sparse_choice(grid, best, sp.train.size(), opt)];
+
+	// The final fit on the whole training split.
+	Problem p(nf, d.xa, train_all, d.labels.target, d.offset, d.scale);
+	svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
+	svm_model *m = svm_train(&p.prob, &par);
+	FitReport rep;
+	rep.n_train = sp.train.size();
+	rep.n_test = sp.test.size();
+	rep.n_sv = static_cast<size_t>(m->l);
+	rep.C = pt.C;
+	rep.gamma = pt.gamma;
+	rep.epsilon = pt.eps;
+	rep.cv_mean_rel_error = pt.err;
+	test_errors(m, d, x, sp.test, rep);
+	export_model(m, d, out);
 	svm_free_and_destroy_model(&m);
 	rep.fit_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 	return rep;
