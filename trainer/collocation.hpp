@@ -3,7 +3,10 @@
 // AutoDiff: single-mode boundary value problems (the training samples) and
 // multi-phase problems whose phases, in different modes, are joined at guard
 // points by reset maps (the smoother and the fixed-sequence baselines). The
-// transcription of one phase is in hs_phase.hpp.
+// public entry of the solver driver; its parts (docs/trainer.md, "Solving
+// one pair"): the transcription of one phase (hs_phase.hpp), the Ipopt
+// adapter (ipopt_nlp), the solve strategy (solve_strategy), the starts
+// (starts), each mode's configuration (mode_config), the replay (replay).
 #ifndef HYLO_TRAINER_COLLOCATION_HPP
 #define HYLO_TRAINER_COLLOCATION_HPP
 
