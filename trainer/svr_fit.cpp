@@ -179,9 +179,9 @@ struct Split {
 	std::vector<size_t> test, train;
 };
 
-Split split(size_t n, const FitOptions &opt)
+Split split(size_t n, uint64_t seed, const FitOptions &opt)
 {
-	std::vector<size_t> perm = permutation(n, opt.seed);
+	std::vector<size_t> perm = permutation(n, seed);
 	size_t n_test = std::max<size_t>(1, static_cast<size_t>(opt.test_fraction * static_cast<double>(n)));
 	return {std::vector<size_t>(perm.begin(), perm.begin() + static_cast<long>(n_test)),
 		std::vector<size_t>(perm.begin() + static_cast<long>(n_test), perm.end())};
@@ -268,13 +268,27 @@ std::vector<Point> grid_of(const FitOptions &opt)
 	return grid;
 }
 
+// Cross-validation's rows: a deterministic subset of the training split.
+std::vector<size_t> cv_rows(const std::vector<size_t> &train, const FitOptions &opt)
+{
+	return std::vector<size_t>(train.begin(),
+				   train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
+}
+
+// Fold f of k of the cross-validation rows: every k-th row validates, the rest fit.
+void fold(const std::vector<size_t> &cv, size_t f, size_t k, std::vector<size_t> &fit_idx,
+	  std::vector<size_t> &val_idx)
+{
+	for (size_t i = 0; i < cv.size(); i++)
+		(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
+}
+
 // One fold's fit at a grid point: the relative errors of its validation rows.
 std::vector<double> fold_errors(const CostData &d, const std::vector<size_t> &cv, const Point &pt, size_t f,
 				size_t k)
 {
 	std::vector<size_t> fit_idx, val_idx;
-	for (size_t i = 0; i < cv.size(); i++)
-		(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
+	fold(cv, f, k, fit_idx, val_idx);
 	Problem p(d.nf, d.xa, with_images(fit_idx, d.n, d.symmetries), d.labels.target, d.offset, d.scale);
 	svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
 	svm_model *m = svm_train(&p.prob, &par);
@@ -373,7 +387,7 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	check_data(nf, x, n, static_cast<size_t>(std::max(10, 2 * opt.folds)), opt.folds);
 	check_costs(cost, opt);
 	silence();
-	const Split sp = split(n, opt);
+	const Split sp = split(n, opt.seed, opt);
 	CostData d;
 	d.nf = nf;
 	d.n = n;
@@ -384,11 +398,8 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	const std::vector<size_t> train_all = with_images(sp.train, n, d.symmetries);
 	standardization(nf, d.xa, train_all, d.offset, d.scale);
 
-	// Cross-validation on a deterministic subset of the training split.
-	std::vector<size_t> cv(sp.train.begin(),
-			       sp.train.begin() + static_cast<long>(std::min(sp.train.size(), opt.cv_max_samples)));
 	std::vector<Point> grid = grid_of(opt);
-	const size_t best = cross_validate(d, cv, grid, opt);
+	const size_t best = cross_validate(d, cv_rows(sp.train, opt), grid, opt);
 	const Point &pt = grid[sparse_choice(grid, best, sp.train.size(), opt)];
 
 	// The final fit on the whole training split.
@@ -410,6 +421,81 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	return rep;
 }
 
+namespace {
+
+// ---- the feasibility classifier's steps (fit_feasibility) ---------------
+
+// The classifier's data: +1 feasible, -1 not; standardized on the training rows.
+struct ClassData {
+	int nf = 0;
+	const std::vector<double> *x = nullptr;
+	std::vector<double> label;
+	std::vector<double> offset, scale;
+};
+
+// A grid point of the classifier and its cross-validated accuracy.
+struct ClassPoint { double C, gamma, acc; };
+
+bool one_class(const Problem &p)
+{
+	return std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; });
+}
+
+// The share of rows idx that m classifies right.
+double accuracy(const svm_model *m, const ClassData &d, const std::vector<size_t> &idx)
+{
+	Problem v(d.nf, *d.x, idx, d.label, d.offset, d.scale);
+	size_t hits = 0;
+	for (size_t r = 0; r < idx.size(); r++)
+		hits += svm_predict(m, v.rows[r]) == d.label[idx[r]];
+	return static_cast<double>(hits) / static_cast<double>(idx.size());
+}
+
+// The share of rows idx of class c.
+double share_of_class(double c, const ClassData &d, const std::vector<size_t> &idx)
+{
+	size_t hits = 0;
+	for (size_t i : idx)
+		hits += d.label[i] == c;
+	return static_cast<double>(hits) / static_cast<double>(idx.size());
+}
+
+// One fold's fit at a grid point: its validation accuracy. A fold of one
+// class predicts that class.
+double fold_accuracy(const ClassData &d, const std::vector<size_t> &cv, const ClassPoint &pt, size_t f, size_t k)
+{
+	std::vector<size_t> fit_idx, val_idx;
+	fold(cv, f, k, fit_idx, val_idx);
+	Problem p(d.nf, *d.x, fit_idx, d.label, d.offset, d.scale);
+	if (one_class(p))
+		return share_of_class(p.y[0], d, val_idx);
+	svm_parameter par = params(C_SVC, pt.C, pt.gamma, 0);
+	svm_model *m = svm_train(&p.prob, &par);
+	double acc = accuracy(m, d, val_idx);
+	svm_free_and_destroy_model(&m);
+	return acc;
+}
+
+// Cross-validation of every (C, gamma) on cv: the most accurate point's index.
+size_t cross_validate(const ClassData &d, const std::vector<size_t> &cv, std::vector<ClassPoint> &grid,
+		      const FitOptions &opt)
+{
+	size_t k = static_cast<size_t>(opt.folds);
+	std::vector<double> fold_acc(grid.size() * k, 0.0);
+	parallel_for(grid.size() * k, opt.jobs,
+		     [&](size_t job) { fold_acc[job] = fold_accuracy(d, cv, grid[job / k], job % k, k); });
+	size_t best = 0;
+	for (size_t g = 0; g < grid.size(); g++) {
+		for (size_t f = 0; f < k; f++)
+			grid[g].acc += fold_acc[g * k + f] / static_cast<double>(k);
+		if (grid[g].acc > grid[best].acc)
+			best = g;
+	}
+	return best;
+}
+
+}  // namespace
+
 ClassifierReport fit_feasibility(int nf, const std::vector<double> &x,
 				 const std::vector<bool> &feasible, const FitOptions &opt,
 				 ClassifierExport &out)
@@ -423,80 +509,39 @@ ClassifierReport fit_feasibility(int nf, const std::vector<double> &x,
 					    "infeasible samples (" + std::to_string(n_feasible) +
 					    " of " + std::to_string(n) + " are feasible)");
 	silence();
-	std::vector<size_t> perm = permutation(n, opt.seed + 1);
-	size_t n_test = std::max<size_t>(1, static_cast<size_t>(opt.test_fraction * static_cast<double>(n)));
-	std::vector<size_t> test(perm.begin(), perm.begin() + static_cast<long>(n_test));
-	std::vector<size_t> train(perm.begin() + static_cast<long>(n_test), perm.end());
-	std::vector<double> label(n);
+	const Split sp = split(n, opt.seed + 1, opt);
+	ClassData d;
+	d.nf = nf;
+	d.x = &x;
 	for (size_t i = 0; i < n; i++)
-		label[i] = feasible[i] ? 1 : -1;
-	std::vector<double> offset, scale;
-	standardization(nf, x, train, offset, scale);
-
-	std::vector<size_t> cv(train.begin(),
-			       train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
-	struct Point { double C, gamma, acc; };
-	std::vector<Point> grid;
+		d.label.push_back(feasible[i] ? 1 : -1);
+	standardization(nf, x, sp.train, d.offset, d.scale);
+	std::vector<ClassPoint> grid;
 	for (double C : opt.C)
 		for (double g : opt.gamma)
 			grid.push_back({C, g, 0});
-	size_t k = static_cast<size_t>(opt.folds);
-	std::vector<double> fold_acc(grid.size() * k, 0.0);
-	parallel_for(grid.size() * k, opt.jobs, [&](size_t job) {
-		const Point &pt = grid[job / k];
-		size_t f = job % k;
-		std::vector<size_t> fit_idx, val_idx;
-		for (size_t i = 0; i < cv.size(); i++)
-			(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
-		Problem p(nf, x, fit_idx, label, offset, scale);
-		bool one_class = std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; });
-		if (one_class) {   // a fold of one class predicts that class
-			size_t hits = 0;
-			for (size_t i : val_idx)
-				hits += label[i] == p.y[0];
-			fold_acc[job] = static_cast<double>(hits) / static_cast<double>(val_idx.size());
-			return;
-		}
-		svm_parameter par = params(C_SVC, pt.C, pt.gamma, 0);
-		svm_model *m = svm_train(&p.prob, &par);
-		Problem v(nf, x, val_idx, label, offset, scale);
-		size_t hits = 0;
-		for (size_t r = 0; r < val_idx.size(); r++)
-			hits += svm_predict(m, v.rows[r]) == label[val_idx[r]];
-		fold_acc[job] = static_cast<double>(hits) / static_cast<double>(val_idx.size());
-		svm_free_and_destroy_model(&m);
-	});
-	size_t best = 0;
-	for (size_t g = 0; g < grid.size(); g++) {
-		for (size_t f = 0; f < k; f++)
-			grid[g].acc += fold_acc[g * k + f] / static_cast<double>(k);
-		if (grid[g].acc > grid[best].acc)
-			best = g;
-	}
-	Problem p(nf, x, train, label, offset, scale);
-	if (std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; }))
+	const ClassPoint &pt = grid[cross_validate(d, cv_rows(sp.train, opt), grid, opt)];
+
+	Problem p(nf, x, sp.train, d.label, d.offset, d.scale);
+	if (one_class(p))
 		throw std::invalid_argument("fit: the training split of the feasibility data has one class only");
-	svm_parameter par = params(C_SVC, grid[best].C, grid[best].gamma, 0);
+	svm_parameter par = params(C_SVC, pt.C, pt.gamma, 0);
 	svm_model *m = svm_train(&p.prob, &par);
 	// libsvm's decision value is positive for label[0]: orient it to "feasible".
 	double sign = m->label[0] == 1 ? 1.0 : -1.0;
 	ClassifierReport rep;
-	rep.n_train = train.size();
-	rep.n_test = test.size();
+	rep.n_train = sp.train.size();
+	rep.n_test = sp.test.size();
 	rep.n_sv = static_cast<size_t>(m->l);
 	rep.n_feasible = n_feasible;
-	rep.C = grid[best].C;
-	rep.gamma = grid[best].gamma;
-	Problem t(nf, x, test, label, offset, scale);
-	size_t hits = 0;
-	for (size_t r = 0; r < test.size(); r++)
-		hits += svm_predict(m, t.rows[r]) == label[test[r]];
-	rep.accuracy = static_cast<double>(hits) / static_cast<double>(test.size());
+	rep.C = pt.C;
+	rep.gamma = pt.gamma;
+	rep.accuracy = accuracy(m, d, sp.test);
 	out.gamma = m->param.gamma;
 	out.rho = sign * m->rho[0];
 	take(m, nf, sign, out.sv, out.coef);
-	out.feature_offset = offset;
-	out.feature_scale = scale;
+	out.feature_offset = d.offset;
+	out.feature_scale = d.scale;
 	svm_free_and_destroy_model(&m);
 	rep.fit_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 	return rep;
