@@ -50,19 +50,24 @@ void tune_flight(ModeInfo &i, const FlightModel &fm)
 	};
 }
 
+// A sampled planar state (px, py, v, theta) as the mode's full state.
+struct PlanarPoint {
+	std::function<std::vector<double>(const double *xs)> full_state;
+	std::vector<double> operator()(double px, double py, double v, double theta) const
+	{
+		const double xs[4] = {px, py, v, theta};
+		return full_state(xs);
+	}
+};
+
 // Ground and marine: the planar strategy guesses (starts.hpp) besides the
-// straight line; a sampled state (px, py, v, theta) stands for its full state.
+// straight line.
 void tune_planar(ModeInfo &i)
 {
 	i.position_dims = 2;
-	Bounds bd = i.bounds;
-	double speed = i.typical_speed;
-	auto full = i.full_state;
-	i.strategy_guesses = [bd, speed, full](const std::vector<double> &a, const std::vector<double> &b) {
-		return planar_strategy_guesses(a, b, bd, speed, [&full](double px, double py, double v, double th) {
-			const double xs[4] = {px, py, v, th};
-			return full(xs);
-		});
+	i.strategy_guesses = [bd = i.bounds, speed = i.typical_speed, point = PlanarPoint{i.full_state}](
+				     const std::vector<double> &a, const std::vector<double> &b) {
+		return planar_strategy_guesses(a, b, bd, speed, point);
 	};
 }
 
