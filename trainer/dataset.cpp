@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <sys/stat.h>
@@ -445,89 +446,141 @@ std::string dataset_path(const GenOptions &opt)
 	return base + ".csv";
 }
 
-GenSummary generate(const RobotParams &robot, const GenOptions &opt)
-{
-	auto t0 = std::chrono::steady_clock::now();
-	if (opt.shard < 1 || opt.shard > opt.shards)
-		throw std::invalid_argument("--shard K/N needs 1 <= K <= N");
-	std::error_code ec;
-	std::filesystem::create_directories(opt.out_dir, ec);
-	if (ec || access(opt.out_dir.c_str(), W_OK) != 0)
-		throw std::runtime_error("cannot create the output directory " + opt.out_dir + ": " +
-					 (ec ? ec.message() : std::string(std::strerror(errno))));
-	uint64_t lo = opt.samples * static_cast<uint64_t>(opt.shard - 1) / static_cast<uint64_t>(opt.shards);
-	uint64_t hi = opt.samples * static_cast<uint64_t>(opt.shard) / static_cast<uint64_t>(opt.shards);
-	GenSummary sum;
-	sum.path = dataset_path(opt);
-	std::string meta_path = sum.path + ".meta", meta = meta_text(robot, opt);
-	// A dataset of this stream labelled from straight lines alone is
-	// relabelled in place: it is moved to <file>.straight and relabelled
-	// from there (resumable), and removed once every row of it is done.
-	GenOptions ro = opt;
-	const std::string straight = sum.path + ".straight";
-	if (ro.relabel.empty() && ro.shards == 1 && ro.solve.strategy_starts) {
-		std::string straight_meta = straight_meta_text(robot, opt);
-		if (straight_meta != meta && read_file(meta_path) == straight_meta) {
-			if (access(straight.c_str(), F_OK) == 0)
-				throw std::runtime_error(straight + " exists already; remove it or " + sum.path);
-			if (rename(meta_path.c_str(), (straight + ".meta").c_str()) != 0 ||
-			    rename(sum.path.c_str(), straight.c_str()) != 0)
-				throw std::runtime_error("cannot move " + sum.path + " to " + straight);
-			if (opt.progress)
-				std::fprintf(stderr, "%s: labelled from straight lines alone; relabelling it (the old rows are in %s)\n",
-					     sum.path.c_str(), straight.c_str());
-		}
-		if (access(straight.c_str(), F_OK) == 0)
-			ro.relabel = straight;
-	}
-	std::vector<Solution> line;
-	if (!ro.relabel.empty()) {
-		if (ro.shards > 1 || !ro.solve.strategy_starts)
-			throw std::invalid_argument("--relabel needs an unsharded run with the other starts");
-		line = line_results(robot, ro);
-	}
+namespace {
 
-	// Resume: the metadata must match; keep complete rows, drop a torn tail.
+// ---- generate's steps ---------------------------------------------------
+
+void make_out_dir(const std::string &dir)
+{
+	std::error_code ec;
+	std::filesystem::create_directories(dir, ec);
+	if (ec || access(dir.c_str(), W_OK) != 0)
+		throw std::runtime_error("cannot create the output directory " + dir + ": " +
+					 (ec ? ec.message() : std::string(std::strerror(errno))));
+}
+
+// The options a run relabels under: a dataset of this stream labelled from
+// straight lines alone is relabelled in place: it is moved to
+// <file>.straight and relabelled from there (resumable), and removed once
+// every row of it is done.
+GenOptions relabel_in_place(const RobotParams &robot, const GenOptions &opt, const std::string &path,
+			    const std::string &meta)
+{
+	GenOptions ro = opt;
+	const std::string straight = path + ".straight", meta_path = path + ".meta";
+	if (!ro.relabel.empty() || ro.shards != 1 || !ro.solve.strategy_starts)
+		return ro;
+	std::string straight_meta = straight_meta_text(robot, opt);
+	if (straight_meta != meta && read_file(meta_path) == straight_meta) {
+		if (access(straight.c_str(), F_OK) == 0)
+			throw std::runtime_error(straight + " exists already; remove it or " + path);
+		if (rename(meta_path.c_str(), (straight + ".meta").c_str()) != 0 ||
+		    rename(path.c_str(), straight.c_str()) != 0)
+			throw std::runtime_error("cannot move " + path + " to " + straight);
+		if (opt.progress)
+			std::fprintf(stderr, "%s: labelled from straight lines alone; relabelling it (the old rows are in %s)\n",
+				     path.c_str(), straight.c_str());
+	}
+	if (access(straight.c_str(), F_OK) == 0)
+		ro.relabel = straight;
+	return ro;
+}
+
+// The CSV header line, written by the first shard only.
+std::string csv_header(const GenOptions &opt)
+{
 	std::string header;
 	if (opt.shard == 1) {
 		for (const auto &c : csv_columns(opt.mode))
 			header += (header.empty() ? "" : ",") + c;
 		header += "\n";
 	}
-	uint64_t next = lo;
-	std::string existing = read_file(sum.path);
-	if (!existing.empty() || access(meta_path.c_str(), F_OK) == 0) {
-		ResumePoint r = resume_point(existing, header);
-		std::string old_meta = read_file(meta_path);
-		if (old_meta != meta) {
-			// Labelled under other settings: it may be fitted, not extended.
-			if (r.rows >= hi - lo && same_stream(old_meta, meta)) {
-				if (opt.progress)
-					std::fprintf(stderr, "%s: every row asked for is there (labelled under other "
-							     "settings, see its .meta); nothing to generate\n",
-						     sum.path.c_str());
-				sum.resumed_from = hi - lo;
-				return sum;
-			}
-			throw std::runtime_error(sum.path + " was made under other settings: " +
-						 meta_differences(old_meta, meta) +
-						 "; regenerate it into another --out directory");
-		}
-		next = lo + r.rows;
-		if (truncate(sum.path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
-			throw std::runtime_error("cannot truncate " + sum.path);
-	} else {
+	return header;
+}
+
+// Resume: the metadata must match; keeps complete rows, drops a torn tail.
+// Returns the index to go on from; none when every row asked for is there,
+// labelled under other settings (then it may be fitted, not extended). A
+// new dataset gets its metadata.
+std::optional<uint64_t> resume(const GenOptions &opt, const std::string &path, const std::string &meta, const std::string &header,
+		uint64_t lo, uint64_t hi)
+{
+	const std::string meta_path = path + ".meta";
+	std::string existing = read_file(path);
+	if (existing.empty() && access(meta_path.c_str(), F_OK) != 0) {
 		write_file_atomically(meta_path, meta);
+		return lo;
 	}
-	sum.resumed_from = next - lo;
+	ResumePoint r = resume_point(existing, header);
+	std::string old_meta = read_file(meta_path);
+	if (old_meta != meta) {
+		if (r.rows >= hi - lo && same_stream(old_meta, meta)) {
+			if (opt.progress)
+				std::fprintf(stderr, "%s: every row asked for is there (labelled under other "
+						     "settings, see its .meta); nothing to generate\n",
+					     path.c_str());
+			return std::nullopt;
+		}
+		throw std::runtime_error(path + " was made under other settings: " + meta_differences(old_meta, meta) +
+					 "; regenerate it into another --out directory");
+	}
+	if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
+		throw std::runtime_error("cannot truncate " + path);
+	return lo + r.rows;
+}
+
+// The progress line on stderr: every chunk on a terminal, else every 10 s
+// and at the end.
+class Progress {
+public:
+	// t0: when the run started (its rate counts from there).
+	Progress(bool on, std::chrono::steady_clock::time_point t0, uint64_t lo, uint64_t hi)
+		: on_(on), lo_(lo), hi_(hi), t0_(t0)
+	{
+	}
+	uint64_t lo() const { return lo_; }
+
+	void chunk_done(const GenSummary &sum, uint64_t e)
+	{
+		auto now = std::chrono::steady_clock::now();
+		double el = std::chrono::duration<double>(now - t0_).count();
+		double rate = sum.done / std::max(el, 1e-9);
+		double eta = (hi_ - e) / std::max(rate, 1e-9);
+		if (!on_ || !(tty_ || std::chrono::duration<double>(now - last_).count() > 10 || e == hi_))
+			return;
+		last_ = now;
+		int width = 30, fill = static_cast<int>(width * static_cast<double>(e - lo_) / std::max<uint64_t>(1, hi_ - lo_));
+		std::fprintf(stderr, "%s[%s%s] %llu/%llu samples, %.2f/s, ETA %.0f s, %llu converged, %llu rejected%s",
+			     tty_ ? "\r" : "", std::string(static_cast<size_t>(fill), '#').c_str(),
+			     std::string(static_cast<size_t>(width - fill), '.').c_str(),
+			     static_cast<unsigned long long>(e - lo_), static_cast<unsigned long long>(hi_ - lo_), rate, eta,
+			     static_cast<unsigned long long>(sum.converged), static_cast<unsigned long long>(sum.rejected),
+			     tty_ ? "" : "\n");
+	}
+
+	void end() const
+	{
+		if (on_ && tty_)
+			std::fprintf(stderr, "\n");
+	}
+
+private:
+	bool on_, tty_ = isatty(STDERR_FILENO);
+	uint64_t lo_, hi_;
+	std::chrono::steady_clock::time_point t0_, last_ = std::chrono::steady_clock::now();
+};
+
+// Solves samples [next, hi) of [progress.lo(), hi) chunk by chunk, appending each chunk's rows to
+// the dataset (synced) and counting them into sum.
+void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vector<Solution> &line,
+		const std::string &header, Progress progress, uint64_t next, uint64_t hi, GenSummary &sum)
+{
 	AppendFile out(sum.path);
-	if (next == lo && opt.shard == 1) {
+	if (next == progress.lo() && opt.shard == 1) {
 		struct stat fs;
 		if (fstat(out.fd(), &fs) == 0 && fs.st_size == 0)
 			out.write(header);
 	}
-	bool tty = isatty(STDERR_FILENO);
-	auto last_report = std::chrono::steady_clock::now();
 	for (uint64_t c = next; c < hi; c += static_cast<uint64_t>(opt.chunk)) {
 		uint64_t e = std::min(hi, c + static_cast<uint64_t>(opt.chunk));
 		uint64_t conv = 0, errs = 0;
@@ -541,27 +594,43 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 		sum.converged += conv;
 		sum.errors += errs;
 		sum.rejected += (e - c) - conv - errs;
-		auto now = std::chrono::steady_clock::now();
-		double el = std::chrono::duration<double>(now - t0).count();
-		double rate = sum.done / std::max(el, 1e-9);
-		double eta = (hi - e) / std::max(rate, 1e-9);
-		if (opt.progress && (tty || std::chrono::duration<double>(now - last_report).count() > 10 || e == hi)) {
-			last_report = now;
-			int width = 30, fill = static_cast<int>(width * static_cast<double>(e - lo) / std::max<uint64_t>(1, hi - lo));
-			std::fprintf(stderr, "%s[%s%s] %llu/%llu samples, %.2f/s, ETA %.0f s, %llu converged, %llu rejected%s",
-				     tty ? "\r" : "", std::string(static_cast<size_t>(fill), '#').c_str(),
-				     std::string(static_cast<size_t>(width - fill), '.').c_str(),
-				     static_cast<unsigned long long>(e - lo), static_cast<unsigned long long>(hi - lo), rate, eta,
-				     static_cast<unsigned long long>(sum.converged),
-				     static_cast<unsigned long long>(sum.rejected), tty ? "" : "\n");
-		}
+		progress.chunk_done(sum, e);
 	}
-	if (opt.progress && tty)
-		std::fprintf(stderr, "\n");
+	progress.end();
 	out.close();
-	if (ro.relabel == straight && hi >= line.size()) {
-		std::remove(straight.c_str());
-		std::remove((straight + ".meta").c_str());
+}
+
+}  // namespace
+
+GenSummary generate(const RobotParams &robot, const GenOptions &opt)
+{
+	auto t0 = std::chrono::steady_clock::now();
+	if (opt.shard < 1 || opt.shard > opt.shards)
+		throw std::invalid_argument("--shard K/N needs 1 <= K <= N");
+	make_out_dir(opt.out_dir);
+	uint64_t lo = opt.samples * static_cast<uint64_t>(opt.shard - 1) / static_cast<uint64_t>(opt.shards);
+	uint64_t hi = opt.samples * static_cast<uint64_t>(opt.shard) / static_cast<uint64_t>(opt.shards);
+	GenSummary sum;
+	sum.path = dataset_path(opt);
+	const std::string meta = meta_text(robot, opt);
+	const GenOptions ro = relabel_in_place(robot, opt, sum.path, meta);
+	std::vector<Solution> line;
+	if (!ro.relabel.empty()) {
+		if (ro.shards > 1 || !ro.solve.strategy_starts)
+			throw std::invalid_argument("--relabel needs an unsharded run with the other starts");
+		line = line_results(robot, ro);
+	}
+	const std::string header = csv_header(opt);
+	const std::optional<uint64_t> next = resume(opt, sum.path, meta, header, lo, hi);
+	if (!next) {
+		sum.resumed_from = hi - lo;
+		return sum;
+	}
+	sum.resumed_from = *next - lo;
+	solve_rows(robot, opt, line, header, Progress(opt.progress, t0, lo, hi), *next, hi, sum);
+	if (ro.relabel == sum.path + ".straight" && hi >= line.size()) {
+		std::remove(ro.relabel.c_str());
+		std::remove((ro.relabel + ".meta").c_str());
 	}
 	sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	return sum;

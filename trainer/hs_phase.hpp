@@ -1,7 +1,7 @@
 // One phase of a Hermite-Simpson transcription (internal to the trainer).
 // A phase owns its variable layout (states and inputs at N+1 knots and N
-// midpoints, then its duration T) and its constraints; CollocationNlp
-// (collocation.cpp) stacks phases and the linear rows that join them into
+// midpoints, then its duration T) and its constraints; StackedNlp
+// (ipopt_nlp.hpp) stacks phases and the linear rows that join them into
 // one Ipopt problem. Derivatives are exact, in forward mode: Eigen's AutoDiff
 // for the Jacobian, a second-order type (hyperdual.hpp) for the Hessian.
 //
@@ -27,9 +27,10 @@
 
 #include <IpTNLP.hpp>
 
-#include "trainer/collocation.hpp"
 #include "trainer/hyperdual.hpp"
 #include "trainer/models.hpp"
+#include "trainer/problem.hpp"
+#include "trainer/solution.hpp"
 
 namespace hylo::trainer::internal {
 
@@ -51,7 +52,7 @@ struct PhaseSetup {
 	bool guess_by_arc_length = false;
 };
 
-// The interface CollocationNlp sees. Pointers passed in are already offset to
+// The interface StackedNlp sees. Pointers passed in are already offset to
 // the phase's own variables, constraints and multipliers; structure calls get
 // the offsets to add to indices.
 class PhaseBlock {

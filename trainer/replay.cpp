@@ -12,7 +12,6 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "trainer/collocation.hpp"
 #include "trainer/models.hpp"
 
 namespace hylo::trainer {

@@ -162,28 +162,42 @@ double quantile(std::vector<double> v, double q)
 	return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-}  // namespace
+// ---- the cost model's steps (fit_cost) ----------------------------------
 
-FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<double> &cost,
-		   const FitOptions &opt, SvrExport &out)
+void check_costs(const std::vector<double> &cost, const FitOptions &opt)
 {
-	auto t0 = Clock::now();
-	size_t n = cost.size();
-	check_data(nf, x, n, static_cast<size_t>(std::max(10, 2 * opt.folds)), opt.folds);
-	for (size_t i = 0; i < n; i++)
+	for (size_t i = 0; i < cost.size(); i++)
 		if (!std::isfinite(cost[i]) || !(cost[i] > 0))
 			throw std::invalid_argument("fit: cost of sample " + std::to_string(i) + " is " +
 						    std::to_string(cost[i]) + ", not a positive number");
 	if (opt.C.empty() || opt.gamma.empty() || opt.epsilon.empty())
 		throw std::invalid_argument("fit: empty hyperparameter grid");
-	silence();
+}
 
-	std::vector<size_t> perm = permutation(n, opt.seed);
+// The held-out rows and the training rows, from the seed.
+struct Split {
+	std::vector<size_t> test, train;
+};
+
+Split split(size_t n, uint64_t seed, const FitOptions &opt)
+{
+	std::vector<size_t> perm = permutation(n, seed);
 	size_t n_test = std::max<size_t>(1, static_cast<size_t>(opt.test_fraction * static_cast<double>(n)));
-	std::vector<size_t> test(perm.begin(), perm.begin() + static_cast<long>(n_test));
-	std::vector<size_t> train(perm.begin() + static_cast<long>(n_test), perm.end());
+	return {std::vector<size_t>(perm.begin(), perm.begin() + static_cast<long>(n_test)),
+		std::vector<size_t>(perm.begin() + static_cast<long>(n_test), perm.end())};
+}
 
-	// Labels: standardized log cost (relative errors matter; costs span decades).
+// Labels: standardized log cost (relative errors matter; costs span decades),
+// with the training rows' mean and scale.
+struct LogLabels {
+	double mean = 0, scale = 1;
+	std::vector<double> target;   // per row (and per mirror image, with_symmetries)
+	double cost(double label) const { return std::exp(label * scale + mean); }
+};
+
+LogLabels log_labels(const std::vector<double> &cost, const std::vector<size_t> &train)
+{
+	const size_t n = cost.size();
 	std::vector<double> logc(n);
 	for (size_t i = 0; i < n; i++)
 		logc[i] = std::log(cost[i]);
@@ -196,13 +210,19 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	double lscale = std::sqrt(var / static_cast<double>(train.size()));
 	if (!(lscale > 1e-12))
 		lscale = 1;
-	std::vector<double> target(n);
+	LogLabels l{mean, lscale, std::vector<double>(n)};
 	for (size_t i = 0; i < n; i++)
-		target[i] = (logc[i] - mean) / lscale;
-	// The mirror images: rows n*(s+1) + i of xa are row i flipped by
-	// symmetry s; with_images(idx) adds them to a list of fitted rows.
+		l.target[i] = (logc[i] - mean) / lscale;
+	return l;
+}
+
+// The mirror images: rows n*(s+1) + i of the returned features are row i
+// flipped by symmetry s; labels repeat.
+std::vector<double> with_symmetries(int nf, const std::vector<double> &x, size_t n,
+				    const std::vector<std::vector<double>> &symmetries, std::vector<double> &target)
+{
 	std::vector<double> xa = x;
-	for (const std::vector<double> &sg : opt.symmetries) {
+	for (const std::vector<double> &sg : symmetries) {
 		if (sg.size() != static_cast<size_t>(nf))
 			throw std::invalid_argument("fit: a symmetry has " + std::to_string(sg.size()) +
 						    " signs for " + std::to_string(nf) + " features");
@@ -210,46 +230,87 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 			for (size_t k = 0; k < sg.size(); k++)
 				xa.push_back(sg[k] * x[i * sg.size() + k]);
 	}
-	for (size_t s = 0; s < opt.symmetries.size(); s++)
+	for (size_t s = 0; s < symmetries.size(); s++)
 		target.insert(target.end(), target.begin(), target.begin() + static_cast<long>(n));
-	auto with_images = [&](const std::vector<size_t> &idx) {
-		std::vector<size_t> all = idx;
-		for (size_t s = 1; s <= opt.symmetries.size(); s++)
-			for (size_t i : idx)
-				all.push_back(s * n + i);
-		return all;
-	};
-	const std::vector<size_t> train_all = with_images(train);
-	std::vector<double> offset, scale;
-	standardization(nf, xa, train_all, offset, scale);
+	return xa;
+}
 
-	// Cross-validation on a deterministic subset of the training split.
-	std::vector<size_t> cv(train.begin(),
-			       train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
-	struct Point { double C, gamma, eps, err, median; };
+// Rows idx and their mirror images (with_symmetries).
+std::vector<size_t> with_images(const std::vector<size_t> &idx, size_t n, size_t symmetries)
+{
+	std::vector<size_t> all = idx;
+	for (size_t s = 1; s <= symmetries; s++)
+		for (size_t i : idx)
+			all.push_back(s * n + i);
+	return all;
+}
+
+// The rows with their images, standardized, as the fits see them.
+struct CostData {
+	int nf = 0;
+	size_t n = 0, symmetries = 0;
+	std::vector<double> xa;           // features with the mirror images
+	LogLabels labels;
+	std::vector<double> offset, scale;   // feature standardization
+	const std::vector<double> *cost = nullptr;
+};
+
+// A grid point and its cross-validated relative errors.
+struct Point { double C, gamma, eps, err, median; };
+
+std::vector<Point> grid_of(const FitOptions &opt)
+{
 	std::vector<Point> grid;
 	for (double C : opt.C)
 		for (double g : opt.gamma)
 			for (double e : opt.epsilon)
 				grid.push_back({C, g, e, 0, 0});
+	return grid;
+}
+
+// Cross-validation's rows: a deterministic subset of the training split.
+std::vector<size_t> cv_rows(const std::vector<size_t> &train, const FitOptions &opt)
+{
+	return std::vector<size_t>(train.begin(),
+				   train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
+}
+
+// Fold f of k of the cross-validation rows: every k-th row validates, the rest fit.
+void fold(const std::vector<size_t> &cv, size_t f, size_t k, std::vector<size_t> &fit_idx,
+	  std::vector<size_t> &val_idx)
+{
+	for (size_t i = 0; i < cv.size(); i++)
+		(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
+}
+
+// One fold's fit at a grid point: the relative errors of its validation rows.
+std::vector<double> fold_errors(const CostData &d, const std::vector<size_t> &cv, const Point &pt, size_t f,
+				size_t k)
+{
+	std::vector<size_t> fit_idx, val_idx;
+	fold(cv, f, k, fit_idx, val_idx);
+	Problem p(d.nf, d.xa, with_images(fit_idx, d.n, d.symmetries), d.labels.target, d.offset, d.scale);
+	svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
+	svm_model *m = svm_train(&p.prob, &par);
+	Problem v(d.nf, d.xa, val_idx, d.labels.target, d.offset, d.scale);
+	std::vector<double> rel;
+	for (size_t r = 0; r < val_idx.size(); r++) {
+		double pred = d.labels.cost(svm_predict(m, v.rows[r]));
+		rel.push_back(std::fabs(pred - (*d.cost)[val_idx[r]]) / (*d.cost)[val_idx[r]]);
+	}
+	svm_free_and_destroy_model(&m);
+	return rel;
+}
+
+// Cross-validation of every grid point on cv (k folds): their mean and
+// median relative errors. Returns the best mean's index.
+size_t cross_validate(const CostData &d, const std::vector<size_t> &cv, std::vector<Point> &grid,
+		      const FitOptions &opt)
+{
 	size_t k = static_cast<size_t>(opt.folds);
 	std::vector<std::vector<double>> fold_rel(grid.size() * k);   // per validation sample
-	parallel_for(grid.size() * k, opt.jobs, [&](size_t job) {
-		const Point &pt = grid[job / k];
-		size_t f = job % k;
-		std::vector<size_t> fit_idx, val_idx;
-		for (size_t i = 0; i < cv.size(); i++)
-			(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
-		Problem p(nf, xa, with_images(fit_idx), target, offset, scale);
-		svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
-		svm_model *m = svm_train(&p.prob, &par);
-		Problem v(nf, xa, val_idx, target, offset, scale);
-		for (size_t r = 0; r < val_idx.size(); r++) {
-			double pred = std::exp(svm_predict(m, v.rows[r]) * lscale + mean);
-			fold_rel[job].push_back(std::fabs(pred - cost[val_idx[r]]) / cost[val_idx[r]]);
-		}
-		svm_free_and_destroy_model(&m);
-	});
+	parallel_for(grid.size() * k, opt.jobs,
+		     [&](size_t job) { fold_rel[job] = fold_errors(d, cv, grid[job / k], job % k, k); });
 	size_t best = 0;
 	for (size_t g = 0; g < grid.size(); g++) {
 		std::vector<double> all;
@@ -269,54 +330,171 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 		for (const Point &pt : grid)
 			std::fprintf(stderr, "cv: C %g gamma %g epsilon %g: relative error mean %.5f, median %.5f\n",
 				     pt.C, pt.gamma, pt.eps, pt.err, pt.median);
-	// The sparse choice (large models only): the widest tube whose median
-	// error is within the budget and whose mean error is near the best; else
-	// the best.
+	return best;
+}
+
+// The sparse choice (large models only): the widest tube whose median error
+// is within the budget and whose mean error is near the best; else the best.
+size_t sparse_choice(const std::vector<Point> &grid, size_t best, size_t n_train, const FitOptions &opt)
+{
 	size_t chosen = best;
-	for (size_t g = 0; train.size() > opt.sparse_min_train && g < grid.size(); g++)
+	for (size_t g = 0; n_train > opt.sparse_min_train && g < grid.size(); g++)
 		if (grid[g].median <= opt.sparse_median && grid[g].err <= grid[best].err * (1 + opt.sparse_mean_slack) &&
 		    (grid[g].eps > grid[chosen].eps ||
 		     (grid[g].eps == grid[chosen].eps && grid[g].err < grid[chosen].err)))
 			chosen = g;
-	best = chosen;
+	return chosen;
+}
 
-	// The final fit on the whole training split.
-	Problem p(nf, xa, train_all, target, offset, scale);
-	svm_parameter par = params(EPSILON_SVR, grid[best].C, grid[best].gamma, grid[best].eps);
-	svm_model *m = svm_train(&p.prob, &par);
-	FitReport rep;
-	rep.n_train = train.size();
-	rep.n_test = test.size();
-	rep.n_sv = static_cast<size_t>(m->l);
-	rep.C = grid[best].C;
-	rep.gamma = grid[best].gamma;
-	rep.epsilon = grid[best].eps;
-	rep.cv_mean_rel_error = grid[best].err;
-	Problem t(nf, x, test, target, offset, scale);
+// The held-out errors of model m.
+void test_errors(const svm_model *m, const CostData &d, const std::vector<double> &x,
+		 const std::vector<size_t> &test, FitReport &rep)
+{
+	Problem t(d.nf, x, test, d.labels.target, d.offset, d.scale);
 	std::vector<double> rel;
 	for (size_t r = 0; r < test.size(); r++) {
-		double pred = std::exp(svm_predict(m, t.rows[r]) * lscale + mean);
-		double c = cost[test[r]];
+		double pred = d.labels.cost(svm_predict(m, t.rows[r]));
+		double c = (*d.cost)[test[r]];
 		rep.mae += std::fabs(pred - c) / static_cast<double>(test.size());
 		rel.push_back(std::fabs(pred - c) / c);
 	}
 	rep.median_rel_error = quantile(rel, 0.5);
 	rep.p95_rel_error = quantile(rel, 0.95);
 	rep.max_rel_error = *std::max_element(rel.begin(), rel.end());
+}
 
-	out.n_features = nf;
+// Model m with d's standardization as an export's model fields.
+void export_model(const svm_model *m, const CostData &d, SvrExport &out)
+{
+	out.n_features = d.nf;
 	out.gamma = m->param.gamma;
 	out.rho = m->rho[0];
-	take(m, nf, 1.0, out.sv, out.coef);
-	out.feature_offset = offset;
-	out.feature_scale = scale;
-	out.label_offset = mean;
-	out.label_scale = lscale;
+	take(m, d.nf, 1.0, out.sv, out.coef);
+	out.feature_offset = d.offset;
+	out.feature_scale = d.scale;
+	out.label_offset = d.labels.mean;
+	out.label_scale = d.labels.scale;
 	out.label_log = true;
+}
+
+}  // namespace
+
+FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<double> &cost,
+		   const FitOptions &opt, SvrExport &out)
+{
+	auto t0 = Clock::now();
+	const size_t n = cost.size();
+	check_data(nf, x, n, static_cast<size_t>(std::max(10, 2 * opt.folds)), opt.folds);
+	check_costs(cost, opt);
+	silence();
+	const Split sp = split(n, opt.seed, opt);
+	CostData d;
+	d.nf = nf;
+	d.n = n;
+	d.symmetries = opt.symmetries.size();
+	d.cost = &cost;
+	d.labels = log_labels(cost, sp.train);
+	d.xa = with_symmetries(nf, x, n, opt.symmetries, d.labels.target);
+	const std::vector<size_t> train_all = with_images(sp.train, n, d.symmetries);
+	standardization(nf, d.xa, train_all, d.offset, d.scale);
+
+	std::vector<Point> grid = grid_of(opt);
+	const size_t best = cross_validate(d, cv_rows(sp.train, opt), grid, opt);
+	const Point &pt = grid[sparse_choice(grid, best, sp.train.size(), opt)];
+
+	// The final fit on the whole training split.
+	Problem p(nf, d.xa, train_all, d.labels.target, d.offset, d.scale);
+	svm_parameter par = params(EPSILON_SVR, pt.C, pt.gamma, pt.eps);
+	svm_model *m = svm_train(&p.prob, &par);
+	FitReport rep;
+	rep.n_train = sp.train.size();
+	rep.n_test = sp.test.size();
+	rep.n_sv = static_cast<size_t>(m->l);
+	rep.C = pt.C;
+	rep.gamma = pt.gamma;
+	rep.epsilon = pt.eps;
+	rep.cv_mean_rel_error = pt.err;
+	test_errors(m, d, x, sp.test, rep);
+	export_model(m, d, out);
 	svm_free_and_destroy_model(&m);
 	rep.fit_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 	return rep;
 }
+
+namespace {
+
+// ---- the feasibility classifier's steps (fit_feasibility) ---------------
+
+// The classifier's data: +1 feasible, -1 not; standardized on the training rows.
+struct ClassData {
+	int nf = 0;
+	const std::vector<double> *x = nullptr;
+	std::vector<double> label;
+	std::vector<double> offset, scale;
+};
+
+// A grid point of the classifier and its cross-validated accuracy.
+struct ClassPoint { double C, gamma, acc; };
+
+bool one_class(const Problem &p)
+{
+	return std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; });
+}
+
+// The share of rows idx that m classifies right.
+double accuracy(const svm_model *m, const ClassData &d, const std::vector<size_t> &idx)
+{
+	Problem v(d.nf, *d.x, idx, d.label, d.offset, d.scale);
+	size_t hits = 0;
+	for (size_t r = 0; r < idx.size(); r++)
+		hits += svm_predict(m, v.rows[r]) == d.label[idx[r]];
+	return static_cast<double>(hits) / static_cast<double>(idx.size());
+}
+
+// The share of rows idx of class c.
+double share_of_class(double c, const ClassData &d, const std::vector<size_t> &idx)
+{
+	size_t hits = 0;
+	for (size_t i : idx)
+		hits += d.label[i] == c;
+	return static_cast<double>(hits) / static_cast<double>(idx.size());
+}
+
+// One fold's fit at a grid point: its validation accuracy. A fold of one
+// class predicts that class.
+double fold_accuracy(const ClassData &d, const std::vector<size_t> &cv, const ClassPoint &pt, size_t f, size_t k)
+{
+	std::vector<size_t> fit_idx, val_idx;
+	fold(cv, f, k, fit_idx, val_idx);
+	Problem p(d.nf, *d.x, fit_idx, d.label, d.offset, d.scale);
+	if (one_class(p))
+		return share_of_class(p.y[0], d, val_idx);
+	svm_parameter par = params(C_SVC, pt.C, pt.gamma, 0);
+	svm_model *m = svm_train(&p.prob, &par);
+	double acc = accuracy(m, d, val_idx);
+	svm_free_and_destroy_model(&m);
+	return acc;
+}
+
+// Cross-validation of every (C, gamma) on cv: the most accurate point's index.
+size_t cross_validate(const ClassData &d, const std::vector<size_t> &cv, std::vector<ClassPoint> &grid,
+		      const FitOptions &opt)
+{
+	size_t k = static_cast<size_t>(opt.folds);
+	std::vector<double> fold_acc(grid.size() * k, 0.0);
+	parallel_for(grid.size() * k, opt.jobs,
+		     [&](size_t job) { fold_acc[job] = fold_accuracy(d, cv, grid[job / k], job % k, k); });
+	size_t best = 0;
+	for (size_t g = 0; g < grid.size(); g++) {
+		for (size_t f = 0; f < k; f++)
+			grid[g].acc += fold_acc[g * k + f] / static_cast<double>(k);
+		if (grid[g].acc > grid[best].acc)
+			best = g;
+	}
+	return best;
+}
+
+}  // namespace
 
 ClassifierReport fit_feasibility(int nf, const std::vector<double> &x,
 				 const std::vector<bool> &feasible, const FitOptions &opt,
@@ -331,80 +509,39 @@ ClassifierReport fit_feasibility(int nf, const std::vector<double> &x,
 					    "infeasible samples (" + std::to_string(n_feasible) +
 					    " of " + std::to_string(n) + " are feasible)");
 	silence();
-	std::vector<size_t> perm = permutation(n, opt.seed + 1);
-	size_t n_test = std::max<size_t>(1, static_cast<size_t>(opt.test_fraction * static_cast<double>(n)));
-	std::vector<size_t> test(perm.begin(), perm.begin() + static_cast<long>(n_test));
-	std::vector<size_t> train(perm.begin() + static_cast<long>(n_test), perm.end());
-	std::vector<double> label(n);
+	const Split sp = split(n, opt.seed + 1, opt);
+	ClassData d;
+	d.nf = nf;
+	d.x = &x;
 	for (size_t i = 0; i < n; i++)
-		label[i] = feasible[i] ? 1 : -1;
-	std::vector<double> offset, scale;
-	standardization(nf, x, train, offset, scale);
-
-	std::vector<size_t> cv(train.begin(),
-			       train.begin() + static_cast<long>(std::min(train.size(), opt.cv_max_samples)));
-	struct Point { double C, gamma, acc; };
-	std::vector<Point> grid;
+		d.label.push_back(feasible[i] ? 1 : -1);
+	standardization(nf, x, sp.train, d.offset, d.scale);
+	std::vector<ClassPoint> grid;
 	for (double C : opt.C)
 		for (double g : opt.gamma)
 			grid.push_back({C, g, 0});
-	size_t k = static_cast<size_t>(opt.folds);
-	std::vector<double> fold_acc(grid.size() * k, 0.0);
-	parallel_for(grid.size() * k, opt.jobs, [&](size_t job) {
-		const Point &pt = grid[job / k];
-		size_t f = job % k;
-		std::vector<size_t> fit_idx, val_idx;
-		for (size_t i = 0; i < cv.size(); i++)
-			(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
-		Problem p(nf, x, fit_idx, label, offset, scale);
-		bool one_class = std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; });
-		if (one_class) {   // a fold of one class predicts that class
-			size_t hits = 0;
-			for (size_t i : val_idx)
-				hits += label[i] == p.y[0];
-			fold_acc[job] = static_cast<double>(hits) / static_cast<double>(val_idx.size());
-			return;
-		}
-		svm_parameter par = params(C_SVC, pt.C, pt.gamma, 0);
-		svm_model *m = svm_train(&p.prob, &par);
-		Problem v(nf, x, val_idx, label, offset, scale);
-		size_t hits = 0;
-		for (size_t r = 0; r < val_idx.size(); r++)
-			hits += svm_predict(m, v.rows[r]) == label[val_idx[r]];
-		fold_acc[job] = static_cast<double>(hits) / static_cast<double>(val_idx.size());
-		svm_free_and_destroy_model(&m);
-	});
-	size_t best = 0;
-	for (size_t g = 0; g < grid.size(); g++) {
-		for (size_t f = 0; f < k; f++)
-			grid[g].acc += fold_acc[g * k + f] / static_cast<double>(k);
-		if (grid[g].acc > grid[best].acc)
-			best = g;
-	}
-	Problem p(nf, x, train, label, offset, scale);
-	if (std::all_of(p.y.begin(), p.y.end(), [&](double v) { return v == p.y[0]; }))
+	const ClassPoint &pt = grid[cross_validate(d, cv_rows(sp.train, opt), grid, opt)];
+
+	Problem p(nf, x, sp.train, d.label, d.offset, d.scale);
+	if (one_class(p))
 		throw std::invalid_argument("fit: the training split of the feasibility data has one class only");
-	svm_parameter par = params(C_SVC, grid[best].C, grid[best].gamma, 0);
+	svm_parameter par = params(C_SVC, pt.C, pt.gamma, 0);
 	svm_model *m = svm_train(&p.prob, &par);
 	// libsvm's decision value is positive for label[0]: orient it to "feasible".
 	double sign = m->label[0] == 1 ? 1.0 : -1.0;
 	ClassifierReport rep;
-	rep.n_train = train.size();
-	rep.n_test = test.size();
+	rep.n_train = sp.train.size();
+	rep.n_test = sp.test.size();
 	rep.n_sv = static_cast<size_t>(m->l);
 	rep.n_feasible = n_feasible;
-	rep.C = grid[best].C;
-	rep.gamma = grid[best].gamma;
-	Problem t(nf, x, test, label, offset, scale);
-	size_t hits = 0;
-	for (size_t r = 0; r < test.size(); r++)
-		hits += svm_predict(m, t.rows[r]) == label[test[r]];
-	rep.accuracy = static_cast<double>(hits) / static_cast<double>(test.size());
+	rep.C = pt.C;
+	rep.gamma = pt.gamma;
+	rep.accuracy = accuracy(m, d, sp.test);
 	out.gamma = m->param.gamma;
 	out.rho = sign * m->rho[0];
 	take(m, nf, sign, out.sv, out.coef);
-	out.feature_offset = offset;
-	out.feature_scale = scale;
+	out.feature_offset = d.offset;
+	out.feature_scale = d.scale;
 	svm_free_and_destroy_model(&m);
 	rep.fit_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
 	return rep;
