@@ -471,14 +471,17 @@ hylo_status hylo_planner_found(void *ctx, hylo_search *s, uint32_t goal, int *gr
 			       hylo_reason *r)
 {
 	hylo_planner *pl = ctx;
+	hylo_real cap;
 	hylo_status st;
 
 	(void)goal;
 	*grew = 0;
 	if (!pl->use_heuristic)
 		return HYLO_OK;
-	st = layer_heuristic(pl, s, pl->layered_within * hylo_search_cost(s, hylo_search_found(s, 0)),
-			     grew);
+	cap = pl->layered_within * hylo_search_cost(s, hylo_search_found(s, 0));
+	/* No edge on a path dearer than cap is worth a cost any more. */
+	pl->bound = cap;
+	st = layer_heuristic(pl, s, cap, grew);
 	if (st != HYLO_OK && r != &pl->reason)
 		*r = pl->reason;
 	return st;
