@@ -59,10 +59,11 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	m << "robot: " << robot.robot << "\nmode: " << opt.mode << "\nseed: " << opt.seed << "\n";
 	if (opt.shards > 1)
 		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
-	// Flight pairs have been drawn two ways; v2 (with cruise pairs) must not
-	// resume a v1 file.
-	if (opt.mode == "flight")
-		m << "draws: 2\n";
+	// Flight pairs have been drawn two ways (v2: with cruise pairs), ground
+	// and marine ones too (v2: speeds at rest); a file of one draw is not
+	// extended with another's. Draw 1 of ground and marine has no line.
+	if (draws_for(opt.mode, opt.draws) > 1)
+		m << "draws: " << draws_for(opt.mode, opt.draws) << "\n";
 	// Ground and marine labels have come from straight-line starts alone (no
 	// line), with the backing-up and goal-facing ones (starts: 2) and with
 	// issue #35's three more (starts: 3; planar_strategy_guesses).
@@ -159,7 +160,7 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
 		uint64_t i = lo + k;
 		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
 		Solution s;
 		try {
 			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
@@ -239,7 +240,7 @@ std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &o
 			throw std::runtime_error(where + ": a result column is not a number");
 		}
 		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
 		if (csv_row(opt.mode, i, a, b, s) != text)
 			throw std::runtime_error(where + ": not sample " + std::to_string(i) + " of this stream");
 		out.push_back(s);
@@ -288,17 +289,44 @@ std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
 	return {{1, -1, 1, 1, -1, 1, 1, -1, 1}};
 }
 
-void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b)
+int draws_for(const std::string &mode, int requested)
+{
+	const bool planar = mode == "ground" || mode == "marine";
+	const int newest = planar || mode == "flight" ? 2 : 1;
+	if (requested == 0)
+		return newest;
+	if (requested == newest || (planar && requested == 1))
+		return requested;
+	throw std::invalid_argument("--draws " + std::to_string(requested) + ": " + mode + " pairs are drawn " +
+				    (planar ? "as 1 or 2" : "as " + std::to_string(newest) + " only"));
+}
+
+int existing_draws(const GenOptions &opt)
+{
+	const std::string meta = opt.out_dir + "/" + opt.mode + ".csv.meta";
+	if (!std::filesystem::exists(meta))
+		return 0;
+	for (const auto &kv : internal::meta_lines(read_file(meta)))
+		if (kv.first == "draws")
+			return std::atoi(kv.second.c_str() + 7);
+	return 1;
+}
+
+void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b, int draws)
 {
 	Stream r{mix(seed * 0x2545f4914f6cdd1dULL + i + 1)};
 	const Sampling &s = p.sampling;
 	const std::string &m = p.mode;
 	if (m == "ground" || m == "marine") {
+		const bool rest = draws_for(m, draws) >= 2 && s.speed_min_mps <= 0 && s.speed_max_mps >= 0;
+		auto speed = [&]() {
+			return rest && r.uniform(0, 1) < kRestFraction ? 0.0 : r.uniform(s.speed_min_mps, s.speed_max_mps);
+		};
 		double rad = s.max_distance_m * std::sqrt(r.uniform(0, 1)), ang = r.uniform(-kPi, kPi);
 		a[0] = 0, a[1] = 0, a[3] = 0;
-		a[2] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		a[2] = speed();
 		b[0] = rad * std::cos(ang), b[1] = rad * std::sin(ang);
-		b[2] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		b[2] = speed();
 		b[3] = r.uniform(-kPi, kPi);
 	} else if (m == "flight") {
 		auto ball = [&](double radius, double *v) {

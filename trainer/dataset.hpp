@@ -46,6 +46,9 @@ struct GenOptions {
 	// solved in full.
 	std::string relabel;
 	bool progress = true;
+	// How pairs are drawn (draw_pair); 0: the newest for the mode
+	// (draws_for). Ground and marine 1 is the committed datasets' draw.
+	int draws = 0;
 };
 
 // A sample whose solve threw (a bug, an exhausted resource, Ipopt failing to
@@ -83,8 +86,21 @@ int feature_count(const std::string &mode);
 // about z are not, by up to 0.1%: ZYX Euler angles).
 std::vector<std::vector<double>> feature_symmetries(const std::string &mode);
 
-// Sample i's pair: x1s, x2s (sampled_dim(mode) each).
-void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s);
+// The draw a run uses: requested (1 or 2; 0: the newest, 2) for ground and
+// marine, 2 for flight, 1 for the double integrator. Throws
+// std::invalid_argument for a draw the mode does not have.
+int draws_for(const std::string &mode, int requested);
+
+// Sample i's pair under draw `draws` (draws_for): x1s, x2s
+// (sampled_dim(mode) each). Ground and marine, draw 2: each speed is 0
+// with probability kRestFraction, else uniform as in draw 1 (every start,
+// goal and switch point is at rest, and draw 1's uniform speeds never are).
+void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s, int draws = 0);
+inline constexpr double kRestFraction = 0.2;
+
+// The draw of the dataset already in opt.out_dir (its .meta's "draws:"
+// line; none: 1), or 0 (the newest) when there is none.
+int existing_draws(const GenOptions &opt);
 
 // The sampled coordinates draw_pair bounds, beyond the displacement
 // (max_distance_m) and the speed range: bit k of bounded set means

@@ -111,7 +111,7 @@ std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uin
 {
 	const std::string &mode = opt.gen.mode;
 	double a[6] = {0}, b[6] = {0};
-	draw_pair(robot.mode(mode), opt.gen.seed, i, a, b);
+	draw_pair(robot.mode(mode), opt.gen.seed, i, a, b, opt.gen.draws);
 	Solution s;
 	try {
 		s = solve_bvp(mode, robot, a, b, opt.gen.solve);
@@ -337,7 +337,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		std::string where = sum.path + " line " + std::to_string(i + 2);
 		std::vector<std::string> f = csv_fields(lines[i + 1]);
 		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(mode), opt.gen.seed, i, a, b);
+		draw_pair(robot.mode(mode), opt.gen.seed, i, a, b, opt.gen.draws);
 		bool same = f.size() == csv_columns(mode).size() && f[0] == std::to_string(i);
 		for (int k = 0; same && k < d; k++)
 			same = f[ix + static_cast<size_t>(k)] == format_double(a[k]) &&
@@ -393,7 +393,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		const Solution &a = stored[i], &b = sol[i].s;
 		if (better(b, a)) {
 			double x1[6] = {0}, x2[6] = {0};
-			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2);
+			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 			text = csv_row(mode, i, x1, x2, b);
 			return b;
 		}
@@ -414,7 +414,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			std::string text;
 			Solution inc = incumbent(i, text);
 			double x1[6] = {0}, x2[6] = {0};
-			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2);
+			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 			std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
 			std::vector<Guess> guesses;
 			for (uint64_t j : near[i]) {
