@@ -93,7 +93,7 @@ regenerate: deps $(TRAINER)
 	set -e; mkdir -p $(REGEN_DIR)/models; \
 	for stage in gen repair fit export; do \
 		echo "== $$r $$m: $$stage"; \
-		$(TRAINER) --robot $$r --mode $$m --stage $$stage --refine-within inf --neighbours 8 \
+		$(TRAINER) --robot $$r --mode $$m --stage $$stage --refine-within inf --neighbours 8 --solutions \
 			--jobs $(MODEL_JOBS) --out $(REGEN_DIR)/$$r --models-dir $(REGEN_DIR)/models \
 			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)); \
 	done

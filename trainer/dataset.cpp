@@ -153,9 +153,12 @@ using internal::same_stream;
 // Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
 // time; returns rows in index order. A sample with a straight-line result in
 // line (--relabel) gets only the other starts.
+// The separator of a worker's row and its sink line.
+constexpr char kSinkSeparator = '\x1e';
+
 std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
 				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
-				     uint64_t &converged, uint64_t &errors)
+				     uint64_t &converged, uint64_t &errors, RowSink *also)
 {
 	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
 		uint64_t i = lo + k;
@@ -169,11 +172,22 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 			s = Solution();
 			s.status_text = kErrorStatus + std::string(e.what());
 		}
-		return csv_row(opt.mode, i, a, b, s);
+		return csv_row(opt.mode, i, a, b, s) + (also ? kSinkSeparator + also->line(i, a, b, s) : "");
 	});
 	for (size_t k = 0; k < rows.size(); k++)
 		if (rows[k].empty())
 			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
+	if (also) {
+		std::vector<std::string> lines;
+		for (std::string &r : rows) {
+			size_t at = r.find(kSinkSeparator);
+			if (at == std::string::npos)
+				throw std::runtime_error("a worker's row came without its solution");
+			lines.push_back(r.substr(at + 1));
+			r.resize(at);
+		}
+		also->append(lo, lines);
+	}
 	// Count converged rows from their "converged" column; say each error.
 	size_t col = csv_column(opt.mode, "converged"), status = csv_column(opt.mode, "status");
 	for (size_t k = 0; k < rows.size(); k++) {
@@ -478,15 +492,6 @@ namespace {
 
 // ---- generate's steps ---------------------------------------------------
 
-void make_out_dir(const std::string &dir)
-{
-	std::error_code ec;
-	std::filesystem::create_directories(dir, ec);
-	if (ec || access(dir.c_str(), W_OK) != 0)
-		throw std::runtime_error("cannot create the output directory " + dir + ": " +
-					 (ec ? ec.message() : std::string(std::strerror(errno))));
-}
-
 // The options a run relabels under: a dataset of this stream labelled from
 // straight lines alone is relabelled in place: it is moved to
 // <file>.straight and relabelled from there (resumable), and removed once
@@ -601,7 +606,8 @@ private:
 // Solves samples [next, hi) of [progress.lo(), hi) chunk by chunk, appending each chunk's rows to
 // the dataset (synced) and counting them into sum.
 void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vector<Solution> &line,
-		const std::string &header, Progress progress, uint64_t next, uint64_t hi, GenSummary &sum)
+		const std::string &header, Progress progress, uint64_t next, uint64_t hi, GenSummary &sum,
+		RowSink *also)
 {
 	AppendFile out(sum.path);
 	if (next == progress.lo() && opt.shard == 1) {
@@ -612,7 +618,7 @@ void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vect
 	for (uint64_t c = next; c < hi; c += static_cast<uint64_t>(opt.chunk)) {
 		uint64_t e = std::min(hi, c + static_cast<uint64_t>(opt.chunk));
 		uint64_t conv = 0, errs = 0;
-		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv, errs);
+		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv, errs, also);
 		std::string text;
 		for (const auto &r : rows)
 			text += r + "\n";
@@ -630,7 +636,7 @@ void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vect
 
 }  // namespace
 
-GenSummary generate(const RobotParams &robot, const GenOptions &opt)
+GenSummary generate(const RobotParams &robot, const GenOptions &opt, RowSink *also)
 {
 	auto t0 = std::chrono::steady_clock::now();
 	if (opt.shard < 1 || opt.shard > opt.shards)
@@ -655,7 +661,9 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 		return sum;
 	}
 	sum.resumed_from = *next - lo;
-	solve_rows(robot, opt, line, header, Progress(opt.progress, t0, lo, hi), *next, hi, sum);
+	if (also && !line.empty())
+		throw std::invalid_argument("--relabel keeps no solutions (its rows are not solved in full)");
+	solve_rows(robot, opt, line, header, Progress(opt.progress, t0, lo, hi), *next, hi, sum, also);
 	if (ro.relabel == sum.path + ".straight" && hi >= line.size()) {
 		std::remove(ro.relabel.c_str());
 		std::remove((ro.relabel + ".meta").c_str());

@@ -68,6 +68,17 @@ struct GenSummary {
 	std::string path;
 };
 
+// What generation also writes per row beside the dataset (the repair
+// stage's solutions, repair.hpp): line() in the row's worker process, from
+// its pair and solution; append() with the chunk's lines, first index
+// first, before the chunk's rows go to the dataset (so it never has fewer
+// rows than the dataset).
+struct RowSink {
+	virtual ~RowSink() = default;
+	virtual std::string line(uint64_t i, const double *x1s, const double *x2s, const Solution &s) const = 0;
+	virtual void append(uint64_t first, const std::vector<std::string> &lines) = 0;
+};
+
 // Relative coordinates of docs/models.md section 7 for a pair of sampled states,
 // the columns f0, f1, ... of a dataset (hylo_relative, onboard/features.h).
 std::vector<double> relative_coords(const std::string &mode, const double *x1s, const double *x2s);
@@ -131,8 +142,9 @@ std::string csv_row(const std::string &mode, uint64_t i, const double *x1s, cons
 		    const Solution &s);
 
 // Generates (or resumes) the dataset file of opt; throws std::runtime_error
-// with a clear message on I/O errors or a mismatching existing file.
-GenSummary generate(const RobotParams &robot, const GenOptions &opt);
+// with a clear message on I/O errors or a mismatching existing file. With
+// `also`, each row's line goes to it too (RowSink).
+GenSummary generate(const RobotParams &robot, const GenOptions &opt, RowSink *also = nullptr);
 
 // The dataset file a run with these options writes.
 std::string dataset_path(const GenOptions &opt);

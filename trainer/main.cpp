@@ -88,6 +88,9 @@ void usage(FILE *f)
 		"                    and fit use its first N (default: 11520; flight 17016; di 2000)\n"
 		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
 		"                    (default: 4)\n"
+		"  --solutions       gen: also keep each row's solution in <out>/<mode>.solutions.csv\n"
+		"                    as it is solved, so that repair need not solve the rows again\n"
+		"                    (unsharded runs; default: off)\n"
 		"  --refine-within F ground, marine: refine only the starts whose coarse cost is\n"
 		"                    within F of the best refined one; inf: refine every start\n"
 		"                    (better optima, 1.4-2x the time; docs/decisions.md) (recorded\n"
@@ -325,6 +328,8 @@ int run(int argc, char **argv)
 			po.gen.relabel = val();
 		} else if (a == "--models-dir") {
 			po.models_dir = val();
+		} else if (a == "--solutions") {
+			po.solutions = true;
 		} else if (a == "--draws") {
 			po.gen.draws = static_cast<int>(integer(1));
 		} else if (a == "--segments") {
