@@ -43,6 +43,10 @@ RELABEL_TEST := $(BUILD)/test/trainer/test_relabel
 $(RELABEL_TEST): tests/trainer/test_relabel.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+DRAWS_TEST := $(BUILD)/test/trainer/test_draws
+$(DRAWS_TEST): tests/trainer/test_draws.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 REPAIR_TEST := $(BUILD)/test/trainer/test_repair
 $(REPAIR_TEST): tests/trainer/test_repair.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
@@ -59,8 +63,8 @@ tests/trainer/test_trainer_cli.sh: $(TRAINER)
 # Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
 # test_collocation under several OpenBLAS kernel settings and hwcaps masks.
 tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
-ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) tests/trainer/test_trainer_cli.sh \
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST)
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) tests/trainer/test_trainer_cli.sh \
 	tests/trainer/test_numerics.sh
 
 # make models: regenerates every committed model (datasets resume; see
@@ -75,6 +79,25 @@ models: deps $(TRAINER)
 			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)) || exit 1; \
 	done
 	@$(MAKE) --no-print-directory model-pictures
+
+# make regenerate MODEL=robot:mode: one model's data made again as the
+# committed ones are to be (docs/trainer.md, "Regenerating a model"): a new
+# dataset in build/regen/<robot> (the pinned numerics, the newest draw, every
+# start refined), repaired from 8 neighbours' solutions, fitted and exported
+# into build/regen/models. Resumable: run it again after an interruption.
+REGEN_DIR ?= $(BUILD)/regen
+regenerate: deps $(TRAINER)
+	@case " $(MODEL_LIST) " in *" $(MODEL) "*) ;; \
+	  *) echo "make regenerate: MODEL=robot:mode, one of: $(MODEL_LIST)" >&2; exit 2 ;; esac
+	@r=$(firstword $(subst :, ,$(MODEL))); m=$(lastword $(subst :, ,$(MODEL))); \
+	set -e; mkdir -p $(REGEN_DIR)/models; \
+	for stage in gen repair fit export; do \
+		echo "== $$r $$m: $$stage"; \
+		$(TRAINER) --robot $$r --mode $$m --stage $$stage --refine-within inf --neighbours 8 --solutions \
+			--jobs $(MODEL_JOBS) --out $(REGEN_DIR)/$$r --models-dir $(REGEN_DIR)/models \
+			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)); \
+	done
+.PHONY: regenerate
 
 # Pictures of the committed models (tools/models/plot_models.py, matplotlib
 # from PyPI): training trajectories and the learned cost, into docs/models/.

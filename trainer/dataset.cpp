@@ -59,10 +59,11 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	m << "robot: " << robot.robot << "\nmode: " << opt.mode << "\nseed: " << opt.seed << "\n";
 	if (opt.shards > 1)
 		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
-	// Flight pairs have been drawn two ways; v2 (with cruise pairs) must not
-	// resume a v1 file.
-	if (opt.mode == "flight")
-		m << "draws: 2\n";
+	// Flight pairs have been drawn two ways (v2: with cruise pairs), ground
+	// and marine ones too (v2: speeds at rest); a file of one draw is not
+	// extended with another's. Draw 1 of ground and marine has no line.
+	if (draws_for(opt.mode, opt.draws) > 1)
+		m << "draws: " << draws_for(opt.mode, opt.draws) << "\n";
 	// Ground and marine labels have come from straight-line starts alone (no
 	// line), with the backing-up and goal-facing ones (starts: 2) and with
 	// issue #35's three more (starts: 3; planar_strategy_guesses).
@@ -152,14 +153,17 @@ using internal::same_stream;
 // Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
 // time; returns rows in index order. A sample with a straight-line result in
 // line (--relabel) gets only the other starts.
+// The separator of a worker's row and its sink line.
+constexpr char kSinkSeparator = '\x1e';
+
 std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
 				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
-				     uint64_t &converged, uint64_t &errors)
+				     uint64_t &converged, uint64_t &errors, RowSink *also)
 {
 	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
 		uint64_t i = lo + k;
 		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
 		Solution s;
 		try {
 			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
@@ -168,11 +172,22 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 			s = Solution();
 			s.status_text = kErrorStatus + std::string(e.what());
 		}
-		return csv_row(opt.mode, i, a, b, s);
+		return csv_row(opt.mode, i, a, b, s) + (also ? kSinkSeparator + also->line(i, a, b, s) : "");
 	});
 	for (size_t k = 0; k < rows.size(); k++)
 		if (rows[k].empty())
 			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
+	if (also) {
+		std::vector<std::string> lines;
+		for (std::string &r : rows) {
+			size_t at = r.find(kSinkSeparator);
+			if (at == std::string::npos)
+				throw std::runtime_error("a worker's row came without its solution");
+			lines.push_back(r.substr(at + 1));
+			r.resize(at);
+		}
+		also->append(lo, lines);
+	}
 	// Count converged rows from their "converged" column; say each error.
 	size_t col = csv_column(opt.mode, "converged"), status = csv_column(opt.mode, "status");
 	for (size_t k = 0; k < rows.size(); k++) {
@@ -239,7 +254,7 @@ std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &o
 			throw std::runtime_error(where + ": a result column is not a number");
 		}
 		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b);
+		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
 		if (csv_row(opt.mode, i, a, b, s) != text)
 			throw std::runtime_error(where + ": not sample " + std::to_string(i) + " of this stream");
 		out.push_back(s);
@@ -288,17 +303,44 @@ std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
 	return {{1, -1, 1, 1, -1, 1, 1, -1, 1}};
 }
 
-void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b)
+int draws_for(const std::string &mode, int requested)
+{
+	const bool planar = mode == "ground" || mode == "marine";
+	const int newest = planar || mode == "flight" ? 2 : 1;
+	if (requested == 0)
+		return newest;
+	if (requested == newest || (planar && requested == 1))
+		return requested;
+	throw std::invalid_argument("--draws " + std::to_string(requested) + ": " + mode + " pairs are drawn " +
+				    (planar ? "as 1 or 2" : "as " + std::to_string(newest) + " only"));
+}
+
+int existing_draws(const GenOptions &opt)
+{
+	const std::string meta = opt.out_dir + "/" + opt.mode + ".csv.meta";
+	if (!std::filesystem::exists(meta))
+		return 0;
+	for (const auto &kv : internal::meta_lines(read_file(meta)))
+		if (kv.first == "draws")
+			return std::atoi(kv.second.c_str() + 7);
+	return 1;
+}
+
+void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b, int draws)
 {
 	Stream r{mix(seed * 0x2545f4914f6cdd1dULL + i + 1)};
 	const Sampling &s = p.sampling;
 	const std::string &m = p.mode;
 	if (m == "ground" || m == "marine") {
+		const bool rest = draws_for(m, draws) >= 2 && s.speed_min_mps <= 0 && s.speed_max_mps >= 0;
+		auto speed = [&]() {
+			return rest && r.uniform(0, 1) < kRestFraction ? 0.0 : r.uniform(s.speed_min_mps, s.speed_max_mps);
+		};
 		double rad = s.max_distance_m * std::sqrt(r.uniform(0, 1)), ang = r.uniform(-kPi, kPi);
 		a[0] = 0, a[1] = 0, a[3] = 0;
-		a[2] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		a[2] = speed();
 		b[0] = rad * std::cos(ang), b[1] = rad * std::sin(ang);
-		b[2] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		b[2] = speed();
 		b[3] = r.uniform(-kPi, kPi);
 	} else if (m == "flight") {
 		auto ball = [&](double radius, double *v) {
@@ -450,15 +492,6 @@ namespace {
 
 // ---- generate's steps ---------------------------------------------------
 
-void make_out_dir(const std::string &dir)
-{
-	std::error_code ec;
-	std::filesystem::create_directories(dir, ec);
-	if (ec || access(dir.c_str(), W_OK) != 0)
-		throw std::runtime_error("cannot create the output directory " + dir + ": " +
-					 (ec ? ec.message() : std::string(std::strerror(errno))));
-}
-
 // The options a run relabels under: a dataset of this stream labelled from
 // straight lines alone is relabelled in place: it is moved to
 // <file>.straight and relabelled from there (resumable), and removed once
@@ -573,7 +606,8 @@ private:
 // Solves samples [next, hi) of [progress.lo(), hi) chunk by chunk, appending each chunk's rows to
 // the dataset (synced) and counting them into sum.
 void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vector<Solution> &line,
-		const std::string &header, Progress progress, uint64_t next, uint64_t hi, GenSummary &sum)
+		const std::string &header, Progress progress, uint64_t next, uint64_t hi, GenSummary &sum,
+		RowSink *also)
 {
 	AppendFile out(sum.path);
 	if (next == progress.lo() && opt.shard == 1) {
@@ -584,7 +618,7 @@ void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vect
 	for (uint64_t c = next; c < hi; c += static_cast<uint64_t>(opt.chunk)) {
 		uint64_t e = std::min(hi, c + static_cast<uint64_t>(opt.chunk));
 		uint64_t conv = 0, errs = 0;
-		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv, errs);
+		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv, errs, also);
 		std::string text;
 		for (const auto &r : rows)
 			text += r + "\n";
@@ -602,7 +636,7 @@ void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vect
 
 }  // namespace
 
-GenSummary generate(const RobotParams &robot, const GenOptions &opt)
+GenSummary generate(const RobotParams &robot, const GenOptions &opt, RowSink *also)
 {
 	auto t0 = std::chrono::steady_clock::now();
 	if (opt.shard < 1 || opt.shard > opt.shards)
@@ -627,7 +661,9 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt)
 		return sum;
 	}
 	sum.resumed_from = *next - lo;
-	solve_rows(robot, opt, line, header, Progress(opt.progress, t0, lo, hi), *next, hi, sum);
+	if (also && !line.empty())
+		throw std::invalid_argument("--relabel keeps no solutions (its rows are not solved in full)");
+	solve_rows(robot, opt, line, header, Progress(opt.progress, t0, lo, hi), *next, hi, sum, also);
 	if (ro.relabel == sum.path + ".straight" && hi >= line.size()) {
 		std::remove(ro.relabel.c_str());
 		std::remove((ro.relabel + ".meta").c_str());

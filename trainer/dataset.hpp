@@ -46,6 +46,9 @@ struct GenOptions {
 	// solved in full.
 	std::string relabel;
 	bool progress = true;
+	// How pairs are drawn (draw_pair); 0: the newest for the mode
+	// (draws_for). Ground and marine 1 is the committed datasets' draw.
+	int draws = 0;
 };
 
 // A sample whose solve threw (a bug, an exhausted resource, Ipopt failing to
@@ -63,6 +66,17 @@ struct GenSummary {
 	uint64_t errors = 0;   // rows whose solve threw (is_error_status)
 	double seconds = 0;
 	std::string path;
+};
+
+// What generation also writes per row beside the dataset (the repair
+// stage's solutions, repair.hpp): line() in the row's worker process, from
+// its pair and solution; append() with the chunk's lines, first index
+// first, before the chunk's rows go to the dataset (so it never has fewer
+// rows than the dataset).
+struct RowSink {
+	virtual ~RowSink() = default;
+	virtual std::string line(uint64_t i, const double *x1s, const double *x2s, const Solution &s) const = 0;
+	virtual void append(uint64_t first, const std::vector<std::string> &lines) = 0;
 };
 
 // Relative coordinates of docs/models.md section 7 for a pair of sampled states,
@@ -83,8 +97,21 @@ int feature_count(const std::string &mode);
 // about z are not, by up to 0.1%: ZYX Euler angles).
 std::vector<std::vector<double>> feature_symmetries(const std::string &mode);
 
-// Sample i's pair: x1s, x2s (sampled_dim(mode) each).
-void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s);
+// The draw a run uses: requested (1 or 2; 0: the newest, 2) for ground and
+// marine, 2 for flight, 1 for the double integrator. Throws
+// std::invalid_argument for a draw the mode does not have.
+int draws_for(const std::string &mode, int requested);
+
+// Sample i's pair under draw `draws` (draws_for): x1s, x2s
+// (sampled_dim(mode) each). Ground and marine, draw 2: each speed is 0
+// with probability kRestFraction, else uniform as in draw 1 (every start,
+// goal and switch point is at rest, and draw 1's uniform speeds never are).
+void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s, int draws = 0);
+inline constexpr double kRestFraction = 0.2;
+
+// The draw of the dataset already in opt.out_dir (its .meta's "draws:"
+// line; none: 1), or 0 (the newest) when there is none.
+int existing_draws(const GenOptions &opt);
 
 // The sampled coordinates draw_pair bounds, beyond the displacement
 // (max_distance_m) and the speed range: bit k of bounded set means
@@ -115,8 +142,9 @@ std::string csv_row(const std::string &mode, uint64_t i, const double *x1s, cons
 		    const Solution &s);
 
 // Generates (or resumes) the dataset file of opt; throws std::runtime_error
-// with a clear message on I/O errors or a mismatching existing file.
-GenSummary generate(const RobotParams &robot, const GenOptions &opt);
+// with a clear message on I/O errors or a mismatching existing file. With
+// `also`, each row's line goes to it too (RowSink).
+GenSummary generate(const RobotParams &robot, const GenOptions &opt, RowSink *also = nullptr);
 
 // The dataset file a run with these options writes.
 std::string dataset_path(const GenOptions &opt);

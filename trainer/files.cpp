@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -74,6 +75,15 @@ void write_file_atomically(const std::string &path, const std::string &text)
 		unlink(tmp.c_str());
 		throw;
 	}
+}
+
+void make_out_dir(const std::string &dir)
+{
+	std::error_code ec;
+	std::filesystem::create_directories(dir, ec);
+	if (ec || access(dir.c_str(), W_OK) != 0)
+		throw std::runtime_error("cannot create the output directory " + dir + ": " +
+					 (ec ? ec.message() : std::string(std::strerror(errno))));
 }
 
 }  // namespace hylo::trainer

@@ -37,6 +37,10 @@ private:
 // naming the file.
 void write_file_atomically(const std::string &path, const std::string &text);
 
+// Creates dir and its parents; throws std::runtime_error naming it when it
+// cannot, or cannot be written.
+void make_out_dir(const std::string &dir);
+
 }  // namespace hylo::trainer
 
 #endif

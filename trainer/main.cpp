@@ -88,6 +88,9 @@ void usage(FILE *f)
 		"                    and fit use its first N (default: 11520; flight 17016; di 2000)\n"
 		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
 		"                    (default: 4)\n"
+		"  --solutions       gen: also keep each row's solution in <out>/<mode>.solutions.csv\n"
+		"                    as it is solved, so that repair need not solve the rows again\n"
+		"                    (unsharded runs; default: off)\n"
 		"  --refine-within F ground, marine: refine only the starts whose coarse cost is\n"
 		"                    within F of the best refined one; inf: refine every start\n"
 		"                    (better optima, 1.4-2x the time; docs/decisions.md) (recorded\n"
@@ -102,6 +105,11 @@ void usage(FILE *f)
 		"                    and solver options), name the ones to resubmit (exit 1) or\n"
 		"                    move away (exit 2), else merge them into <out>/<mode>.csv,\n"
 		"                    byte for byte an unsharded run's (docs/trainer.md)\n"
+		"  --draws N         ground, marine: how pairs are drawn: 2, speeds at rest with\n"
+		"                    probability 0.2 (the planner's starts, goals and switch\n"
+		"                    points); 1, uniform speeds only (the committed datasets')\n"
+		"                    (recorded in a dataset's .meta; default: the existing\n"
+		"                    dataset's in --out, else 2)\n"
 		"  --segments N      collocation segments (default: 20)\n"
 		"  --ipopt-option NAME=VALUE\n"
 		"                    set an Ipopt option on every solve, after hylo's own settings\n"
@@ -320,6 +328,10 @@ int run(int argc, char **argv)
 			po.gen.relabel = val();
 		} else if (a == "--models-dir") {
 			po.models_dir = val();
+		} else if (a == "--solutions") {
+			po.solutions = true;
+		} else if (a == "--draws") {
+			po.gen.draws = static_cast<int>(integer(1));
 		} else if (a == "--segments") {
 			po.gen.solve.segments = static_cast<int>(integer(2));
 		} else if (a == "--shards") {
@@ -376,6 +388,9 @@ int run(int argc, char **argv)
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;
 	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(mode);
+	if (po.gen.draws == 0)
+		po.gen.draws = existing_draws(po.gen);
+	draws_for(mode, po.gen.draws);   // a draw the mode has
 	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
 		stage = po.gen.shards > 1 ? "gen" : "all";
 	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&

@@ -361,7 +361,9 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 		return !r.foreign.empty() ? 2 : !r.resubmit.empty() ? 1 : 0;
 	}
 	if (stage == "gen" || stage == "all") {
-		GenSummary s = generate(robot, opt.gen);
+		RepairOptions ro;
+		ro.gen = opt.gen;
+		GenSummary s = opt.solutions ? generate_with_solutions(robot, ro) : generate(robot, opt.gen);
 		std::printf("gen %s %s: %llu samples in %s (%llu resumed), %llu converged, %llu rejected, %.1f s\n",
 			    robot.robot.c_str(), opt.gen.mode.c_str(),
 			    static_cast<unsigned long long>(s.done + s.resumed_from), s.path.c_str(),

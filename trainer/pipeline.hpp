@@ -18,6 +18,7 @@ struct PipelineOptions {
 	GenOptions gen;
 	std::string models_dir = "onboard/models";
 	int neighbours = 4;   // --stage repair: warm starts per row (RepairOptions)
+	bool solutions = false;   // gen: also keep each row's solution for the repair (--solutions)
 };
 
 // The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000 (di).

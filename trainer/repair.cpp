@@ -106,12 +106,30 @@ std::vector<std::string> sidecar_columns(const std::string &mode, int points)
 	return c;
 }
 
+// Sample i's sidecar line from its pair and solution: the result columns
+// of its dataset row, then the path.
+std::string solution_line(const RobotParams &robot, const std::string &mode, int points, uint64_t i,
+			  const double *a, const double *b, const Solution &s)
+{
+	std::vector<std::string> f = csv_fields(csv_row(mode, i, a, b, s));
+	std::vector<std::string> out = {std::to_string(i)};
+	out.insert(out.end(), f.end() - 8, f.end());
+	const size_t nx = static_cast<size_t>(state_dim(mode));
+	std::vector<std::vector<double>> path;
+	if (s.converged)
+		path = transplanted_guess(s.traj, s.T, full_state(mode, robot, a), full_state(mode, robot, b), points).path;
+	for (int p = 0; p < points; p++)
+		for (size_t k = 0; k < nx; k++)
+			out.push_back(s.converged ? format_double(path[static_cast<size_t>(p)][k]) : "0");
+	return join(out, ",");
+}
+
 // Sample i's sidecar line: the current solver's result and its path.
 std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uint64_t i)
 {
 	const std::string &mode = opt.gen.mode;
 	double a[6] = {0}, b[6] = {0};
-	draw_pair(robot.mode(mode), opt.gen.seed, i, a, b);
+	draw_pair(robot.mode(mode), opt.gen.seed, i, a, b, opt.gen.draws);
 	Solution s;
 	try {
 		s = solve_bvp(mode, robot, a, b, opt.gen.solve);
@@ -119,19 +137,7 @@ std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uin
 		s = Solution();
 		s.status_text = kErrorStatus + std::string(e.what());
 	}
-	// csv_row's result columns, then the path.
-	std::vector<std::string> f = csv_fields(csv_row(mode, i, a, b, s));
-	std::vector<std::string> out = {std::to_string(i)};
-	out.insert(out.end(), f.end() - 8, f.end());
-	const size_t nx = static_cast<size_t>(state_dim(mode));
-	std::vector<std::vector<double>> path;
-	if (s.converged)
-		path = transplanted_guess(s.traj, s.T, full_state(mode, robot, a), full_state(mode, robot, b),
-					  opt.path_points).path;
-	for (int p = 0; p < opt.path_points; p++)
-		for (size_t k = 0; k < nx; k++)
-			out.push_back(s.converged ? format_double(path[static_cast<size_t>(p)][k]) : "0");
-	return join(out, ",");
+	return solution_line(robot, mode, opt.path_points, i, a, b, s);
 }
 
 Stored parse_sidecar_line(const std::string &mode, const std::string &line, uint64_t i, int points,
@@ -200,6 +206,38 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 	out.close();
 	return n - first;
 }
+
+// Generation's sink for the sidecar: each row's line, appended in step
+// with the dataset (the sidecar already holds `have` rows; extend_sidecar
+// brought it up to the dataset's first row to be solved).
+class SolutionsSink : public RowSink {
+public:
+	SolutionsSink(const RobotParams &robot, const RepairOptions &opt, uint64_t have)
+		: robot_(robot), opt_(opt), have_(have), out_(solutions_path(opt.gen)) {}
+	std::string line(uint64_t i, const double *a, const double *b, const Solution &s) const override
+	{
+		return solution_line(robot_, opt_.gen.mode, opt_.path_points, i, a, b, s);
+	}
+	void append(uint64_t first, const std::vector<std::string> &lines) override
+	{
+		if (first > have_)
+			throw std::runtime_error(solutions_path(opt_.gen) + " ends at row " + std::to_string(have_) +
+						 ", before the chunk at " + std::to_string(first));
+		std::string text;
+		for (uint64_t k = have_ - first; k < lines.size(); k++)
+			text += lines[k] + "\n";
+		out_.write(text);
+		out_.sync();
+		have_ = std::max(have_, first + lines.size());
+	}
+	void close() { out_.close(); }
+
+private:
+	const RobotParams &robot_;
+	const RepairOptions &opt_;
+	uint64_t have_;
+	AppendFile out_;
+};
 
 std::vector<Stored> read_sidecar(const RepairOptions &opt, uint64_t n)
 {
@@ -297,6 +335,28 @@ std::string solutions_path(const GenOptions &opt)
 	return opt.out_dir + "/" + opt.mode + ".solutions.csv";
 }
 
+GenSummary generate_with_solutions(const RobotParams &robot, const RepairOptions &opt)
+{
+	if (opt.gen.shards > 1)
+		throw std::invalid_argument("--solutions is for an unsharded run (the repair reads one sidecar)");
+	if (opt.path_points < 2)
+		throw std::invalid_argument("a solution path needs at least two points");
+	make_out_dir(opt.gen.out_dir);
+	// Up to the row generation resumes at, solved again (none for a new
+	// dataset); then in step with it.
+	const std::string rows = read_file(dataset_path(opt.gen));
+	const uint64_t have = rows.empty() ? 0 : resume_point(rows, join(csv_columns(opt.gen.mode), ",") + "\n").rows;
+	extend_sidecar(robot, opt, have);
+	const std::string path = solutions_path(opt.gen);
+	ResumePoint r = resume_point(read_file(path), join(sidecar_columns(opt.gen.mode, opt.path_points), ",") + "\n");
+	if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0)   // a torn last row
+		throw std::runtime_error("cannot truncate " + path);
+	SolutionsSink sink(robot, opt, r.rows);
+	GenSummary sum = generate(robot, opt.gen, &sink);
+	sink.close();
+	return sum;
+}
+
 RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 {
 	auto t0 = std::chrono::steady_clock::now();
@@ -337,7 +397,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		std::string where = sum.path + " line " + std::to_string(i + 2);
 		std::vector<std::string> f = csv_fields(lines[i + 1]);
 		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(mode), opt.gen.seed, i, a, b);
+		draw_pair(robot.mode(mode), opt.gen.seed, i, a, b, opt.gen.draws);
 		bool same = f.size() == csv_columns(mode).size() && f[0] == std::to_string(i);
 		for (int k = 0; same && k < d; k++)
 			same = f[ix + static_cast<size_t>(k)] == format_double(a[k]) &&
@@ -393,7 +453,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		const Solution &a = stored[i], &b = sol[i].s;
 		if (better(b, a)) {
 			double x1[6] = {0}, x2[6] = {0};
-			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2);
+			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 			text = csv_row(mode, i, x1, x2, b);
 			return b;
 		}
@@ -414,7 +474,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			std::string text;
 			Solution inc = incumbent(i, text);
 			double x1[6] = {0}, x2[6] = {0};
-			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2);
+			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 			std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
 			std::vector<Guess> guesses;
 			for (uint64_t j : near[i]) {

@@ -73,6 +73,15 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &opt);
 // The sidecar's file for a run with these options.
 std::string solutions_path(const GenOptions &opt);
 
+// generate(), also writing each row's solution into the sidecar as it is
+// solved (trainer --stage gen --solutions), so that a repair of the dataset
+// solves only the warm starts: half the work of a repair that must solve
+// every row again for its path. The sidecar is first brought up to the
+// dataset's rows (solved again, as the repair would), then kept in step;
+// an interrupted run resumes both. Throws as generate() does, and for a
+// sharded run (std::invalid_argument).
+GenSummary generate_with_solutions(const RobotParams &robot, const RepairOptions &opt);
+
 }  // namespace hylo::trainer
 
 #endif

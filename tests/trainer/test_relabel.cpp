@@ -73,6 +73,7 @@ int main(int argc, char **argv)
 	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
 	GenOptions o;
 	o.mode = "ground";
+	o.draws = 1;   // the stream whose sample 6 is a goal behind
 	o.samples = 8;   // sample 6's goal is behind
 	o.jobs = 2;
 	o.progress = false;

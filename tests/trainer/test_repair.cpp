@@ -244,6 +244,60 @@ int main(int argc, char **argv)
 	      "killed with " + std::to_string(side_rows) + " sidecar and " + std::to_string(work_rows) +
 		      " repair lines; resumed " + std::to_string(s3.solved_again) + " solves");
 
+	// Generation that keeps each row's solution (--solutions) writes the
+	// sidecar a repair would solve again, byte for byte, so the repair
+	// solves nothing again; killed part-way with torn rows in both files
+	// and resumed, the same bytes. The sidecar of "one" was solved again by
+	// its repair (from the edited rows' pairs: the same solves).
+	{
+		RepairOptions w;
+		w.gen = g;
+		w.gen.out_dir = (dir / "with").string();
+		w.gen.samples = 12;
+		w.gen.chunk = 2;
+		generate_with_solutions(di, w);
+		const std::string side_with = slurp(solutions_path(w.gen)), data_with = slurp(dataset_path(w.gen));
+		check(side_with == slurp(solutions_path(r1.gen)) &&
+			      slurp(solutions_path(w.gen) + ".meta") == slurp(solutions_path(r1.gen) + ".meta"),
+		      "gen --solutions writes the sidecar the repair solves again, byte for byte");
+		RepairSummary sw = repair(di, w);
+		check(sw.solved_again == 0 && sw.rows == 12, "then the repair solves no row again",
+		      std::to_string(sw.solved_again) + " solved again");
+		RepairOptions k = w;
+		k.gen.out_dir = (dir / "with_killed").string();
+		k.gen.jobs = 1;
+		const std::string kside = solutions_path(k.gen), kdata = dataset_path(k.gen);
+		pid_t gp = fork();
+		if (gp == 0) {
+			try {
+				generate_with_solutions(di, k);
+			} catch (...) {
+			}
+			_exit(0);
+		}
+		for (int t = 0; t < 20000 && count_lines(kdata) < 5; t++)
+			usleep(1000);
+		kill(gp, SIGKILL);
+		waitpid(gp, nullptr, 0);
+		const size_t got_rows = count_lines(kdata);
+		std::ofstream(kside, std::ios::app) << "9,0.3";   // torn
+		std::ofstream(kdata, std::ios::app) << "8,-0.4";
+		generate_with_solutions(di, k);
+		check(got_rows < 13 && slurp(kside) == side_with && slurp(kdata) == data_with,
+		      "gen --solutions killed part-way (torn rows in both files) and resumed: the same bytes",
+		      "killed at " + std::to_string(got_rows) + " lines");
+		// A dataset made without solutions, extended with them: the
+		// sidecar is first solved up to its rows.
+		RepairOptions late = w;
+		late.gen.out_dir = (dir / "late").string();
+		late.gen.samples = 6;
+		generate(di, late.gen);
+		late.gen.samples = 12;
+		generate_with_solutions(di, late);
+		check(slurp(solutions_path(late.gen)) == side_with,
+		      "gen --solutions over a dataset made without: the sidecar solved up to it, then kept in step");
+	}
+
 	RepairSummary again = repair(di, r1);
 	check(again.already && slurp(r1.gen.out_dir + "/di_neg.csv") == out1,
 	      "a second repair with the same settings does nothing");

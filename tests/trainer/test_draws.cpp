@@ -1,0 +1,141 @@
+// How training pairs are drawn (draw_pair, --draws): draw 1 of ground is
+// the committed Ambot ground dataset's stream, pair for pair; draw 2 puts
+// each ground and marine speed at rest with probability kRestFraction and
+// keeps every pair inside the trained region; a dataset records its draw
+// (draw 1 of ground and marine without a line, so the committed metas stay
+// valid), a run adopts the draw of the dataset in its --out, and a draw a
+// mode does not have is refused. No solves. Prints TAP.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "tests/tap.hpp"
+#include "trainer/dataset.hpp"
+#include "trainer/params.hpp"
+
+namespace {
+
+using namespace hylo::trainer;
+namespace fs = std::filesystem;
+
+bool refused(const std::string &mode, int draws)
+{
+	try {
+		draws_for(mode, draws);
+	} catch (const std::invalid_argument &) {
+		return true;
+	}
+	return false;
+}
+
+bool inside(const TrainedRegion &r, const double *x)
+{
+	for (unsigned k = 0; k < 6; k++)
+		if ((r.bounded >> k & 1u) && (x[k] < r.min[k] || x[k] > r.max[k]))
+			return false;
+	return true;
+}
+
+}  // namespace
+
+int main()
+{
+	const RobotParams ambot = load_robot("trainer/params/ambot.yaml");
+
+	// Draw 1 is the committed stream: the first 50 rows' states, exactly.
+	std::ifstream f("trainer/datasets/ambot/ground.csv");
+	std::string line;
+	std::getline(f, line);
+	const size_t x1 = csv_column("ground", "x1_0");
+	int same = 0, rows = 0;
+	std::string why;
+	for (uint64_t i = 0; i < 50 && std::getline(f, line); i++, rows++) {
+		std::vector<std::string> c = csv_fields(line);
+		double a[6] = {0}, b[6] = {0};
+		draw_pair(ambot.mode("ground"), 1, i, a, b, 1);
+		bool ok = true;
+		for (int k = 0; k < 4; k++)
+			ok = ok && std::strtod(c[x1 + k].c_str(), nullptr) == a[k] &&
+			     std::strtod(c[x1 + 4 + k].c_str(), nullptr) == b[k];
+		same += ok;
+		if (!ok && why.empty())
+			why = "row " + std::to_string(i) + ": " + line.substr(0, 120);
+	}
+	check(rows == 50 && same == 50, "draw 1 is the committed Ambot ground stream (first 50 pairs, exactly)", why);
+
+	// Draw 2: speeds at rest a fifth of the time, each end on its own; the
+	// rest uniform as in draw 1; inside the trained region.
+	for (const char *m : {"ground", "marine"}) {
+		const ModeParams &p = ambot.mode(m);
+		const TrainedRegion region = trained_region(p);
+		const int n = 20000;
+		int rest1 = 0, rest2 = 0, both = 0, out = 0, rest_d1 = 0;
+		double sum = 0;
+		int moving = 0;
+		for (int i = 0; i < n; i++) {
+			double a[6] = {0}, b[6] = {0};
+			draw_pair(p, 1, static_cast<uint64_t>(i), a, b, 2);
+			rest1 += a[2] == 0;
+			rest2 += b[2] == 0;
+			both += a[2] == 0 && b[2] == 0;
+			out += !inside(region, a) || !inside(region, b) ||
+			       std::hypot(b[0], b[1]) > p.sampling.max_distance_m;
+			for (double v : {a[2], b[2]})
+				if (v != 0)
+					sum += v, moving++;
+			draw_pair(p, 1, static_cast<uint64_t>(i), a, b, 1);
+			rest_d1 += a[2] == 0 || b[2] == 0;
+		}
+		const double f1 = double(rest1) / n, f2 = double(rest2) / n, fb = double(both) / n;
+		const double mean = sum / moving, want = 0.5 * (p.sampling.speed_min_mps + p.sampling.speed_max_mps);
+		check(std::fabs(f1 - kRestFraction) < 0.01 && std::fabs(f2 - kRestFraction) < 0.01 &&
+			      std::fabs(fb - kRestFraction * kRestFraction) < 0.005 && std::fabs(mean - want) < 0.01 * want,
+		      std::string(m) + ", draw 2: each speed at rest with probability 0.2, independently, else uniform",
+		      "at rest: start " + std::to_string(f1) + ", goal " + std::to_string(f2) + ", both " +
+			      std::to_string(fb) + "; mean moving speed " + std::to_string(mean) + " (want " +
+			      std::to_string(want) + ")");
+		check(out == 0 && rest_d1 == 0,
+		      std::string(m) + ": draw 2's pairs inside the trained region; draw 1 never at rest",
+		      std::to_string(out) + " outside, " + std::to_string(rest_d1) + " at rest in draw 1");
+	}
+
+	// Which draws a mode has.
+	check(draws_for("ground", 0) == 2 && draws_for("marine", 1) == 1 && draws_for("flight", 0) == 2 &&
+		      draws_for("di_neg", 0) == 1 && refused("ground", 3) && refused("flight", 1) &&
+		      refused("di_pos", 2),
+	      "draws: ground and marine 1 or 2 (newest 2), flight 2, double integrator 1; others refused");
+
+	// The meta: draw 2 recorded, draw 1 of ground without a line (as the
+	// committed metas), flight's line as before.
+	GenOptions o;
+	o.mode = "ground";
+	o.draws = 2;
+	const std::string m2 = internal::meta_text(ambot, o);
+	o.draws = 1;
+	const std::string m1 = internal::meta_text(ambot, o);
+	check(m2.find("\ndraws: 2\n") != std::string::npos && m1.find("draws:") == std::string::npos &&
+		      !internal::same_stream(m1, m2),
+	      "a ground dataset's meta says 'draws: 2'; draw 1 has no line; the two are other streams");
+
+	// A run adopts the draw of the dataset in --out.
+	char tmpl[] = "/tmp/hylo_test_draws_XXXXXX";
+	const std::string dir = mkdtemp(tmpl);
+	o.out_dir = dir;
+	o.draws = 0;
+	const int none = existing_draws(o);
+	std::ofstream(dir + "/ground.csv.meta") << m1;
+	const int one = existing_draws(o);
+	std::ofstream(dir + "/ground.csv.meta") << m2;
+	const int two = existing_draws(o);
+	fs::remove_all(dir);
+	check(none == 0 && one == 1 && two == 2,
+	      "existing_draws: none without a dataset, 1 for a meta without a line, 2 for 'draws: 2'",
+	      std::to_string(none) + " " + std::to_string(one) + " " + std::to_string(two));
+	return tap_finish();
+}
