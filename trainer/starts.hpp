@@ -47,7 +47,8 @@ std::vector<Start> guess_starts(const Bounds &bd, const std::vector<Guess> &gues
 void check_guesses(const std::string &mode, const std::vector<Guess> &guesses, const std::vector<double> &a,
 		   const std::vector<double> &b);
 
-// A multi-phase problem's starts: every phase's T_guess times each scale.
+// A multi-phase problem's starts: every phase's T_guess times each scale,
+// clamped; scales that clamp to the same durations give one start.
 std::vector<Start> scaled_starts(const std::vector<Bounds> &bounds, const std::vector<double> &T_guesses,
 				 const std::vector<double> &scales);
 
