@@ -207,6 +207,11 @@ bool set_options(Ipopt::IpoptApplication &app, const SolveOptions &opt, const Nl
 	ok = ok && o.SetIntegerValue("max_iter", opt.max_iter);
 	ok = ok && o.SetStringValue("linear_solver", "mumps");
 	ok = ok && o.SetIntegerValue("mumps_permuting_scaling", s.permuting_scaling);
+	// AMF ordering, always: MUMPS's automatic choice takes it for small
+	// systems (a training BVP's solve is the same bytes) and SCOTCH for
+	// larger ones, whose random seed changed smoothed trajectories' last
+	// bits from run to run (docs/decisions.md, "Smoothing is repeatable").
+	ok = ok && o.SetIntegerValue("mumps_pivot_order", 2);
 	ok = ok && o.SetStringValue("nlp_scaling_method", "user-scaling");
 	if (opt.objective_scale != 1)
 		ok = ok && o.SetNumericValue("obj_scaling_factor", opt.objective_scale);
