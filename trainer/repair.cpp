@@ -159,9 +159,10 @@ Stored parse_sidecar_line(const std::string &mode, const std::string &line, uint
 	return st;
 }
 
-// Extends the sidecar to the first n rows (resumable, a chunk at a time);
-// returns how many rows this call solved.
-uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint64_t n)
+// Extends the sidecar to the first n rows (resumable, a chunk at a time; a
+// torn last row dropped); returns how many rows this call solved, and in
+// *held (when given) how many complete rows the sidecar holds now.
+uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint64_t n, uint64_t *held = nullptr)
 {
 	const std::string path = solutions_path(opt.gen), meta_path = path + ".meta";
 	const std::string meta = meta_text(robot, opt.gen) + "path_points: " + std::to_string(opt.path_points) + "\n";
@@ -175,10 +176,13 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 						 meta_differences(old_meta, meta) + "; remove it (it is solved again)");
 		ResumePoint r = resume_point(existing, header);
 		next = r.rows;
-		if (r.rows >= n)
-			return 0;
 		if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + path);
+		if (r.rows >= n) {
+			if (held)
+				*held = r.rows;
+			return 0;
+		}
 	} else {
 		write_file_atomically(meta_path, meta);
 	}
@@ -204,6 +208,8 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
 	}
 	out.close();
+	if (held)
+		*held = n;
 	return n - first;
 }
 
@@ -346,12 +352,9 @@ GenSummary generate_with_solutions(const RobotParams &robot, const RepairOptions
 	// dataset); then in step with it.
 	const std::string rows = read_file(dataset_path(opt.gen));
 	const uint64_t have = rows.empty() ? 0 : resume_point(rows, join(csv_columns(opt.gen.mode), ",") + "\n").rows;
-	extend_sidecar(robot, opt, have);
-	const std::string path = solutions_path(opt.gen);
-	ResumePoint r = resume_point(read_file(path), join(sidecar_columns(opt.gen.mode, opt.path_points), ",") + "\n");
-	if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0)   // a torn last row
-		throw std::runtime_error("cannot truncate " + path);
-	SolutionsSink sink(robot, opt, r.rows);
+	uint64_t held = 0;
+	extend_sidecar(robot, opt, have, &held);
+	SolutionsSink sink(robot, opt, held);
 	GenSummary sum = generate(robot, opt.gen, &sink);
 	sink.close();
 	return sum;

@@ -81,6 +81,25 @@ size_t count_lines(const std::string &path)
 	return static_cast<size_t>(std::count(t.begin(), t.end(), '\n'));
 }
 
+// Runs work in a child process and kills it (SIGKILL) once file has at
+// least `lines` lines, or after 20 s.
+template <class Work>
+void kill_part_way(Work work, const std::string &file, size_t lines)
+{
+	pid_t pid = fork();
+	if (pid == 0) {
+		try {
+			work();
+		} catch (...) {
+		}
+		_exit(0);
+	}
+	for (int k = 0; k < 20000 && count_lines(file) < lines; k++)
+		usleep(1000);
+	kill(pid, SIGKILL);
+	waitpid(pid, nullptr, 0);
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -220,18 +239,7 @@ int main(int argc, char **argv)
 	RepairOptions r3 = setup("killed");
 	r3.gen.jobs = 1;
 	const std::string side = solutions_path(r3.gen), work = r3.gen.out_dir + "/di_neg.csv.repair";
-	pid_t pid = fork();
-	if (pid == 0) {
-		try {
-			repair(di, r3);
-		} catch (...) {
-		}
-		_exit(0);
-	}
-	for (int k = 0; k < 20000 && count_lines(side) < 6; k++)
-		usleep(1000);
-	kill(pid, SIGKILL);
-	waitpid(pid, nullptr, 0);
+	kill_part_way([&] { repair(di, r3); }, side, 6);
 	size_t side_rows = count_lines(side), work_rows = count_lines(work);
 	bool partial = side_rows < 13 || work_rows < 13;
 	std::ofstream(side, std::ios::app) << "7,0.1";   // torn
@@ -267,18 +275,7 @@ int main(int argc, char **argv)
 		k.gen.out_dir = (dir / "with_killed").string();
 		k.gen.jobs = 1;
 		const std::string kside = solutions_path(k.gen), kdata = dataset_path(k.gen);
-		pid_t gp = fork();
-		if (gp == 0) {
-			try {
-				generate_with_solutions(di, k);
-			} catch (...) {
-			}
-			_exit(0);
-		}
-		for (int t = 0; t < 20000 && count_lines(kdata) < 5; t++)
-			usleep(1000);
-		kill(gp, SIGKILL);
-		waitpid(gp, nullptr, 0);
+		kill_part_way([&] { generate_with_solutions(di, k); }, kdata, 5);
 		const size_t got_rows = count_lines(kdata);
 		std::ofstream(kside, std::ios::app) << "9,0.3";   // torn
 		std::ofstream(kdata, std::ios::app) << "8,-0.4";
