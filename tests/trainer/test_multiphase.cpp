@@ -20,6 +20,7 @@
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
+#include "trainer/smooth_alternatives.hpp"
 #include "trainer/smoother.hpp"
 #include "trainer/switching.hpp"
 
