@@ -134,3 +134,5 @@ TESTS += tests/trainer/test_fallback.sh
 # The committed Ambot scenes' trajectories, walked from outside (tools/clearance_walk.py).
 tests/trainer/test_clearance_scenes.sh: $(HYLO_SMOOTH) $(BUILD)/bin/hylo-scene $(BUILD)/bin/hylo-planner tools/clearance_walk.py
 TESTS += tests/trainer/test_clearance_scenes.sh
+# No component cycle among the trainer's files (#include "trainer/...").
+TESTS += tests/trainer/test_components.sh
