@@ -4,7 +4,8 @@
 TRAINER_SRCS := trainer/params.cpp trainer/collocation.cpp trainer/ipopt_nlp.cpp trainer/mode_config.cpp trainer/modes.cpp \
 	trainer/solve_strategy.cpp trainer/starts.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
-	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/processes.cpp \
+	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/smoothing_problem.cpp trainer/map_guards.cpp \
+	trainer/fallbacks.cpp trainer/domain_check.cpp trainer/smooth_alternatives.cpp trainer/processes.cpp \
 	trainer/numerics.cpp trainer/repair.cpp trainer/gather.cpp trainer/clearance.cpp trainer/files.cpp trainer/corridor.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS) $(YAML_CFLAGS)
@@ -133,3 +134,5 @@ TESTS += tests/trainer/test_fallback.sh
 # The committed Ambot scenes' trajectories, walked from outside (tools/clearance_walk.py).
 tests/trainer/test_clearance_scenes.sh: $(HYLO_SMOOTH) $(BUILD)/bin/hylo-scene $(BUILD)/bin/hylo-planner tools/clearance_walk.py
 TESTS += tests/trainer/test_clearance_scenes.sh
+# No component cycle among the trainer's files (#include "trainer/...").
+TESTS += tests/trainer/test_components.sh

@@ -36,6 +36,14 @@ inline void check_throws(const std::function<void()> &f, const std::string &need
 	}
 }
 
+// v to the given significant digits ("%.*g"), for names and reasons.
+inline std::string tap_num(double v, int digits)
+{
+	char b[64];
+	std::snprintf(b, sizeof b, "%.*g", digits, v);
+	return b;
+}
+
 inline int tap_finish()
 {
 	std::printf("1..%d\n", tap::n_checks);

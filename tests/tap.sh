@@ -19,6 +19,14 @@ tap_check() {
   if out=$("$@" 2>&1); then tap_ok "$name"; else tap_not_ok "$name" "command: $*" "$(echo "$out" | tail -15)"; fi
 }
 
+# tap_verdict FILE WHAT NAME: ok when FILE has a line "WHAT True ...", as a
+# test's Python check prints one per verdict; otherwise not ok, showing that
+# line (or, with none, the whole file: the check's traceback).
+tap_verdict() {
+  local line; line=$(grep "^$2 " "$1")
+  if [ "${line#"$2 True"}" != "$line" ]; then tap_ok "$3"; else tap_not_ok "$3" "${line:-$(cat "$1")}"; fi
+}
+
 tap_finish() { echo "1..$TAP_N"; [ "$TAP_FAILED" -eq 0 ]; }
 
 # tap_need_netns NAME...: where no network namespace can be created, reports

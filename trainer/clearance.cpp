@@ -6,6 +6,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "trainer/modes.hpp"
+
 extern "C" {
 #include "hylo/clearance.h"
 }

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "hylo/map.h"
-#include "trainer/collocation.hpp"
-#include "trainer/smoother.hpp"
+#include "trainer/solution.hpp"
+#include "trainer/terrain_grid.hpp"
 
 namespace hylo::trainer {
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "hylo/map.h"
-#include "trainer/collocation.hpp"
-#include "trainer/smoother.hpp"
+#include "trainer/problem.hpp"
+#include "trainer/terrain_grid.hpp"
 
 namespace hylo::trainer {
 

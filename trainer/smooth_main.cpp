@@ -31,7 +31,9 @@
 #include "trainer/clearance.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
-#include "trainer/smoother.hpp"
+#include "trainer/fallbacks.hpp"
+#include "trainer/smooth_alternatives.hpp"
+#include "trainer/terrain_grid.hpp"
 
 namespace {
 
@@ -106,12 +108,11 @@ struct Options {
 	std::string in_url, out_url, prefix;
 	long long request_id = -1;
 	bool once = false, compare = false, quiet = false;
-	int segments_per_edge = 6;
-	bool corridors = true;
-	std::vector<IpoptOption> ipopt_options, full_ipopt_options;
+	// --segments-per-edge, --margin (beyond the body: the corridors keep it,
+	// the clearance check verifies it), --no-corridors, the Ipopt options.
+	SmoothOptions smooth;
 	AlternativesBudget budget;
 	double alternatives_wait_s = 2;
-	double margin_m = HYLO_DEFAULT_MARGIN_M;   // beyond the body: the corridors keep it, the clearance check verifies it
 };
 
 // The sampled path of a plan_t.
@@ -162,19 +163,9 @@ public:
 				     static_cast<long long>(m->map_id), m->n_cells, m->nx, m->ny);
 			return;
 		}
-		TerrainGrid g;
-		g.nx = m->nx;
-		g.ny = m->ny;
-		g.resolution_m = m->resolution_m;
-		g.origin_x_m = m->origin_x_m;
-		g.origin_y_m = m->origin_y_m;
-		g.terrain = m->terrain;
-		g.height_m = m->height_m;
-		g.max_step_m = m->max_step_m;
-		g.ceiling_m = m->ceiling_m;
 		if (maps_.size() >= 8)   // a few recent maps: plans name theirs
 			maps_.erase(maps_.begin());
-		maps_[m->map_id] = {m->robot, std::move(g)};
+		maps_[m->map_id] = {m->robot, terrain_grid(*m)};
 	}
 
 	// How many alternatives each recent goal asked for: its plan waits for them.
@@ -274,19 +265,8 @@ private:
 	SolveOptions solve_options() const
 	{
 		SolveOptions s;
-		s.ipopt_options = o_.ipopt_options;
+		s.ipopt_options = o_.smooth.ipopt_options;
 		return s;
-	}
-
-	SmoothOptions smooth_options() const
-	{
-		SmoothOptions so;
-		so.segments_per_edge = o_.segments_per_edge;
-		so.ipopt_options = o_.ipopt_options;
-		so.full_ipopt_options = o_.full_ipopt_options;
-		so.margin_m = o_.margin_m;
-		so.corridors = o_.corridors;
-		return so;
 	}
 
 	const RobotParams &robot(const std::string &name)
@@ -378,7 +358,7 @@ private:
 		t.method = static_cast<int8_t>(res.method);
 		t.gap_j = gap_of(res);
 		t.reason = reason_of(res, tried);
-		const ClearanceCheck c = check_clearance(s, maps_.at(p.map_id).grid, r.body_radius_m, o_.margin_m);
+		const ClearanceCheck c = check_clearance(s, maps_.at(p.map_id).grid, r.body_radius_m, o_.smooth.margin_m);
 		t.safe = c.safe;
 		t.body_radius_m = c.body_radius_m;
 		t.margin_m = c.margin_m;
@@ -431,7 +411,7 @@ private:
 			const RobotParams &r = robot(p.robot);
 			TakeoffLanding costs = switch_costs(p.robot, r);
 			std::vector<Waypoint> wps = waypoints_of(p);
-			SmoothResult res = smooth_with_fallbacks(r, wps, maps_.at(p.map_id).grid, costs, smooth_options());
+			SmoothResult res = smooth_with_fallbacks(r, wps, maps_.at(p.map_id).grid, costs, o_.smooth);
 			fill(t, p, wps, res, rejections(p.request_id, res), r, costs);
 		} catch (const std::exception &e) {
 			fail(t, hylo::plan_t::STATUS_BAD_REQUEST, e.what());
@@ -480,7 +460,7 @@ private:
 			for (size_t i = 0; i < paths.size(); i++)
 				alts.push_back({index[i], paths[i]->total_cost_j, waypoints_of(*paths[i])});
 			AlternativesChoice c =
-				smooth_alternatives(r, alts, maps_.at(p.map_id).grid, costs, smooth_options(), o_.budget);
+				smooth_alternatives(r, alts, maps_.at(p.map_id).grid, costs, o_.smooth, o_.budget);
 			std::vector<std::string> tried;
 			for (const AlternativeOutcome &o : c.outcomes)
 				tried.push_back(o.smoothed ? rejections(p.request_id, o.result) : "");
@@ -568,7 +548,7 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 			return false;
 		}
 		if (a == "--no-corridors") {
-			o.corridors = false;
+			o.smooth.corridors = false;
 			continue;
 		}
 		if (a == "--once" || a == "--compare-graph" || a == "--quiet") {
@@ -591,7 +571,7 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 		const char *v = argv[++i];
 		if (a == "--ipopt-option" || a == "--full-ipopt-option") {
 			try {
-				(a == "--ipopt-option" ? o.ipopt_options : o.full_ipopt_options).push_back(parse_ipopt_option(v));
+				(a == "--ipopt-option" ? o.smooth.ipopt_options : o.smooth.full_ipopt_options).push_back(parse_ipopt_option(v));
 			} catch (const std::invalid_argument &e) {
 				std::fprintf(stderr, "hylo-smooth: %s: %s\n", a.c_str(), e.what());
 				return false;
@@ -609,7 +589,7 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 				std::fprintf(stderr, "hylo-smooth: %s wants metres in [0, 10], not '%s'\n", a.c_str(), v);
 				return false;
 			}
-			o.margin_m = x;
+			o.smooth.margin_m = x;
 			continue;
 		}
 		if (seconds) {
@@ -634,7 +614,7 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 		else if (a == "--alternatives")
 			o.budget.max_count = static_cast<int>(n);
 		else
-			o.segments_per_edge = static_cast<int>(n);
+			o.smooth.segments_per_edge = static_cast<int>(n);
 	}
 	return true;
 }

@@ -78,19 +78,12 @@ print("k1", len(k1) == 1 and k1[0]["type"] == "traj" and ok and k1[0]["energy_j"
 lone = lines("lone")
 print("lone", len(lone) == 1 and strip(lone[0]) == strip(k1[0]), str([m["type"] for m in lone]))
 PY
-for what in reported orders chosen exact k1 lone; do
-  line=$(grep "^$what " "$T/check")
-  case $what in
-    reported) name="every alternative reported once (graph rank, predicted cost as planned, smoothed cost)" ;;
-    orders)   name="the scene's graph order and smoothed order differ" ;;
-    chosen)   name="the published trajectory is the cheapest smoothed alternative, not the graph's first" ;;
-    exact)    name="the published trajectory is cheaper than the exact optimum of the graph's first sequence" ;;
-    k1)       name="K = 1 gives the plan's own trajectory, as --alternatives 1 does, and no report" ;;
-    lone)     name="a plan whose alternatives never come is smoothed alone after the wait" ;;
-  esac
-  if [ "${line#"$what True"}" != "$line" ]; then tap_ok "$name"; else
-    tap_not_ok "$name" "${line:-$(cat "$T/check")}"; fi
-done
+tap_verdict "$T/check" reported "every alternative reported once (graph rank, predicted cost as planned, smoothed cost)"
+tap_verdict "$T/check" orders "the scene's graph order and smoothed order differ"
+tap_verdict "$T/check" chosen "the published trajectory is the cheapest smoothed alternative, not the graph's first"
+tap_verdict "$T/check" exact "the published trajectory is cheaper than the exact optimum of the graph's first sequence"
+tap_verdict "$T/check" k1 "K = 1 gives the plan's own trajectory, as --alternatives 1 does, and no report"
+tap_verdict "$T/check" lone "a plan whose alternatives never come is smoothed alone after the wait"
 if grep -q "no alternative arrived within 0.5 s; smoothing the plan alone" "$T/lone.err"; then
   tap_ok "the wait's end says so on stderr"
 else tap_not_ok "the wait's end says so on stderr" "$(cat "$T/lone.err")"; fi

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "tests/tap.hpp"
+#include "tests/trainer/grids.hpp"
 #include "trainer/clearance.hpp"
 
 using namespace hylo::trainer;
@@ -20,12 +21,8 @@ namespace {
 // i.e. [5, 6] x [5, 6] m.
 TerrainGrid grid()
 {
-	TerrainGrid g;
-	g.nx = g.ny = 20;
-	g.resolution_m = 0.5;
+	TerrainGrid g = flat_ground(20, 20, 0.5);
 	g.ceiling_m = 8;
-	g.terrain.assign(400, 1);
-	g.height_m.assign(400, 0.0f);
 	for (int iy = 10; iy <= 11; iy++)
 		for (int ix = 10; ix <= 11; ix++)
 			g.terrain[static_cast<size_t>(iy * 20 + ix)] = 0;

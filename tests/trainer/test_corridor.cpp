@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "tests/tap.hpp"
+#include "tests/trainer/grids.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/corridor.hpp"
 #include "trainer/hs_phase.hpp"
@@ -35,9 +36,7 @@ using namespace hylo::trainer;
 
 std::string fmt(double v)
 {
-	char b[64];
-	std::snprintf(b, sizeof b, "%.4g", v);
-	return b;
+	return tap_num(v, 4);
 }
 
 // ---- the hazards of docs/smoothing.md, point by point ----------------------
@@ -229,13 +228,8 @@ void l_shaped_phase(const RobotParams &ambot)
 	bad.corridor[1].lo = {2, 4};
 	bad.corridor[1].hi = {5, 5};
 	p.phases = {bad};
-	try {
-		solve_multiphase(ambot, p, SolveOptions());
-		check(false, "boxes that overlap in time but not in space are refused");
-	} catch (const std::invalid_argument &e) {
-		check(std::string(e.what()).find("overlap in time but not in space") != std::string::npos,
-		      "boxes that overlap in time but not in space are refused", e.what());
-	}
+	check_throws([&] { solve_multiphase(ambot, p, SolveOptions()); }, "overlap in time but not in space",
+		     "boxes that overlap in time but not in space are refused");
 }
 
 // ---- the builder and the smoother -------------------------------------------
@@ -244,10 +238,7 @@ void l_shaped_phase(const RobotParams &ambot)
 // the diagonal), water beyond; an obstacle at cells (3..4, 8..9).
 TerrainGrid staircase()
 {
-	TerrainGrid m;
-	m.nx = m.ny = 16;
-	m.terrain.assign(256, 1);
-	m.height_m.assign(256, 0.0f);
+	TerrainGrid m = flat_ground(16, 16);
 	for (int iy = 0; iy < 16; iy++)
 		for (int ix = 0; ix < 16; ix++)
 			m.terrain[static_cast<size_t>(iy * 16 + ix)] = ix + iy < 16 ? 1 : 2;
@@ -323,12 +314,7 @@ void staircase_corridor(const RobotParams &ambot)
 // halves still straddle the corner: the parts between cell edges do not).
 void corner_pass(const RobotParams &ambot)
 {
-	TerrainGrid m;
-	m.nx = 60;
-	m.ny = 48;
-	m.resolution_m = 0.5;
-	m.terrain.assign(60 * 48, 1);
-	m.height_m.assign(60 * 48, 0.0f);
+	TerrainGrid m = flat_ground(60, 48, 0.5);
 	for (int ix = 27; ix <= 32; ix++)
 		m.terrain[static_cast<size_t>(13 * 60 + ix)] = 0;
 	CorridorMaps maps(m, ambot.body_radius_m + 0.1, 0.02);
@@ -388,11 +374,7 @@ void staircase_smoothing(const RobotParams &ambot)
 // flight cross 0.5 m above the wall's top edges, a clearance of 0.18 m.
 void chasm_gate(const RobotParams &drivo)
 {
-	TerrainGrid m;
-	m.nx = 9;
-	m.ny = 5;
-	m.terrain.assign(45, 1);
-	m.height_m.assign(45, 0.0f);
+	TerrainGrid m = flat_ground(9, 5);
 	m.ceiling_m = 4;
 	for (int iy = 0; iy < 5; iy++)
 		m.height_m[static_cast<size_t>(iy * 9 + 4)] = 2;

@@ -16,10 +16,12 @@
 #include <unistd.h>
 
 #include "tests/tap.hpp"
+#include "tests/trainer/grids.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
+#include "trainer/smooth_alternatives.hpp"
 #include "trainer/smoother.hpp"
 #include "trainer/switching.hpp"
 
@@ -28,9 +30,7 @@ namespace {
 using namespace hylo::trainer;
 std::string fmt(double v)
 {
-	char b[64];
-	std::snprintf(b, sizeof b, "%.9g", v);
-	return b;
+	return tap_num(v, 9);
 }
 
 void di_case(const RobotParams &di, double a0, double a1, double b0, double b1)
@@ -157,36 +157,21 @@ void bad_problems(const RobotParams &di)
 	MultiPhaseProblem p;
 	p.phases = {phase_between("di_pos", di, a, nullptr, a, a, 5),
 		    phase_between("di_pos", di, nullptr, b, a, a, 5)};
-	try {
-		join_phases(p, 0, di, SwitchGuard{});
-		check(false, "a switch between two phases of one mode is refused");
-	} catch (const std::invalid_argument &e) {
-		check(std::string(e.what()).find("di_pos -> di_pos") != std::string::npos,
-		      "a switch between two phases of one mode is refused", e.what());
-	}
+	check_throws([&] { join_phases(p, 0, di, SwitchGuard{}); }, "di_pos -> di_pos",
+		     "a switch between two phases of one mode is refused");
 	MultiPhaseProblem q;
 	q.phases = {phase_between("di_pos", di, a, nullptr, a, a, 5)};
 	LinearRow r;
 	r.terms = {{KnotRef{3, true, 0}, 1.0}};
 	q.rows = {r};
-	try {
-		solve_multiphase(di, q, SolveOptions());
-		check(false, "a row naming a missing phase is refused");
-	} catch (const std::invalid_argument &e) {
-		check(std::string(e.what()).find("phase 3") != std::string::npos,
-		      "a row naming a missing phase is refused", e.what());
-	}
+	check_throws([&] { solve_multiphase(di, q, SolveOptions()); }, "phase 3", "a row naming a missing phase is refused");
 }
 // A 20 x 4 m map, 1 m cells: a 6 m platform for x < 8, the floor (height 0)
 // beyond. A flight from the platform down to the floor crosses the wall at
 // x = 8: the smoother cuts it there into two phases meeting at least 6.5 m high.
 void wall_gates(const RobotParams &drivo)
 {
-	TerrainGrid m;
-	m.nx = 20;
-	m.ny = 4;
-	m.terrain.assign(80, 1);
-	m.height_m.assign(80, 0.0f);
+	TerrainGrid m = flat_ground(20, 4);
 	for (int iy = 0; iy < 4; iy++)
 		for (int ix = 0; ix < 8; ix++)
 			m.height_m[static_cast<size_t>(iy * 20 + ix)] = 6;
@@ -283,12 +268,8 @@ void alternatives_choice(const RobotParams &di)
 					  w(N, 0, -0.6, true), w(N, -0.8, 0, false)}};
 	PlanAlternative once{1, 2.5, {w(P, 0.8, 0.2, false), w(P, 0.4, -0.6, false), w(P, 0, -0.8, true),
 				       w(N, 0, -0.8, true), w(N, -0.4, -0.6, false), w(N, -0.8, 0, false)}};
-	TerrainGrid plane;   // scenes/di.yaml: the phase plane [-1, 1]^2, all "ground"
-	plane.nx = plane.ny = 40;
-	plane.resolution_m = 0.05;
+	TerrainGrid plane = flat_ground(40, 40, 0.05);   // scenes/di.yaml: the phase plane [-1, 1]^2, all "ground"
 	plane.origin_x_m = plane.origin_y_m = -1;
-	plane.terrain.assign(1600, 1);
-	plane.height_m.assign(1600, 0.0f);
 	AlternativesChoice c = smooth_alternatives(di, {thrice, once}, plane, {}, {}, {});
 	bool ok = c.outcomes.size() == 2 && c.outcomes[0].smoothed && c.outcomes[1].smoothed &&
 		  c.outcomes[0].result.ok && c.outcomes[1].result.ok;

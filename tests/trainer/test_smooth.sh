@@ -75,19 +75,10 @@ ends = max(abs(x0[0] - a[0]), abs(x0[1] - a[1]), abs(x1[0] - b[0]), abs(x1[1] - 
 print("ends", ends < 1e-9 and abs(t["state"][k][0]) < 1e-9 and abs(t["state"][k - 1][0]) < 1e-9
       and sorted(set(modes)) == [4, 5], f"ends off by {ends}, switch at p = {t['state'][k][0]}")
 PY
-  local what
-  for what in graph swept replay ends; do
-    local line; line=$(grep "^$what " "$T/$n.check")
-    local name
-    case $what in
-      graph)  name="$n: smoothed cost not above the exact cost of the graph path" ;;
-      swept)  name="$n: smoothed cost within 0.5% of the swept two-phase optimum" ;;
-      replay) name="$n: the smoothed trajectory replays (CVODE) with its cost" ;;
-      ends)   name="$n: starts at the start, ends at the goal, switches on p = 0" ;;
-    esac
-    if [ "${line#"$what True"}" != "$line" ]; then tap_ok "$name"; else
-      tap_not_ok "$name" "${line:-$(cat "$T/$n.check")}"; fi
-  done
+  tap_verdict "$T/$n.check" graph "$n: smoothed cost not above the exact cost of the graph path"
+  tap_verdict "$T/$n.check" swept "$n: smoothed cost within 0.5% of the swept two-phase optimum"
+  tap_verdict "$T/$n.check" replay "$n: the smoothed trajectory replays (CVODE) with its cost"
+  tap_verdict "$T/$n.check" ends "$n: starts at the start, ends at the goal, switches on p = 0"
 }
 
 case_check di_case1 0.8 0.2 -0.8 0.0

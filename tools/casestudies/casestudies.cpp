@@ -49,6 +49,7 @@
 #include "trainer/params.hpp"
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
+#include "trainer/fallbacks.hpp"
 #include "trainer/smoother.hpp"
 #include "trainer/svr_export.hpp"
 #include "trainer/switching.hpp"
@@ -221,21 +222,6 @@ std::string sequence(const hylo_plan &p)
 	return s;
 }
 
-TerrainGrid grid_of(const Scene &sc)
-{
-	TerrainGrid g;
-	g.nx = sc.nx;
-	g.ny = sc.ny;
-	g.resolution_m = sc.resolution_m;
-	g.origin_x_m = sc.origin_x_m;
-	g.origin_y_m = sc.origin_y_m;
-	g.terrain = sc.terrain;
-	g.height_m = sc.height_m;
-	g.max_step_m = sc.max_step_m;
-	g.ceiling_m = sc.ceiling_m;
-	return g;
-}
-
 // ---- study 1: the hybrid double integrator --------------------------------
 
 // Exact edge costs: every edge's BVP solved by the trainer's collocation
@@ -362,7 +348,7 @@ std::string di_study(const Options &opt, std::string &md)
 		const hylo_plan &p = *planner.plan;
 		std::fprintf(stderr, "  graph cost %.6g (%llu edges solved, %.1f s); smoothing\n", p.total_cost,
 			     static_cast<unsigned long long>(costs.solves), plan_s);
-		MultiPhaseProblem prob = smoothing_problem(di, waypoints(p), grid_of(sc), TakeoffLanding{});
+		MultiPhaseProblem prob = smoothing_problem(di, waypoints(p), terrain_grid(sc), TakeoffLanding{});
 		MultiPhaseSolution sm = solve_multiphase(di, prob, smoothing_solve_options());
 		std::fprintf(stderr, "  smoothed %.6g; two-phase from a naive guess and the sweep\n", sm.cost);
 		MultiPhaseSolution naive = di_two_phase(di, k.a, k.b, 0.0);   // the naive guess: through (0, 0)
@@ -505,7 +491,7 @@ double predicted_cost(const hylo_robot &r, const hylo_plan &p)
 // margin; -infinity when a point leaves its mode's domain.
 double least_clearance(const MultiPhaseSolution &s, const Scene &sc, const RobotParams &robot)
 {
-	const ClearanceCheck c = check_clearance(s, grid_of(sc), robot.body_radius_m, HYLO_DEFAULT_MARGIN_M);
+	const ClearanceCheck c = check_clearance(s, terrain_grid(sc), robot.body_radius_m, HYLO_DEFAULT_MARGIN_M);
 	return c.outside_phase >= 0 ? -INFINITY : c.min_clearance_m;
 }
 
@@ -545,7 +531,7 @@ PlanResult evaluate(const RobotParams &ambot, const hylo_robot &svr_robot, const
 	r.smoothed_water = 0;
 	std::vector<Waypoint> w = waypoints(p);
 	r.exact = graph_path_cost(ambot, w, TakeoffLanding{}, SolveOptions());
-	MultiPhaseProblem prob = smoothing_problem(ambot, w, grid_of(sc), TakeoffLanding{});
+	MultiPhaseProblem prob = smoothing_problem(ambot, w, terrain_grid(sc), TakeoffLanding{});
 	MultiPhaseSolution sm = solve_multiphase(ambot, prob, smoothing_solve_options());
 	if (sm.converged) {
 		r.smoothed = sm.cost;
@@ -654,7 +640,7 @@ std::string ambot_study(const Options &opt, std::string &md)
 			PlanResult a = evaluate(ambot, *energy, *alts[k].plan, sc, false);
 			std::string how = "";
 			if (!opt.quick) {
-				SmoothResult sm = smooth_with_fallbacks(ambot, alts[k].path, grid_of(sc), TakeoffLanding{},
+				SmoothResult sm = smooth_with_fallbacks(ambot, alts[k].path, terrain_grid(sc), TakeoffLanding{},
 									SmoothOptions());
 				if (sm.ok) {
 					a.smoothed = sm.solution.cost;
@@ -713,7 +699,7 @@ std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Wa
 	try {
 		SmoothOptions so;
 		so.guard_half_length_m = 1e3;   // the whole platform or floor
-		MultiPhaseSolution s = smooth_plan(robot, plan, grid_of(sc), tl, so, {1.0});
+		MultiPhaseSolution s = smooth_plan(robot, plan, terrain_grid(sc), tl, so, {1.0});
 		r[4] = s.solve_seconds;
 		if (!s.converged)
 			return r;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "tools/scene/scene.hpp"
-#include "trainer/smoother.hpp"
+#include "trainer/smoothing_problem.hpp"
 
 namespace hylo::casestudies {
 
