@@ -99,7 +99,7 @@ $(BUILD)/obj/tools/scene/%.o: tools/scene/%.cpp $(LCM_STAMP)
 	@mkdir -p $(@D)
 	$(CXX) $(CXX17_FLAGS) $(YAML_CFLAGS) $(LCM_CFLAGS) $(DEP_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c -I$(LCM_GEN_DIR)/cpp -c $< -o $@
 
-$(HYLO_SCENE): $(SCENE_OBJS) $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS)
+$(HYLO_SCENE): $(SCENE_OBJS) $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(LDFLAGS) $^ $(YAML_LIBS) $(LCM_LIBS) -o $@
 
@@ -179,7 +179,7 @@ tests/node/test_load.sh: $(GOAL_BURST)
 
 # goal_burst: the load client of tests/node/test_load.sh (and make bench).
 GOAL_BURST := $(BUILD)/test/node/goal_burst
-$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(LCM_STAMP)
+$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(ONBOARD_LIB) $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(YAML_LIBS) $(LCM_LIBS) -o $@
+	$(CXX) $(CXX17_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(ONBOARD_LIB) $(YAML_LIBS) $(LCM_LIBS) -o $@
 ALL_TARGETS += $(GOAL_BURST)

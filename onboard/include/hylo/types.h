@@ -15,7 +15,8 @@ typedef double hylo_real;
 /* A monotonic clock in milliseconds (the planner's optional time source). */
 typedef double (*hylo_clock_fn)(void *ctx);
 
-/* Locomotion modes; the values are those of goal_t.MODE_* in msgs/. */
+/* Locomotion modes; the values are those of goal_t.MODE_* in msgs/. Each
+ * mode's description is its record in hylo/modes.h. */
 typedef enum {
 	HYLO_MODE_NONE = 0,
 	HYLO_MODE_GROUND = 1,  /* skid-steer driving, x^s = (px, py, vx, theta) */
