@@ -73,6 +73,10 @@ $(BUILD)/san/test/node/%: $(BUILD)/san/obj/node-tests/%.o $(NODE_OBJS_SAN) $(NOD
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) $(SAN_FLAGS) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
 
+# test_registry links the registry's code (with tables of its own).
+$(BUILD)/test/node/test_registry: $(BUILD)/obj/node/registry.o
+$(BUILD)/san/test/node/test_registry: $(BUILD)/san/obj/node/registry.o
+
 ALL_TARGETS += $(NODE_TESTS) $(NODE_TESTS_SAN)
 TESTS += $(NODE_TESTS)
 TESTS_SAN += $(NODE_TESTS_SAN)

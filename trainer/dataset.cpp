@@ -388,10 +388,11 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 			level_speed(b + 3, heading);
 		}
 	} else {
-		bool pos = d.side > 0;   // the phase plane's half: p in [0, 1] or [-1, 0]
-		a[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);
+		// The mode's side of the phase plane: p in [0, 1], [-1, 0] or [-1, 1].
+		const double lo = d.side > 0 ? 0.0 : -1.0, hi = d.side < 0 ? 0.0 : 1.0;
+		a[0] = r.uniform(lo, hi);
 		a[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
-		b[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);
+		b[0] = r.uniform(lo, hi);
 		b[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
 	}
 }
@@ -413,10 +414,7 @@ TrainedRegion trained_region(const ModeParams &p)
 		bound(4, -s.speed_max_mps, s.speed_max_mps);
 		bound(5, 0, 0);   // level_speed: vz = 0
 	} else {
-		if (d.side > 0)
-			bound(0, 0, 1);
-		else
-			bound(0, -1, 0);
+		bound(0, d.side > 0 ? 0.0 : -1.0, d.side < 0 ? 0.0 : 1.0);
 		bound(1, s.speed_min_mps, s.speed_max_mps);
 	}
 	return r;

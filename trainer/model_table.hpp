@@ -14,6 +14,13 @@
 #include "trainer/models.hpp"
 #include "trainer/params.hpp"
 
+// A build's extra modes (hylo/types.h): their models, and the cases
+// HYLO_EXTRA_MODEL_TYPE_CASES and HYLO_EXTRA_MODEL_CASES of the switches below.
+#ifdef HYLO_EXTRA_MODES_H
+#define HYLO_EXTRA_MODELS_WANTED   // the models.hpp types are declared
+#include HYLO_EXTRA_MODES_H
+#endif
+
 namespace hylo::trainer {
 
 template <class M>
@@ -36,6 +43,9 @@ decltype(auto) with_model_type(hylo_mode mode, F &&f)
 	case HYLO_MODE_DI_NEG:
 	case HYLO_MODE_DI_POS:
 		return f(ModelType<DiModel>{});
+#ifdef HYLO_EXTRA_MODEL_TYPE_CASES
+		HYLO_EXTRA_MODEL_TYPE_CASES
+#endif
 	default:
 		throw std::invalid_argument("no trainer model for mode " + std::to_string(static_cast<int>(mode)));
 	}
@@ -55,6 +65,9 @@ decltype(auto) with_model(const ModeParams &p, double g, F &&f)
 	case HYLO_MODE_DI_NEG:
 	case HYLO_MODE_DI_POS:
 		return f(DiModel(p, hylo_mode_describe(p.id)->side > 0));
+#ifdef HYLO_EXTRA_MODEL_CASES
+		HYLO_EXTRA_MODEL_CASES
+#endif
 	default:
 		throw std::invalid_argument("no trainer model for mode '" + p.mode + "'");
 	}

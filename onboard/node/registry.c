@@ -51,17 +51,31 @@ static hylo_status bind(hylo_robot *rb, const hylo_registry_model *e, hylo_reaso
 	return HYLO_OK;
 }
 
-const hylo_registry_body *hylo_registry_body_of(const char *robot)
+static const hylo_registry_body *body_of(const hylo_registry_body *bodies, uint32_t n_bodies,
+					const char *robot)
 {
 	uint32_t k;
 
-	for (k = 0; k < hylo_registry_n_bodies; k++)
-		if (strcmp(hylo_registry_bodies[k].robot, robot) == 0)
-			return &hylo_registry_bodies[k];
+	for (k = 0; k < n_bodies; k++)
+		if (strcmp(bodies[k].robot, robot) == 0)
+			return &bodies[k];
 	return NULL;
 }
 
+const hylo_registry_body *hylo_registry_body_of(const char *robot)
+{
+	return body_of(hylo_registry_bodies, hylo_registry_n_bodies, robot);
+}
+
 uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason)
+{
+	return hylo_registry_robots_of(hylo_registry_models, hylo_registry_n_models, hylo_registry_bodies,
+				       hylo_registry_n_bodies, robots, cap, reason);
+}
+
+uint32_t hylo_registry_robots_of(const hylo_registry_model *models, uint32_t n_models,
+				 const hylo_registry_body *bodies, uint32_t n_bodies, hylo_robot *robots,
+				 uint32_t cap, hylo_reason *reason)
 {
 	uint32_t n = 0, k, m;
 
@@ -75,8 +89,8 @@ uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *rea
 			robots[n].modes[m].mode = standard[k].modes[m];
 		n++;
 	}
-	for (k = 0; k < hylo_registry_n_models; k++) {
-		const hylo_registry_model *e = &hylo_registry_models[k];
+	for (k = 0; k < n_models; k++) {
+		const hylo_registry_model *e = &models[k];
 		int r = find_robot(robots, n, e->robot);
 
 		if (r < 0) {
@@ -90,7 +104,7 @@ uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *rea
 			return 0;
 	}
 	for (k = 0; k < n; k++) {
-		const hylo_registry_body *b = hylo_registry_body_of(robots[k].name);
+		const hylo_registry_body *b = body_of(bodies, n_bodies, robots[k].name);
 
 		robots[k].body_radius_m = b ? b->radius_m : 0;
 	}

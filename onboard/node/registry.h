@@ -51,6 +51,12 @@ const hylo_registry_body *hylo_registry_body_of(const char *robot);
  */
 uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason);
 
+/** hylo_registry_robots from the given tables instead of the generated ones
+ * (tests/node/test_registry.c). */
+uint32_t hylo_registry_robots_of(const hylo_registry_model *models, uint32_t n_models,
+				 const hylo_registry_body *bodies, uint32_t n_bodies, hylo_robot *robots,
+				 uint32_t cap, hylo_reason *reason);
+
 #ifdef __cplusplus
 }
 #endif

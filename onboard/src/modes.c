@@ -57,6 +57,9 @@ static const hylo_mode_desc modes[HYLO_MODE_COUNT] = {
 		.distance_dims = 2, .planar = 0, .air = 0, .domain = HYLO_DOMAIN_PHASE, .side = 1,
 		.layout = HYLO_LAYOUT_PHASE, .nx = 2, .nu = 1,
 	},
+#ifdef HYLO_EXTRA_MODE_RECORDS
+	HYLO_EXTRA_MODE_RECORDS
+#endif
 };
 
 const hylo_mode_desc *hylo_mode_describe(hylo_mode mode)
