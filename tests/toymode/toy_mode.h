@@ -1,6 +1,7 @@
 /*
  * A toy mode, added in this one place: a double integrator on the whole
- * phase plane (p, v in [-1, 1], v' = u, running cost u^2 + rho). A build
+ * phase plane (p, v in [-1, 1], v' = u, running cost u^2 + rho, the
+ * dynamics of di_neg's model). A build
  * with -DHYLO_EXTRA_MODES_H='"toymode/toy_mode.h"' -Itests (mk/toymode.mk)
  * has mode 6, "toy": its value (hylo/types.h), its record (hylo/modes.h,
  * onboard/src/modes.c) and its trainer model (trainer/model_table.hpp).
@@ -31,47 +32,19 @@
 
 namespace hylo::trainer {
 
-struct ToyModel {
-	double relax = 1.0;
-	static constexpr int NX = 2, NU = 1, NP = 0, NS = 2;
-	static constexpr bool kSmoothed = false;
-	static constexpr bool kReplayFromKnots = false;
-	double rho;
+// The double integrator's dynamics and cost (v' = u, u^2 + rho: di_neg's),
+// on the whole plane.
+struct ToyModel : DiModel {
+	ToyModel(const ModeParams &p, double) : DiModel(p, false) {}
 
-	ToyModel(const ModeParams &p, double) : rho(p.at("rho")) {}
-
-	static std::vector<std::string> param_keys() { return {"rho"}; }
-	static SolverHints solver_hints() { return {}; }
 	static constexpr uint64_t kDefaultSamples = 200;
-	double floor_power() const { return rho; }
-	double top_speed() const { return 1.0; }
-
-	template <class S>
-	void eval(const S *x, const S *u, S *f, S &L, S *) const
-	{
-		f[0] = x[1];
-		f[1] = u[0];
-		L = u[0] * u[0] + rho;
-	}
 	Bounds bounds() const
 	{
-		Bounds b;
-		b.x_lo = {-1.0, -1.0};
-		b.x_hi = {1.0, 1.0};
-		b.u_lo = {-1.0};
-		b.u_hi = {1.0};
-		b.T_min = 0.05;
-		b.T_max = 20;
+		Bounds b = DiModel::bounds();
+		b.x_lo[0] = -1.0;
+		b.x_hi[0] = 1.0;
 		return b;
 	}
-	std::array<double, NX> full_state(const double *xs) const { return {xs[0], xs[1]}; }
-	std::array<double, NX> scale() const { return {1.0, 1.0}; }
-	std::array<double, NU> input_guess() const { return {0.0}; }
-	double position_distance(const double *a, const double *b) const
-	{
-		return std::hypot(b[0] - a[0], b[1] - a[1]);
-	}
-	double typical_speed() const { return 0.5; }
 };
 
 }  // namespace hylo::trainer
