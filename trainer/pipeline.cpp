@@ -153,7 +153,6 @@ void set_region(SvrExport &m, const TrainedRegion &r)
 	m.state_max = r.max;
 }
 
-
 int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 {
 	GenOptions g = opt.gen;

@@ -19,13 +19,14 @@ hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2)
 int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
 		       hylo_real *args)
 {
+	const hylo_feature_layout *layout = hylo_mode_layout(mode);
 	hylo_real dx, dy;
 
 	if (!tail || !head || !args)
 		return 0;
 	dx = head[0] - tail[0];
 	dy = head[1] - tail[1];
-	switch (hylo_mode_describe(mode) ? hylo_mode_describe(mode)->layout : HYLO_LAYOUT_NONE) {
+	switch (layout ? layout->kind : HYLO_LAYOUT_NONE) {
 	case HYLO_LAYOUT_PLANAR:
 		args[0] = sqrt(dx * dx + dy * dy);
 		/* Coincident positions: turn 0 (the features' turn there depends

@@ -157,7 +157,7 @@ static int ps_cell_relevant(const ps_ctx *c, int32_t ix, int32_t cell, hylo_real
 		return hylo_map_cell_clear(m, c->mode, cell);
 	case HYLO_DOMAIN_PHASE:
 		return hylo_map_cell_clear(m, c->mode, cell) &&
-		       (c->desc->side < 0 ? x0 <= 0 : c->desc->side > 0 ? x0 + m->resolution >= 0 : 1);
+		       (c->side < 0 ? x0 <= 0 : c->side > 0 ? x0 + m->resolution >= 0 : 1);
 	case HYLO_DOMAIN_AIR:
 		*zlo = hylo_map_flight_floor(m, cell);
 		*zhi = hylo_map_flight_top(m);
