@@ -7,7 +7,11 @@ TOY_FLAGS := -DHYLO_EXTRA_MODES_H='"toymode/toy_mode.h"' -Itests
 TOY_LIB := $(TOY_DIR)/lib/libhylo.a
 TOY_TRAINER := $(TOY_DIR)/bin/trainer
 TOY_ONBOARD_OBJS := $(ONBOARD_SRCS:%.c=$(TOY_DIR)/obj/%.o)
-TOY_TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(TOY_DIR)/obj/%.o) $(TOY_DIR)/obj/trainer/main.o
+# Trainer sources that see no mode (no hylo/ header, no robot parameters)
+# are the normal build's objects.
+TOY_SHARED_SRCS := trainer/files.cpp trainer/numerics.cpp trainer/processes.cpp trainer/sha256.cpp trainer/svr_fit.cpp
+TOY_TRAINER_OBJS := $(filter-out $(TOY_SHARED_SRCS),$(TRAINER_SRCS)) trainer/main.cpp
+TOY_TRAINER_OBJS := $(TOY_TRAINER_OBJS:%.cpp=$(TOY_DIR)/obj/%.o) $(TOY_SHARED_SRCS:%.cpp=$(BUILD)/obj/%.o)
 
 $(TOY_DIR)/obj/onboard/%.o: onboard/%.c tests/toymode/toy_mode.h
 	@mkdir -p $(@D)
