@@ -27,6 +27,7 @@ include mk/bench_plan.mk
 include mk/node.mk
 include mk/render.mk
 include mk/export.mk
+include mk/toymode.mk
 include mk/fuzz.mk
 include mk/cross.mk
 include mk/casestudies.mk

@@ -73,6 +73,10 @@ $(BUILD)/san/test/node/%: $(BUILD)/san/obj/node-tests/%.o $(NODE_OBJS_SAN) $(NOD
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) $(LDFLAGS) $(SAN_FLAGS) $^ $(LCM_LIBS) $(CMOCKA_LIBS) -lm -o $@
 
+# test_registry links the registry's code (with tables of its own).
+$(BUILD)/test/node/test_registry: $(BUILD)/obj/node/registry.o
+$(BUILD)/san/test/node/test_registry: $(BUILD)/san/obj/node/registry.o
+
 ALL_TARGETS += $(NODE_TESTS) $(NODE_TESTS_SAN)
 TESTS += $(NODE_TESTS)
 TESTS_SAN += $(NODE_TESTS_SAN)
@@ -99,7 +103,7 @@ $(BUILD)/obj/tools/scene/%.o: tools/scene/%.cpp $(LCM_STAMP)
 	@mkdir -p $(@D)
 	$(CXX) $(CXX17_FLAGS) $(YAML_CFLAGS) $(LCM_CFLAGS) $(DEP_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c -I$(LCM_GEN_DIR)/cpp -c $< -o $@
 
-$(HYLO_SCENE): $(SCENE_OBJS) $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS)
+$(HYLO_SCENE): $(SCENE_OBJS) $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(CXXFLAGS) $(LDFLAGS) $^ $(YAML_LIBS) $(LCM_LIBS) -o $@
 
@@ -179,7 +183,7 @@ tests/node/test_load.sh: $(GOAL_BURST)
 
 # goal_burst: the load client of tests/node/test_load.sh (and make bench).
 GOAL_BURST := $(BUILD)/test/node/goal_burst
-$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(LCM_STAMP)
+$(GOAL_BURST): tests/node/goal_burst.cpp $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(ONBOARD_LIB) $(LCM_STAMP)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(YAML_LIBS) $(LCM_LIBS) -o $@
+	$(CXX) $(CXX17_FLAGS) -I. -Ionboard/include -Ionboard/msg -I$(LCM_GEN_DIR)/c $< $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/msg_convert.o $(MSG_OBJS) $(ONBOARD_LIB) $(YAML_LIBS) $(LCM_LIBS) -o $@
 ALL_TARGETS += $(GOAL_BURST)

@@ -20,7 +20,7 @@ $(BUILD)/obj/trainer/%.o: trainer/%.cpp
 # The trainer computes features, the envelope's costs and clearances with
 # the onboard code itself.
 TRAINER_ONBOARD_OBJS := $(addprefix $(BUILD)/obj/onboard/src/,features.o svr.o envelope.o status.o region.o types.o \
-	clearance.o map.o)
+	modes.o clearance.o map.o)
 $(TRAINER_LIB): $(TRAINER_OBJS) $(TRAINER_ONBOARD_OBJS)
 	@mkdir -p $(@D)
 	rm -f $@ && $(AR) rcs $@ $^

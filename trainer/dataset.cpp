@@ -18,6 +18,7 @@
 #include <fcntl.h>
 
 #include "hylo/features.h"
+#include "trainer/modes.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
@@ -67,7 +68,7 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	// Ground and marine labels have come from straight-line starts alone (no
 	// line), with the backing-up and goal-facing ones (starts: 2) and with
 	// issue #35's three more (starts: 3; planar_strategy_guesses).
-	if ((opt.mode == "ground" || opt.mode == "marine") && opt.solve.strategy_starts)
+	if (mode_desc(opt.mode).planar && opt.solve.strategy_starts)
 		m << "starts: 3\n";
 	m << "params_sha256: " << robot.labels_sha256 << "\n";
 	// What else a label depends on: the solver's settings and the numerics.
@@ -296,7 +297,7 @@ int feature_count(const std::string &mode)
 
 std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
 {
-	if (mode != "flight")
+	if (mode_desc(mode).layout != HYLO_LAYOUT_SPATIAL)
 		return {};
 	// Features (dx', dy', dz, v1x', v1y', v1z, v2x', v2y', v2z) in the
 	// displacement's heading: the reflection across that heading.
@@ -305,8 +306,9 @@ std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
 
 int draws_for(const std::string &mode, int requested)
 {
-	const bool planar = mode == "ground" || mode == "marine";
-	const int newest = planar || mode == "flight" ? 2 : 1;
+	const hylo_mode_desc &d = mode_desc(mode);
+	const bool planar = d.planar;
+	const int newest = planar || d.layout == HYLO_LAYOUT_SPATIAL ? 2 : 1;
 	if (requested == 0)
 		return newest;
 	if (requested == newest || (planar && requested == 1))
@@ -331,7 +333,8 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 	Stream r{mix(seed * 0x2545f4914f6cdd1dULL + i + 1)};
 	const Sampling &s = p.sampling;
 	const std::string &m = p.mode;
-	if (m == "ground" || m == "marine") {
+	const hylo_mode_desc &d = mode_desc(m);
+	if (d.layout == HYLO_LAYOUT_PLANAR) {
 		const bool rest = draws_for(m, draws) >= 2 && s.speed_min_mps <= 0 && s.speed_max_mps >= 0;
 		auto speed = [&]() {
 			return rest && r.uniform(0, 1) < kRestFraction ? 0.0 : r.uniform(s.speed_min_mps, s.speed_max_mps);
@@ -342,7 +345,7 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 		b[0] = rad * std::cos(ang), b[1] = rad * std::sin(ang);
 		b[2] = speed();
 		b[3] = r.uniform(-kPi, kPi);
-	} else if (m == "flight") {
+	} else if (d.layout == HYLO_LAYOUT_SPATIAL) {
 		auto ball = [&](double radius, double *v) {
 			double x, y, z;
 			do {
@@ -385,10 +388,11 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 			level_speed(b + 3, heading);
 		}
 	} else {
-		bool pos = m == "di_pos";
-		a[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);
+		// The mode's side of the phase plane: p in [0, 1], [-1, 0] or [-1, 1].
+		const double lo = d.side > 0 ? 0.0 : -1.0, hi = d.side < 0 ? 0.0 : 1.0;
+		a[0] = r.uniform(lo, hi);
 		a[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
-		b[0] = pos ? r.uniform(0, 1) : r.uniform(-1, 0);
+		b[0] = r.uniform(lo, hi);
 		b[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
 	}
 }
@@ -396,24 +400,21 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 TrainedRegion trained_region(const ModeParams &p)
 {
 	const Sampling &s = p.sampling;
-	const std::string &m = p.mode;
+	const hylo_mode_desc &d = mode_desc(p.mode);
 	TrainedRegion r;
 	auto bound = [&](unsigned k, double lo, double hi) {
 		r.bounded |= 1u << k;
 		r.min[k] = lo;
 		r.max[k] = hi;
 	};
-	if (m == "ground" || m == "marine") {
+	if (d.layout == HYLO_LAYOUT_PLANAR) {
 		bound(2, s.speed_min_mps, s.speed_max_mps);
-	} else if (m == "flight") {
+	} else if (d.layout == HYLO_LAYOUT_SPATIAL) {
 		bound(3, -s.speed_max_mps, s.speed_max_mps);
 		bound(4, -s.speed_max_mps, s.speed_max_mps);
 		bound(5, 0, 0);   // level_speed: vz = 0
 	} else {
-		if (m == "di_pos")
-			bound(0, 0, 1);
-		else
-			bound(0, -1, 0);
+		bound(0, d.side > 0 ? 0.0 : -1.0, d.side < 0 ? 0.0 : 1.0);
 		bound(1, s.speed_min_mps, s.speed_max_mps);
 	}
 	return r;

@@ -19,6 +19,7 @@
 
 #include "hylo/envelope.h"
 #include "hylo/features.h"
+#include "hylo/modes.h"
 #include "hylo/svr.h"
 
 // How the table is computed (onboard/models/README.md, "Envelope"):
@@ -82,15 +83,13 @@ constexpr double kStartTolerance = 0.01;      // refine grid minima within 1% of
 constexpr size_t kMaxStarts = 3;
 constexpr size_t kEdgesPerChunk = 4096;
 
+// The mode named mode when its models may carry an envelope (their feature
+// layout's, hylo/modes.h), else HYLO_MODE_NONE.
 hylo_mode mode_of(const std::string &mode)
 {
-	if (mode == "ground")
-		return HYLO_MODE_GROUND;
-	if (mode == "marine")
-		return HYLO_MODE_MARINE;
-	if (mode == "flight")
-		return HYLO_MODE_FLIGHT;
-	return HYLO_MODE_NONE;
+	const hylo_mode m = hylo_mode_parse(mode.c_str());
+	const hylo_feature_layout *l = hylo_mode_layout(m);
+	return l && l->envelope ? m : HYLO_MODE_NONE;
 }
 
 double seconds_since(Clock::time_point t0)
@@ -232,7 +231,8 @@ struct Geometry {
 Geometry geometry(const SvrExport &m)
 {
 	Geometry g;
-	g.flight = m.mode == "flight";
+	const hylo_feature_layout *layout = hylo_mode_layout(hylo_mode_parse(m.mode.c_str()));
+	g.flight = layout && layout->kind == HYLO_LAYOUT_SPATIAL;
 	g.max_d = m.max_distance_m;
 	EnvelopeExport &t = g.t;
 	t.d_step = g.flight ? kFlightStep : kPlanarDStep;

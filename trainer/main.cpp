@@ -359,7 +359,7 @@ int run(int argc, char **argv)
 		}
 	}
 	if (!mode.empty() && !known_mode(mode) && mode != "switch")
-		throw Usage("unknown mode '" + mode + "' (di_neg, di_pos, ground, marine, flight, switch)");
+		throw Usage("unknown mode '" + mode + "' (" + mode_list() + ", switch)");
 	if (mode.empty() || robot_name.empty())
 		throw Usage(missing_mode_or_robot(mode, robot_name));
 	RobotParams robot;

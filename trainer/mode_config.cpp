@@ -1,15 +1,24 @@
 #include "trainer/mode_config.hpp"
 
 #include <stdexcept>
+#include <type_traits>
 
 #include "trainer/hs_phase.hpp"
+#include "trainer/model_table.hpp"
 #include "trainer/modes.hpp"
 #include "trainer/starts.hpp"
 
 namespace hylo::trainer::internal {
 namespace {
 
-// What every mode has: sizes, bounds, the transcription of its model.
+// A phase's initial guesses from M::path_guess, for models that have one.
+template <class M, class = void>
+struct HasPathGuess : std::false_type {};
+template <class M>
+struct HasPathGuess<M, std::void_t<decltype(&M::path_guess)>> : std::true_type {};
+
+// What every mode has: sizes, bounds, the transcription of its model, and
+// the model's solver hints (models.hpp, SolverHints).
 template <class M>
 ModeInfo info_of(const M &model)
 {
@@ -29,25 +38,22 @@ ModeInfo info_of(const M &model)
 	};
 	i.distance = [model](const double *a, const double *b) { return model.position_distance(a, b); };
 	i.typical_speed = model.typical_speed();
+	const SolverHints h = M::solver_hints();
+	i.position_dims = h.position_dims;
+	if (h.mumps_no_permuting_scaling)
+		i.mumps_permuting_scaling = 0;
+	i.continuation = h.continuation;
+	i.min_segments = h.min_segments;
+	i.max_step_s = h.max_step_s;
+	i.first_accepted = h.first_accepted;
+	i.step_max_iter = h.step_max_iter;
+	if constexpr (HasPathGuess<M>::value)
+		if (h.path_guess_points > 0)
+			i.path_guess = [model, k = h.path_guess_points](const std::vector<double> &a,
+									 const std::vector<double> &b, double T) {
+				return model.path_guess(a, b, T, k);
+			};
 	return i;
-}
-
-// Flight: segments of at most 20 ms (the rotors' time constant is 13 ms),
-// the Hermite guess with fine continuation steps, the first start that
-// passes, and no MC64 in MUMPS (2.2x less CPU, same labels); each measured
-// in docs/decisions.md, "Flight training: five changes".
-void tune_flight(ModeInfo &i, const FlightModel &fm)
-{
-	i.position_dims = 3;
-	i.mumps_permuting_scaling = 0;
-	i.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
-	i.min_segments = 80;
-	i.max_step_s = 0.02;
-	i.first_accepted = true;
-	i.step_max_iter = 400;
-	i.path_guess = [fm](const std::vector<double> &a, const std::vector<double> &b, double T) {
-		return fm.path_guess(a, b, T, 16);
-	};
 }
 
 // A sampled planar state (px, py, v, theta) as the mode's full state.
@@ -60,11 +66,10 @@ struct PlanarPoint {
 	}
 };
 
-// Ground and marine: the planar strategy guesses (starts.hpp) besides the
-// straight line.
+// Planar modes (ground, marine): the planar strategy guesses (starts.hpp)
+// besides the straight line.
 void tune_planar(ModeInfo &i)
 {
-	i.position_dims = 2;
 	i.strategy_guesses = [bd = i.bounds, speed = i.typical_speed, point = PlanarPoint{i.full_state}](
 				     const std::vector<double> &a, const std::vector<double> &b) {
 		return planar_strategy_guesses(a, b, bd, speed, point);
@@ -75,17 +80,11 @@ void tune_planar(ModeInfo &i)
 
 ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
 {
-	if (!known_mode(mode))
-		throw std::invalid_argument("unknown mode '" + mode + "' (ground, marine, flight, di_neg, di_pos)");
+	const hylo_mode_desc &d = mode_desc(mode);   // throws for an unknown mode
 	const ModeParams &p = robot.mode(mode);
-	ModeInfo i = mode == "ground"   ? info_of(GroundModel(p, robot.g))
-		     : mode == "marine" ? info_of(MarineModel(p, robot.g))
-		     : mode == "flight" ? info_of(FlightModel(p, robot.g))
-					: info_of(DiModel(p, mode == "di_pos"));
+	ModeInfo i = with_model(p, robot.g, [](const auto &model) { return info_of(model); });
 	i.refinements = p.refinements;
-	if (mode == "flight")
-		tune_flight(i, FlightModel(p, robot.g));
-	if (mode == "ground" || mode == "marine")
+	if (d.planar)
 		tune_planar(i);
 	return i;
 }

@@ -1,7 +1,10 @@
 // What the solver driver needs of each mode (internal to the trainer): its
 // sizes, bounds and dynamics as a transcription phase, and its tuning (the
 // continuation steps, mesh, iteration limits, MUMPS setting, initial
-// guesses), in one place: mode_info() in mode_config.cpp.
+// guesses). mode_info() in mode_config.cpp builds it from the mode's model
+// (trainer/model_table.hpp), whose solver_hints() are the tuning
+// (trainer/models.hpp), and the mode's record (hylo/modes.h: planar modes
+// get the planar strategy guesses).
 #ifndef HYLO_TRAINER_MODE_CONFIG_HPP
 #define HYLO_TRAINER_MODE_CONFIG_HPP
 

@@ -5,12 +5,19 @@
 // Each model has, for state x (NX), input u (NU):
 //   eval(x, u, f, L, path): f = x' (NX), L = running cost [W], path (NP)
 //   bounds on x, u, path and the final time T; the boundary state built from
-//   sampled coordinates with the virtual constraints of docs/models.md section 7.
+//   sampled coordinates with the virtual constraints of docs/models.md section 7;
+//   param_keys(), the keys its robot-file block must have (trainer/params.cpp);
+//   floor_power() and top_speed(), from which every edge's least cost follows
+//   (cost_floor, trainer/model_table.hpp); solver_hints(), how the solver
+//   driver treats it (trainer/mode_config.hpp); kDefaultSamples, a full
+//   dataset's pairs. Which model a mode has: trainer/model_table.hpp; the
+//   rest of a mode's description: its record in onboard/include/hylo/modes.h.
 #ifndef HYLO_TRAINER_MODELS_HPP
 #define HYLO_TRAINER_MODELS_HPP
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,6 +60,19 @@ struct Bounds {
 	double T_min = 0, T_max = 0;
 };
 
+// How the solver driver treats a model (trainer/mode_config.hpp, ModeInfo:
+// what each field does); the defaults are those of a plain model.
+struct SolverHints {
+	int position_dims = 0;        // position components a corridor box bounds (0: none)
+	std::vector<double> continuation = {100.0, 10.0, 3.0, 1.0};  // smoothing multipliers, to 1
+	int min_segments = 0;         // a start's mesh has at least these segments
+	double max_step_s = 0;        // > 0: and segments of at most this guessed duration [s]
+	bool first_accepted = false;  // keep the first start that passes, try no more
+	int step_max_iter = 0;        // > 0: a continuation step's iteration limit
+	bool mumps_no_permuting_scaling = false;  // MUMPS without MC64 (else its own choice)
+	int path_guess_points = 0;    // > 0: straight-line starts from path_guess(a, b, T, this)
+};
+
 // ---- double integrator (docs/models.md section 2) ------------------------------
 struct DiModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
@@ -63,6 +83,13 @@ struct DiModel {
 	bool positive = false;   // di_pos: p >= 0, v' = u - v
 
 	DiModel(const ModeParams &p, bool pos) : rho(p.at("rho")), positive(pos) {}
+
+	static std::vector<std::string> param_keys() { return {"rho"}; }
+	static SolverHints solver_hints() { return {}; }
+	static constexpr uint64_t kDefaultSamples = 2000;
+	// L >= rho and |v| <= 1: T >= the distance in p.
+	double floor_power() const { return rho; }
+	double top_speed() const { return 1.0; }
 
 	template <class S>
 	void eval(const S *x, const S *u, S *f, S &L, S *) const
@@ -106,6 +133,20 @@ struct GroundModel {
 		  mut(p.at("mut")), Cy(p.at("Cy")), Pd(p.at("Pd")), vmax(p.at("vmax")), g(grav)
 	{
 	}
+
+	static std::vector<std::string> param_keys()
+	{
+		return {"m", "Iz", "B", "Lc", "r", "G", "kt", "R", "Vcc", "crr", "mut", "Cy", "Pd", "vmax"};
+	}
+	static SolverHints solver_hints()
+	{
+		SolverHints h;
+		h.position_dims = 2;
+		return h;
+	}
+	static constexpr uint64_t kDefaultSamples = 11520;
+	double floor_power() const { return Pd; }   // every second drains Pd
+	double top_speed() const { return vmax; }
 
 	// x = (px, py, vx, vy, theta, omega), u = (uL, uR)
 	template <class S>
@@ -171,6 +212,20 @@ struct MarineModel {
 		  vmax_w(p.at("vmax_w"))
 	{
 	}
+
+	static std::vector<std::string> param_keys()
+	{
+		return {"m", "Iz", "B", "Jm", "kt", "R", "Vcc", "kT", "kq", "dx", "dy", "Cy_w", "dw", "Pd", "vmax_w"};
+	}
+	static SolverHints solver_hints()
+	{
+		SolverHints h;
+		h.position_dims = 2;
+		return h;
+	}
+	static constexpr uint64_t kDefaultSamples = 11520;
+	double floor_power() const { return Pd; }
+	double top_speed() const { return vmax_w; }
 
 	double phi_n(double vx) const { return vx * std::sqrt(dx / (2 * kT)); }
 
@@ -246,6 +301,32 @@ struct FlightModel {
 		  phi_max(p.at("phi_max")), g(grav)
 	{
 	}
+
+	static std::vector<std::string> param_keys()
+	{
+		return {"m", "l", "Jx", "Jy", "Jz", "kf", "km", "Jr", "Vcc", "kt", "R", "cd", "Pd", "vmax_f",
+			"phi_max"};
+	}
+	// Segments of at most 20 ms (the rotors' time constant is 13 ms), the
+	// Hermite guess with fine continuation steps, the first start that
+	// passes, and no MC64 in MUMPS (2.2x less CPU, same labels); each
+	// measured in docs/decisions.md, "Flight training: five changes".
+	static SolverHints solver_hints()
+	{
+		SolverHints h;
+		h.position_dims = 3;
+		h.mumps_no_permuting_scaling = true;
+		h.continuation = {100.0, 50.0, 30.0, 20.0, 10.0, 5.0, 3.0, 2.0, 1.5, 1.0};
+		h.min_segments = 80;
+		h.max_step_s = 0.02;
+		h.first_accepted = true;
+		h.step_max_iter = 400;
+		h.path_guess_points = 16;
+		return h;
+	}
+	static constexpr uint64_t kDefaultSamples = 17016;
+	double floor_power() const { return Pd; }
+	double top_speed() const { return vmax_f; }
 
 	double phi_n() const { return std::sqrt(m * g / (4 * kf)); }
 	// Input holding a rotor at phi_n: kt*i = km*phi^2, i = (Vcc*u - kt*phi)/R.

@@ -1,62 +1,55 @@
 #include "trainer/modes.hpp"
 
-#include "trainer/models.hpp"
+#include <stdexcept>
 
 namespace hylo::trainer {
 
-bool known_mode(const std::string &m)
+const hylo_mode_desc &mode_desc(const std::string &mode)
 {
-	return m == "ground" || m == "marine" || m == "flight" || m == "di_neg" || m == "di_pos";
+	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(mode.c_str()));
+	if (!d)
+		throw std::invalid_argument("unknown mode '" + mode + "' (" + mode_list() + ")");
+	return *d;
 }
 
-namespace {
-const char *const kModeNames[] = {"", "ground", "marine", "flight", "di_neg", "di_pos"};
-}  // namespace
+std::string mode_list()
+{
+	char buf[256];
+	return hylo_mode_names(buf, sizeof buf);
+}
+
+bool known_mode(const std::string &m)
+{
+	return hylo_mode_parse(m.c_str()) != HYLO_MODE_NONE;
+}
 
 std::string mode_name(int m)
 {
-	return m >= 1 && m <= 5 ? kModeNames[m] : "";
+	const hylo_mode_desc *d = hylo_mode_describe(static_cast<hylo_mode>(m));
+	return d ? d->name : "";
 }
 
 int mode_number(const std::string &mode)
 {
-	for (int m = 1; m <= 5; m++)
-		if (mode == kModeNames[m])
-			return m;
-	return 0;
+	return hylo_mode_parse(mode.c_str());
 }
 
 int sampled_dim(const std::string &m)
 {
-	if (m == "ground" || m == "marine")
-		return 4;
-	if (m == "flight")
-		return 6;
-	if (m == "di_neg" || m == "di_pos")
-		return 2;
-	return 0;
+	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
+	return d ? d->xs_dim : 0;
 }
 
 int state_dim(const std::string &m)
 {
-	if (m == "ground")
-		return GroundModel::NX;
-	if (m == "marine")
-		return MarineModel::NX;
-	if (m == "flight")
-		return FlightModel::NX;
-	return known_mode(m) ? DiModel::NX : 0;
+	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
+	return d ? d->nx : 0;
 }
 
 int input_dim(const std::string &m)
 {
-	if (m == "ground")
-		return GroundModel::NU;
-	if (m == "marine")
-		return MarineModel::NU;
-	if (m == "flight")
-		return FlightModel::NU;
-	return known_mode(m) ? DiModel::NU : 0;
+	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
+	return d ? d->nu : 0;
 }
 
 }  // namespace hylo::trainer

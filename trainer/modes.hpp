@@ -1,12 +1,22 @@
-// The modes the trainer knows: names, numbers and sizes (docs/models.md).
-// A mode's full state and bounds with a robot's parameters are in
-// collocation.hpp, the solver's per-mode configuration in mode_config.hpp.
+// The modes the trainer knows: each one's record (onboard/include/hylo/modes.h)
+// by name, for the trainer's edges (command line, robot files, dataset and
+// header names). A mode's full state and bounds with a robot's parameters
+// are in collocation.hpp, its model in model_table.hpp, the solver's
+// per-mode configuration in mode_config.hpp.
 #ifndef HYLO_TRAINER_MODES_HPP
 #define HYLO_TRAINER_MODES_HPP
 
 #include <string>
 
+#include "hylo/modes.h"
+
 namespace hylo::trainer {
+
+// The record of the mode named mode; throws std::invalid_argument naming
+// the known modes for any other name.
+const hylo_mode_desc &mode_desc(const std::string &mode);
+// The modes' names, ", "-separated (for messages).
+std::string mode_list();
 
 // Mode names the trainer knows and their sampled dimension (docs/models.md section 7).
 bool known_mode(const std::string &mode);
@@ -16,7 +26,7 @@ int sampled_dim(const std::string &mode);
 std::string mode_name(int goal_mode);
 int mode_number(const std::string &mode);
 
-// State and input sizes of a mode.
+// State and input sizes of a mode (0 for an unknown one).
 int state_dim(const std::string &mode);
 int input_dim(const std::string &mode);
 

@@ -12,21 +12,19 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "hylo/modes.h"
+#include "trainer/model_table.hpp"
+#include "trainer/modes.hpp"
 #include "trainer/sha256.hpp"
 
 namespace hylo::trainer {
 namespace {
 
-// Required parameters of each mode (docs/models.md sections 2-5, 8).
-const std::map<std::string, std::vector<std::string>> kRequired = {
-	{"ground", {"m", "Iz", "B", "Lc", "r", "G", "kt", "R", "Vcc", "crr", "mut", "Cy", "Pd", "vmax"}},
-	{"marine", {"m", "Iz", "B", "Jm", "kt", "R", "Vcc", "kT", "kq", "dx", "dy", "Cy_w", "dw", "Pd",
-		    "vmax_w"}},
-	{"flight", {"m", "l", "Jx", "Jy", "Jz", "kf", "km", "Jr", "Vcc", "kt", "R", "cd", "Pd", "vmax_f",
-		    "phi_max"}},
-	{"di_neg", {"rho"}},
-	{"di_pos", {"rho"}},
-};
+// Required parameters of a mode (docs/models.md sections 2-5, 8): its model's.
+std::vector<std::string> required_keys(hylo_mode mode)
+{
+	return with_model_type(mode, [](auto t) { return decltype(t)::type::param_keys(); });
+}
 
 // The file's text without its top-level body block (the "body:" line and
 // the indented or blank lines after it).
@@ -223,17 +221,19 @@ RobotParams load_robot(const std::string &path)
 		rd.fail(modes, "modes must be a non-empty mapping");
 	for (const auto &kv : modes) {
 		std::string name = kv.first.as<std::string>();
-		auto req = kRequired.find(name);
-		if (req == kRequired.end())
-			rd.fail(kv.first, "unknown mode '" + name + "' (ground, marine, flight, di_neg, di_pos)");
+		const hylo_mode id = hylo_mode_parse(name.c_str());
+		if (id == HYLO_MODE_NONE)
+			rd.fail(kv.first, "unknown mode '" + name + "' (" + mode_list() + ")");
+		const std::vector<std::string> req = required_keys(id);
 		const YAML::Node &m = kv.second;
 		rd.only(m, "mode " + name, {"params", "sampling", "solver"});
 		ModeParams mp;
 		mp.mode = name;
+		mp.id = id;
 		YAML::Node p = rd.need(m, "params", "mode " + name);
-		std::set<std::string> allowed(req->second.begin(), req->second.end());
+		std::set<std::string> allowed(req.begin(), req.end());
 		rd.only(p, "the parameters of mode " + name, allowed);
-		for (const auto &key : req->second) {
+		for (const auto &key : req) {
 			YAML::Node v = rd.need(p, key, "the parameters of mode " + name);
 			double x = rd.number(v, name + "." + key);
 			if (!(x > 0))

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "hylo/types.h"
+
 namespace hylo::trainer {
 
 class ParamError : public std::runtime_error {
@@ -24,7 +26,8 @@ struct Sampling {
 };
 
 struct ModeParams {
-	std::string mode;              // "ground", "marine", "flight", "di_neg", "di_pos"
+	std::string mode;              // its name (hylo/modes.h), as the file spells it
+	hylo_mode id = HYLO_MODE_NONE; // the mode: load() parses the name once
 	std::map<std::string, double> values;
 	Sampling sampling;
 	int refinements = 0;           // solver: {refinements: N}: at least N mesh doublings when a

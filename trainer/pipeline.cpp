@@ -11,6 +11,8 @@
 #include "hylo/region.h"
 #include "trainer/collocation.hpp"
 #include "trainer/files.hpp"
+#include "trainer/model_table.hpp"
+#include "trainer/modes.hpp"
 #include "trainer/envelope.hpp"
 #include "trainer/gather.hpp"
 #include "trainer/repair.hpp"
@@ -115,10 +117,12 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 TrainedRegion checked_region(const ModeParams &p, const Rows &rows, const std::string &path)
 {
 	const TrainedRegion region = trained_region(p);
-	const hylo_mode mode = static_cast<hylo_mode>(mode_number(p.mode));
-	const size_t dim = static_cast<size_t>(sampled_dim(p.mode));
+	const hylo_mode mode = p.id;
+	const hylo_mode_desc &d = mode_desc(p.mode);
+	const size_t dim = d.xs_dim;
 	hylo_svr_model m{};
-	m.max_distance_m = p.mode == "di_neg" || p.mode == "di_pos" ? 0 : p.sampling.max_distance_m;
+	// The phase plane's draw bounds positions, not displacements.
+	m.max_distance_m = d.domain == HYLO_DOMAIN_PHASE ? 0 : p.sampling.max_distance_m;
 	m.speed_min_mps = p.sampling.speed_min_mps;
 	m.speed_max_mps = p.sampling.speed_max_mps;
 	m.state_bounded = region.bounded;
@@ -149,22 +153,6 @@ void set_region(SvrExport &m, const TrainedRegion &r)
 	m.state_max = r.max;
 }
 
-double floor_per_m(const std::string &mode, const ModeParams &p)
-{
-	// Every edge costs at least Pd * T and T >= distance / top speed.
-	if (mode == "ground") return p.at("Pd") / p.at("vmax");
-	if (mode == "marine") return p.at("Pd") / p.at("vmax_w");
-	if (mode == "flight") return p.at("Pd") / p.at("vmax_f");
-	return p.at("rho");   // |v| <= 1: T >= distance in p; cost >= rho * T
-}
-
-double floor_j(const std::string &mode, const ModeParams &p)
-{
-	if (mode == "ground" || mode == "marine" || mode == "flight")
-		return p.at("Pd") * 0.1;   // T >= 0.1 s
-	return p.at("rho") * 0.05;
-}
-
 int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 {
 	GenOptions g = opt.gen;
@@ -186,8 +174,9 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	FitReport rep = fit_cost(nf, rows.x_conv, rows.cost, fo, m);
 	m.robot = robot.robot;
 	m.mode = g.mode;
-	m.cost_floor_per_m = floor_per_m(g.mode, p);
-	m.cost_floor_j = floor_j(g.mode, p);
+	const CostFloor floor = with_model(p, robot.g, [](const auto &model) { return cost_floor(model); });
+	m.cost_floor_per_m = floor.per_m;
+	m.cost_floor_j = floor.j;
 	m.max_distance_m = p.sampling.max_distance_m;
 	m.speed_min_mps = p.sampling.speed_min_mps;
 	m.speed_max_mps = p.sampling.speed_max_mps;
@@ -223,7 +212,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		m.provenance.insert(m.provenance.end() - 1,
 				    {"mirror images", std::to_string(fo.symmetries.size()) +
 							      " per training pair (feature_symmetries, trainer/dataset.cpp)"});
-	if (g.mode == "flight") {
+	if (mode_desc(g.mode).air) {
 		// Takeoff and landing (docs/models.md section 6): hover at h to hover at h+1, and back.
 		TakeoffLanding tl = takeoff_landing(robot, g.solve);
 		m.constants = {{"TAKEOFF_J", tl.takeoff_j, "ground rest -> hover 1 m above [J]"},
@@ -333,11 +322,8 @@ int region_stage(const RobotParams &robot, const PipelineOptions &opt)
 
 uint64_t default_samples(const std::string &mode)
 {
-	if (mode == "flight")
-		return 17016;
-	if (mode == "ground" || mode == "marine")
-		return 11520;
-	return 2000;
+	return with_model_type(static_cast<hylo_mode>(mode_number(mode)),
+			       [](auto t) { return decltype(t)::type::kDefaultSamples; });
 }
 
 int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage)

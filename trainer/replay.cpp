@@ -12,7 +12,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "trainer/models.hpp"
+#include "trainer/model_table.hpp"
 
 namespace hylo::trainer {
 namespace {
@@ -172,16 +172,7 @@ std::string replay_verdict(const Solution &s)
 void replay(const std::string &mode, const RobotParams &robot, Solution &s, double state_tol)
 {
 	const ModeParams &p = robot.mode(mode);
-	if (mode == "ground")
-		replay_model(GroundModel(p, robot.g), s, state_tol);
-	else if (mode == "marine")
-		replay_model(MarineModel(p, robot.g), s, state_tol);
-	else if (mode == "flight")
-		replay_model(FlightModel(p, robot.g), s, state_tol);
-	else if (mode == "di_neg" || mode == "di_pos")
-		replay_model(DiModel(p, mode == "di_pos"), s, state_tol);
-	else
-		throw std::invalid_argument("replay: unknown mode '" + mode + "'");
+	with_model(p, robot.g, [&](const auto &model) { replay_model(model, s, state_tol); });
 }
 
 }  // namespace hylo::trainer

@@ -9,29 +9,22 @@
 #include <system_error>
 
 #include "hylo/features.h"
-#include "hylo/types.h"
+#include "hylo/modes.h"
 #include "hylo/svr.h"
+#include "hylo/types.h"
 #include "trainer/files.hpp"
 
 namespace hylo::trainer {
 namespace {
 
-struct ModeName {
-	const char *name, *c_name;
-	hylo_mode value;
-};
-
-const ModeName &mode_enum(const std::string &mode)
+// The record of the mode named mode (hylo/modes.h: its enum value and the
+// constant's name, c_name, that a header's _MODE macro writes).
+const hylo_mode_desc &mode_enum(const std::string &mode)
 {
-	static const ModeName modes[] = {{"ground", "HYLO_MODE_GROUND", HYLO_MODE_GROUND},
-					 {"marine", "HYLO_MODE_MARINE", HYLO_MODE_MARINE},
-					 {"flight", "HYLO_MODE_FLIGHT", HYLO_MODE_FLIGHT},
-					 {"di_neg", "HYLO_MODE_DI_NEG", HYLO_MODE_DI_NEG},
-					 {"di_pos", "HYLO_MODE_DI_POS", HYLO_MODE_DI_POS}};
-	for (const ModeName &m : modes)
-		if (mode == m.name)
-			return m;
-	throw std::invalid_argument("svr export: unknown mode '" + mode + "'");
+	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(mode.c_str()));
+	if (!d)
+		throw std::invalid_argument("svr export: unknown mode '" + mode + "'");
+	return *d;
 }
 
 bool is_identifier(const std::string &s, bool upper)
@@ -128,7 +121,7 @@ void check(const SvrExport &m)
 	if (!is_identifier(m.robot, false))
 		throw std::invalid_argument("svr export: robot name '" + m.robot +
 					    "' is not a lower-case C identifier");
-	const unsigned nf = hylo_feature_count(mode_enum(m.mode).value);
+	const unsigned nf = hylo_feature_count(mode_enum(m.mode).mode);
 	if (static_cast<unsigned>(m.n_features) != nf)
 		throw std::invalid_argument("svr export: mode " + m.mode + " has " + std::to_string(nf) +
 					    " features, the model " + std::to_string(m.n_features));
@@ -161,8 +154,8 @@ void check(const SvrExport &m)
 					    "speed_min_mps <= speed_max_mps");
 	if (m.envelope) {
 		const EnvelopeExport &e = *m.envelope;
-		const hylo_mode mode = mode_enum(m.mode).value;
-		if (mode != HYLO_MODE_GROUND && mode != HYLO_MODE_MARINE && mode != HYLO_MODE_FLIGHT)
+		const hylo_feature_layout *layout = hylo_mode_layout(mode_enum(m.mode).mode);
+		if (!layout || !layout->envelope)
 			throw std::invalid_argument("svr export: mode " + m.mode + " has no envelope");
 		if (e.n_d == 0 || e.n_z == 0 || e.n_v == 0)
 			throw std::invalid_argument("svr export: envelope cell counts must be >= 1");
@@ -177,7 +170,7 @@ void check(const SvrExport &m)
 		// hylo_svr_check's rule: ground and water tables have one climb cell
 		// or turn cells covering [0, 2 pi].
 		const double two_pi = 6.283185307179586476925286766559;
-		if (mode != HYLO_MODE_FLIGHT && e.n_z > 1 &&
+		if (layout->envelope_turn && e.n_z > 1 &&
 		    !(e.z_min == 0 && std::fabs(e.n_z * e.z_step - two_pi) <= 1e-12 * two_pi))
 			throw std::invalid_argument("svr export: a ground or water envelope has one climb cell "
 						    "or turn cells covering [0, 2 pi] (z_min 0, n_z * z_step = 2 pi)");
@@ -526,9 +519,9 @@ SvrExport parse_svr_header(const std::string &text)
 	std::string mode;
 	for (const auto &d : h.defines)
 		if (d.first.size() > 5 && d.first.compare(d.first.size() - 5, 5, "_MODE") == 0)
-			for (const char *name : {"ground", "marine", "flight", "di_neg", "di_pos"})
-				if (d.second == mode_enum(name).c_name)
-					mode = name;
+			for (int k = HYLO_MODE_NONE + 1; k < HYLO_MODE_COUNT; k++)
+				if (d.second == hylo_mode_describe(static_cast<hylo_mode>(k))->c_name)
+					mode = hylo_mode_describe(static_cast<hylo_mode>(k))->name;
 	if (mode.empty())
 		throw std::invalid_argument("svr header: no HYLO_MODEL_<NAME>_MODE");
 	if (h.models.empty())
@@ -553,7 +546,7 @@ SvrExport parse_svr_header(const std::string &text)
 		throw std::invalid_argument("svr header: model name '" + name + "' does not end in _" + mode);
 	m.robot = name.substr(0, name.size() - mode.size() - 1);
 	m.mode = mode;
-	m.n_features = static_cast<int>(hylo_feature_count(mode_enum(mode).value));
+	m.n_features = static_cast<int>(hylo_feature_count(mode_enum(mode).mode));
 	m.gamma = number(field(f, "gamma"));
 	m.rho = number(field(f, "rho"));
 	m.sv = numbers(h, id + "_sv");

@@ -43,7 +43,7 @@ struct EnvelopeExport {
 // Everything the header holds. Field meanings: onboard/include/hylo/svr.h.
 struct SvrExport {
 	std::string robot;              // lower-case C identifier, e.g. "ambot"
-	std::string mode;               // "ground", "marine", "flight", "di_neg", "di_pos"
+	std::string mode;               // its name (hylo/modes.h: "ground", ...)
 	int n_features = 0;
 	double gamma = 0, rho = 0;
 	std::vector<double> sv;         // n_sv * n_features, standardized, row-major

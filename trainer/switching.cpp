@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "trainer/modes.hpp"
+
 namespace hylo::trainer {
 namespace {
 
@@ -146,7 +148,8 @@ void join_via(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const do
 	default_bounds(p.phases[k + 1], robot);
 	for (int i = 0; i < state_dim(a.mode); i++)
 		p.rows.push_back(carry(k, i, i));
-	const int n = a.mode == "flight" ? 3 : a.mode == "ground" || a.mode == "marine" ? 2 : 1;
+	const hylo_mode_desc &d = mode_desc(a.mode);   // position coordinates: 3 air, 2 planar, else 1
+	const int n = d.air ? 3 : d.planar ? 2 : 1;
 	for (int i = 0; i < n; i++)
 		fix(a.last_lo, a.last_hi, i, position[i]);
 }

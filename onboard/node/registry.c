@@ -23,37 +23,59 @@ static int find_robot(const hylo_robot *robots, uint32_t n, const char *name)
 }
 
 /* Binds model entry e to its robot's mode, adding the mode if the robot
- * does not have it yet (non-standard robots). */
-static void bind(hylo_robot *rb, const hylo_registry_model *e)
+ * does not have it yet (non-standard robots); fails naming the robot and
+ * the mode when the robot has two other modes already. */
+static hylo_status bind(hylo_robot *rb, const hylo_registry_model *e, hylo_reason *reason)
 {
-	int k = hylo_robot_mode_index(rb, e->mode);
+	int k = hylo_robot_mode_index(rb, e->mode), n_max = sizeof rb->modes / sizeof rb->modes[0];
 
 	if (k < 0) {
-		if (rb->n_modes >= 2)
-			return;
+		if ((int)rb->n_modes >= n_max)
+			return hylo_fail(reason, HYLO_E_BAD_VALUE,
+					 "robot %s: model %s adds mode %s to its %s and %s (a robot has "
+					 "at most %d modes)", rb->name, e->model ? e->model->name : "?",
+					 hylo_mode_str(e->mode), hylo_mode_str(rb->modes[0].mode),
+					 hylo_mode_str(rb->modes[1].mode), n_max);
 		k = (int)rb->n_modes++;
 		memset(&rb->modes[k], 0, sizeof rb->modes[k]);
 		rb->modes[k].mode = e->mode;
 	}
 	rb->modes[k].model = e->model;
 	rb->modes[k].feasibility = e->feasibility;
+	/* A model's switch costs are into its mode (takeoff) and out of it
+	 * (landing); switch_cost[0] is modes[0] -> modes[1]. */
 	if (e->takeoff_j >= 0 && e->landing_j >= 0) {
-		rb->switch_cost[0] = e->takeoff_j;   /* modes[0] (ground) -> flight */
-		rb->switch_cost[1] = e->landing_j;
+		rb->switch_cost[k == 1 ? 0 : 1] = e->takeoff_j;
+		rb->switch_cost[k == 1 ? 1 : 0] = e->landing_j;
 	}
+	return HYLO_OK;
+}
+
+static const hylo_registry_body *body_of(const hylo_registry_body *bodies, uint32_t n_bodies,
+					const char *robot)
+{
+	uint32_t k;
+
+	for (k = 0; k < n_bodies; k++)
+		if (strcmp(bodies[k].robot, robot) == 0)
+			return &bodies[k];
+	return NULL;
 }
 
 const hylo_registry_body *hylo_registry_body_of(const char *robot)
 {
-	uint32_t k;
-
-	for (k = 0; k < hylo_registry_n_bodies; k++)
-		if (strcmp(hylo_registry_bodies[k].robot, robot) == 0)
-			return &hylo_registry_bodies[k];
-	return NULL;
+	return body_of(hylo_registry_bodies, hylo_registry_n_bodies, robot);
 }
 
 uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason)
+{
+	return hylo_registry_robots_of(hylo_registry_models, hylo_registry_n_models, hylo_registry_bodies,
+				       hylo_registry_n_bodies, robots, cap, reason);
+}
+
+uint32_t hylo_registry_robots_of(const hylo_registry_model *models, uint32_t n_models,
+				 const hylo_registry_body *bodies, uint32_t n_bodies, hylo_robot *robots,
+				 uint32_t cap, hylo_reason *reason)
 {
 	uint32_t n = 0, k, m;
 
@@ -67,8 +89,8 @@ uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *rea
 			robots[n].modes[m].mode = standard[k].modes[m];
 		n++;
 	}
-	for (k = 0; k < hylo_registry_n_models; k++) {
-		const hylo_registry_model *e = &hylo_registry_models[k];
+	for (k = 0; k < n_models; k++) {
+		const hylo_registry_model *e = &models[k];
 		int r = find_robot(robots, n, e->robot);
 
 		if (r < 0) {
@@ -78,10 +100,11 @@ uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *rea
 			robots[n].name = e->robot;
 			r = (int)n++;
 		}
-		bind(&robots[r], e);
+		if (bind(&robots[r], e, reason) != HYLO_OK)
+			return 0;
 	}
 	for (k = 0; k < n; k++) {
-		const hylo_registry_body *b = hylo_registry_body_of(robots[k].name);
+		const hylo_registry_body *b = body_of(bodies, n_bodies, robots[k].name);
 
 		robots[k].body_radius_m = b ? b->radius_m : 0;
 	}

@@ -23,7 +23,7 @@ typedef struct {
 	const hylo_svr_model *feasibility;   /* NULL: none */
 	const char *robot;
 	hylo_mode mode;
-	double takeoff_j, landing_j;    /* flight models: switch costs; else -1 */
+	double takeoff_j, landing_j;    /* flight models: switch costs into and out of the mode; else -1 */
 } hylo_registry_model;
 
 extern const hylo_registry_model hylo_registry_models[];
@@ -45,9 +45,17 @@ const hylo_registry_body *hylo_registry_body_of(const char *robot);
 /**
  * Fills robots[0 .. cap) from the registry (models, switch costs, body
  * radii) and returns their number, or 0 with *reason set when cap is too
- * small. No allocation.
+ * small or a model would give a robot a third mode. A model's takeoff_j is
+ * the switch into its mode from the robot's other mode, landing_j the
+ * switch back, whichever of the two modes comes first. No allocation.
  */
 uint32_t hylo_registry_robots(hylo_robot *robots, uint32_t cap, hylo_reason *reason);
+
+/** hylo_registry_robots from the given tables instead of the generated ones
+ * (tests/node/test_registry.c). */
+uint32_t hylo_registry_robots_of(const hylo_registry_model *models, uint32_t n_models,
+				 const hylo_registry_body *bodies, uint32_t n_bodies, hylo_robot *robots,
+				 uint32_t cap, hylo_reason *reason);
 
 #ifdef __cplusplus
 }

@@ -1,4 +1,5 @@
 #include "hylo/clearance.h"
+#include "hylo/modes.h"
 
 #include <math.h>
 
@@ -76,7 +77,7 @@ static hylo_real planar_hazards(const hylo_map *m, hylo_mode mode, rect a, int32
 					best = d;
 				continue;
 			}
-			if (mode != HYLO_MODE_GROUND)
+			if (hylo_mode_domain(mode) != HYLO_DOMAIN_LAND)
 				continue;
 			/* The edges to the right and above: each wall edge once. */
 			if (ix + 1 < m->nx && wall_between(m, c, c + 1)) {
@@ -125,7 +126,7 @@ hylo_real hylo_hazard_distance(const hylo_map *m, hylo_mode mode, hylo_point p, 
 
 	if (!m || m->nx <= 0 || !(reach >= 0) || p.x != p.x || p.y != p.y)
 		return 0;
-	if (mode == HYLO_MODE_DI_NEG || mode == HYLO_MODE_DI_POS)
+	if (hylo_mode_domain(mode) == HYLO_DOMAIN_PHASE)
 		return reach;
 	if (!point_on_map(m, p))
 		return 0;
@@ -134,7 +135,7 @@ hylo_real hylo_hazard_distance(const hylo_map *m, hylo_mode mode, hylo_point p, 
 	if (boundary_distance(m, a) < best)
 		best = boundary_distance(m, a);
 	window(m, a, best, &ix0, &ix1, &iy0, &iy1);
-	if (mode != HYLO_MODE_FLIGHT)
+	if (hylo_mode_domain(mode) != HYLO_DOMAIN_AIR)
 		return planar_hazards(m, mode, a, ix0, ix1, iy0, iy1, best);
 	if (p.z != p.z)
 		return 0;

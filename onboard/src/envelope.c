@@ -2,6 +2,7 @@
 #include <stddef.h>
 #include "hylo/envelope.h"
 #include "hylo/features.h"
+#include "hylo/modes.h"
 
 hylo_real hylo_envelope_turn_of(hylo_real bearing, hylo_real dtheta)
 {
@@ -18,15 +19,15 @@ hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2)
 int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
 		       hylo_real *args)
 {
+	const hylo_feature_layout *layout = hylo_mode_layout(mode);
 	hylo_real dx, dy;
 
 	if (!tail || !head || !args)
 		return 0;
 	dx = head[0] - tail[0];
 	dy = head[1] - tail[1];
-	switch (mode) {
-	case HYLO_MODE_GROUND:
-	case HYLO_MODE_MARINE:
+	switch (layout ? layout->kind : HYLO_LAYOUT_NONE) {
+	case HYLO_LAYOUT_PLANAR:
 		args[0] = sqrt(dx * dx + dy * dy);
 		/* Coincident positions: turn 0 (the features' turn there depends
 		 * on the tail heading's quadrant; the table's first cell holds
@@ -35,7 +36,7 @@ int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 		args[2] = tail[2];
 		args[3] = head[2];
 		return 1;
-	case HYLO_MODE_FLIGHT:
+	case HYLO_LAYOUT_SPATIAL:
 		if (tail[5] != 0 || head[5] != 0)
 			return 0;
 		args[0] = sqrt(dx * dx + dy * dy);

@@ -1,27 +1,29 @@
 #include <math.h>
 #include <stddef.h>
 #include "hylo/features.h"
+#include "hylo/modes.h"
+
+/* The kind of mode's features (hylo/modes.h), HYLO_LAYOUT_NONE for an
+ * invalid mode. */
+static hylo_layout_kind layout_kind(hylo_mode mode)
+{
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	return d ? d->layout : HYLO_LAYOUT_NONE;
+}
 
 unsigned hylo_relative_count(hylo_mode mode)
 {
-	return mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE ? HYLO_RELATIVE_PLANAR :
-	       hylo_feature_count(mode);
+	const hylo_feature_layout *l = hylo_mode_layout(mode);
+
+	return l ? l->n_relative : 0;
 }
 
 unsigned hylo_feature_count(hylo_mode mode)
 {
-	switch (mode) {
-	case HYLO_MODE_GROUND:
-	case HYLO_MODE_MARINE:
-		return HYLO_FEATURES_PLANAR;
-	case HYLO_MODE_FLIGHT:
-		return HYLO_FEATURES_FLIGHT;
-	case HYLO_MODE_DI_NEG:
-	case HYLO_MODE_DI_POS:
-		return HYLO_FEATURES_DI;
-	default:
-		return 0;
-	}
+	const hylo_feature_layout *l = hylo_mode_layout(mode);
+
+	return l ? l->n_features : 0;
 }
 
 hylo_real hylo_wrap_angle(hylo_real a)
@@ -83,9 +85,8 @@ unsigned hylo_relative(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 {
 	unsigned k;
 
-	switch (mode) {
-	case HYLO_MODE_GROUND:
-	case HYLO_MODE_MARINE: {
+	switch (layout_kind(mode)) {
+	case HYLO_LAYOUT_PLANAR: {
 		hylo_real dx = head[0] - tail[0], dy = head[1] - tail[1];
 		hylo_real c = cos(tail[3]), s = sin(tail[3]);
 
@@ -96,7 +97,7 @@ unsigned hylo_relative(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 		f[4] = head[2];
 		return HYLO_RELATIVE_PLANAR;
 	}
-	case HYLO_MODE_FLIGHT: {
+	case HYLO_LAYOUT_SPATIAL: {
 		hylo_real c, s;
 
 		flight_frame(tail, head, &c, &s);
@@ -110,8 +111,7 @@ unsigned hylo_relative(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 		}
 		return HYLO_FEATURES_FLIGHT;
 	}
-	case HYLO_MODE_DI_NEG:
-	case HYLO_MODE_DI_POS:
+	case HYLO_LAYOUT_PHASE:
 		f[0] = tail[0];
 		f[1] = tail[1];
 		f[2] = head[0];
@@ -126,7 +126,7 @@ unsigned hylo_features_of_relative(hylo_mode mode, const hylo_real *r, hylo_real
 {
 	unsigned k, n;
 
-	if (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) {
+	if (layout_kind(mode) == HYLO_LAYOUT_PLANAR) {
 		hylo_real s = r[1] < 0 ? -1 : 1, dy = s * r[1], dth = s * r[2];
 		hylo_real b = atan2(dy, r[0]);  /* [0, pi] */
 
@@ -149,7 +149,7 @@ unsigned hylo_features_of_relative(hylo_mode mode, const hylo_real *r, hylo_real
 unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
 		       hylo_real *f)
 {
-	hylo_real r[HYLO_FEATURES_FLIGHT];  /* the most relative coordinates of any mode */
+	hylo_real r[HYLO_MAX_FEATURES];  /* as many relative coordinates as any layout's features */
 
 	if (hylo_relative(mode, tail, head, r) == 0)
 		return 0;

@@ -1,4 +1,5 @@
 #include "hylo/map.h"
+#include "hylo/modes.h"
 #include "hylo/clearance.h"
 
 #include <math.h>
@@ -180,15 +181,14 @@ hylo_real hylo_map_height(const hylo_map *m, hylo_real x, hylo_real y)
 
 int hylo_map_cell_clear(const hylo_map *m, hylo_mode mode, int32_t c)
 {
-	switch (mode) {
-	case HYLO_MODE_GROUND:
+	switch (hylo_mode_domain(mode)) {
+	case HYLO_DOMAIN_LAND:
 		return m->inflation > 0 ? m->clear[c] && m->terrain[c] == HYLO_TERRAIN_GROUND
 					: m->terrain[c] == HYLO_TERRAIN_GROUND;
-	case HYLO_MODE_MARINE:
+	case HYLO_DOMAIN_WATER:
 		return m->inflation > 0 ? m->clear[c] && m->terrain[c] == HYLO_TERRAIN_WATER
 					: m->terrain[c] == HYLO_TERRAIN_WATER;
-	case HYLO_MODE_DI_NEG:
-	case HYLO_MODE_DI_POS:
+	case HYLO_DOMAIN_PHASE:
 		return m->terrain[c] != HYLO_TERRAIN_OBSTACLE;
 	default:
 		return 0;
@@ -212,9 +212,11 @@ static int flight_ok(const hylo_map *m, int32_t c, hylo_real zlo, hylo_real zhi)
 
 static int side_ok(hylo_mode mode, hylo_real x)
 {
-	if (mode == HYLO_MODE_DI_NEG)
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	if (d && d->domain == HYLO_DOMAIN_PHASE && d->side < 0)
 		return x <= 0;
-	if (mode == HYLO_MODE_DI_POS)
+	if (d && d->domain == HYLO_DOMAIN_PHASE && d->side > 0)
 		return x >= 0;
 	return 1;
 }
@@ -230,7 +232,7 @@ int hylo_domain_contains(const hylo_map *m, hylo_mode mode, hylo_point p)
 	if (!side_ok(mode, p.x))
 		return 0;
 	map_touching(m, u, v, &s);
-	if (mode == HYLO_MODE_FLIGHT) {
+	if (hylo_mode_domain(mode) == HYLO_DOMAIN_AIR) {
 		/* On a boundary the highest touching cell counts. */
 		if (p.z != p.z)
 			return 0;
@@ -255,7 +257,7 @@ typedef struct {
 	float prev_h[2];
 } seg_walk;
 
-/* Ground: some choice of qualifying cells keeps every step <= max_step. */
+/* Land: some choice of qualifying cells keeps every step <= max_step. */
 static int walk_ground(seg_walk *w, const int32_t *c, int n)
 {
 	float h[2];
@@ -264,7 +266,7 @@ static int walk_ground(seg_walk *w, const int32_t *c, int n)
 	for (k = 0; k < n; k++) {
 		int ok;
 
-		if (!hylo_map_cell_clear(w->m, HYLO_MODE_GROUND, c[k]))
+		if (!hylo_map_cell_clear(w->m, w->mode, c[k]))
 			continue;
 		ok = !w->started;
 		for (j = 0; j < w->prev_n && !ok; j++)
@@ -312,9 +314,9 @@ static int walk_piece(seg_walk *w, hylo_real t0, hylo_real t1)
 	else if (y1 != y0)
 		c[n++] = y1 * m->nx + x0;
 
-	if (w->mode == HYLO_MODE_GROUND)
+	if (hylo_mode_domain(w->mode) == HYLO_DOMAIN_LAND)
 		return walk_ground(w, c, n);
-	if (w->mode == HYLO_MODE_FLIGHT) {
+	if (hylo_mode_domain(w->mode) == HYLO_DOMAIN_AIR) {
 		hylo_real z0 = w->za + t0 * w->dz, z1 = w->za + t1 * w->dz;
 		hylo_real lo = z0 < z1 ? z0 : z1, hi = z0 < z1 ? z1 : z0;
 
@@ -365,7 +367,7 @@ int hylo_domain_segment(const hylo_map *m, hylo_mode mode, hylo_point a, hylo_po
 	w.dv = vb - w.va;
 	w.za = a.z;
 	w.dz = b.z - a.z;
-	if (mode == HYLO_MODE_FLIGHT && b.z != b.z)
+	if (hylo_mode_domain(mode) == HYLO_DOMAIN_AIR && b.z != b.z)
 		return 0;
 	if (w.du == 0 && w.dv == 0)
 		return 1; /* a point, or a vertical flight segment: ends checked */
@@ -382,7 +384,7 @@ int hylo_domain_segment(const hylo_map *m, hylo_mode mode, hylo_point a, hylo_po
 		if (tn > t && !walk_piece(&w, t, tn))
 			return 0;
 		/* Passing exactly through a vertex touches two more cells. */
-		if (mode == HYLO_MODE_FLIGHT && tx == tn && ty == tn && tn < 1) {
+		if (hylo_mode_domain(mode) == HYLO_DOMAIN_AIR && tx == tn && ty == tn && tn < 1) {
 			hylo_real z = w.za + tn * w.dz;
 			cell_set s;
 			int k;

@@ -1,4 +1,5 @@
 #include "hylo/clearance.h"
+#include "hylo/modes.h"
 #include "hylo/internal/poisson.h"
 
 #include <math.h>
@@ -22,6 +23,9 @@
 typedef struct {
 	const hylo_map *m;
 	hylo_mode mode;          /* domain mode; HYLO_MODE_NONE for guards */
+	const hylo_mode_desc *desc;  /* its record; NULL for guards */
+	int air;                 /* airborne: points in 3-D */
+	int side;                /* phase plane: -1 p <= 0, +1 p >= 0; else 0 */
 	hylo_real r;             /* separation radius */
 	hylo_rng *rng;
 	hylo_poisson_ws *ws;
@@ -86,7 +90,7 @@ static int ps_offset(ps_ctx *c, hylo_point *d)
 
 		d->x = (2 * hylo_rng_uniform(c->rng) - 1) * a;
 		d->y = (2 * hylo_rng_uniform(c->rng) - 1) * a;
-		d->z = c->mode == HYLO_MODE_FLIGHT ? (2 * hylo_rng_uniform(c->rng) - 1) * a : 0;
+		d->z = c->air ? (2 * hylo_rng_uniform(c->rng) - 1) * a : 0;
 		q = d->x * d->x + d->y * d->y + d->z * d->z;
 		if (q >= r2 && q <= 4 * r2)
 			return 1;
@@ -147,15 +151,14 @@ static int ps_cell_relevant(const ps_ctx *c, int32_t ix, int32_t cell, hylo_real
 	const hylo_map *m = c->m;
 	hylo_real x0 = m->origin_x + ix * m->resolution;
 
-	switch (c->mode) {
-	case HYLO_MODE_GROUND:
-	case HYLO_MODE_MARINE:
+	switch (c->desc ? c->desc->domain : HYLO_DOMAIN_NONE) {
+	case HYLO_DOMAIN_LAND:
+	case HYLO_DOMAIN_WATER:
 		return hylo_map_cell_clear(m, c->mode, cell);
-	case HYLO_MODE_DI_NEG:
-		return hylo_map_cell_clear(m, c->mode, cell) && x0 <= 0;
-	case HYLO_MODE_DI_POS:
-		return hylo_map_cell_clear(m, c->mode, cell) && x0 + m->resolution >= 0;
-	case HYLO_MODE_FLIGHT:
+	case HYLO_DOMAIN_PHASE:
+		return hylo_map_cell_clear(m, c->mode, cell) &&
+		       (c->side < 0 ? x0 <= 0 : c->side > 0 ? x0 + m->resolution >= 0 : 1);
+	case HYLO_DOMAIN_AIR:
 		*zlo = hylo_map_flight_floor(m, cell);
 		*zhi = hylo_map_flight_top(m);
 		return *zlo <= *zhi;
@@ -183,7 +186,7 @@ static hylo_status ps_sweep(ps_ctx *c)
 
 			if (!ps_cell_relevant(c, ix, cell, &zlo, &zhi))
 				continue;
-			if (c->mode == HYLO_MODE_FLIGHT)
+			if (c->air)
 				nz = ps_subdiv(zhi - zlo, step) + 1;
 			for (j = 0; j < sub; j++)
 				for (i = 0; i < sub; i++)
@@ -193,14 +196,13 @@ static hylo_status ps_sweep(ps_ctx *c)
 						p.x = m->origin_x + (ix + (i + 0.5) / sub) * res;
 						p.y = m->origin_y + (iy + (j + 0.5) / sub) * res;
 						p.z = 0;
-						if (c->mode == HYLO_MODE_FLIGHT)
+						if (c->air)
 							p.z = k == nz - 1 ? zhi :
 							      zlo + k * ((zhi - zlo) / (nz - 1));
 						/* Projection onto x = 0 keeps the point in
 						 * its (straddling) cell and only gets closer
 						 * to the half-plane's points. */
-						if ((c->mode == HYLO_MODE_DI_NEG && p.x > 0) ||
-						    (c->mode == HYLO_MODE_DI_POS && p.x < 0))
+						if ((c->side < 0 && p.x > 0) || (c->side > 0 && p.x < 0))
 							p.x = 0;
 						st = ps_seed(c, p);
 						if (st != HYLO_OK)
@@ -248,6 +250,9 @@ hylo_status hylo_poisson_sample(const hylo_map *m, hylo_mode mode, hylo_real r,
 	uint32_t i;
 
 	c.mode = mode;
+	c.desc = hylo_mode_describe(mode);
+	c.air = c.desc && c.desc->air;
+	c.side = c.desc && c.desc->domain == HYLO_DOMAIN_PHASE ? c.desc->side : 0;
 	c.what = hylo_mode_str(mode);
 	st = ps_start(&c, m, r, rng, ws, out, cap, n, reason);
 	if (st != HYLO_OK)
@@ -261,7 +266,7 @@ hylo_status hylo_poisson_sample(const hylo_map *m, hylo_mode mode, hylo_real r,
 		return st;
 	/* Ground and water were sampled in the plane (their domains ignore z);
 	 * now they sit on the surface. */
-	if (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE)
+	if (c.desc->domain == HYLO_DOMAIN_LAND || c.desc->domain == HYLO_DOMAIN_WATER)
 		for (i = 0; i < c.n; i++)
 			out[i].z = hylo_map_height(m, out[i].x, out[i].y);
 	*n = c.n;
@@ -441,6 +446,8 @@ hylo_status hylo_guard_sample(const hylo_map *m, hylo_guard_kind kind, hylo_real
 	uint64_t idx = 0;
 
 	c.mode = HYLO_MODE_NONE;
+	c.desc = NULL;
+	c.air = c.side = 0;
 	c.what = (unsigned)kind < 3 ? names[kind] : "guard";
 	st = ps_start(&c, m, s, rng, ws, out, cap, n, reason);
 	if (st != HYLO_OK)

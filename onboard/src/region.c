@@ -1,31 +1,22 @@
 #include "hylo/region.h"
 
+#include "hylo/modes.h"
+
 #include <math.h>
 #include <stdio.h>
 
-/* Each sampled coordinate's name and unit. */
-typedef struct {
-	const char *name, *unit;
-} coord_info;
-
-static const coord_info coords[HYLO_MODE_COUNT][HYLO_XS_DIM] = {
-	[HYLO_MODE_GROUND] = { { "px", "m" }, { "py", "m" }, { "vx", "m/s" }, { "theta", "rad" } },
-	[HYLO_MODE_MARINE] = { { "px", "m" }, { "py", "m" }, { "vx", "m/s" }, { "theta", "rad" } },
-	[HYLO_MODE_FLIGHT] = { { "px", "m" }, { "py", "m" }, { "pz", "m" },
-			       { "vx", "m/s" }, { "vy", "m/s" }, { "vz", "m/s" } },
-	/* the phase plane's units, as the map's (docs/models.md section 2) */
-	[HYLO_MODE_DI_NEG] = { { "p", "m" }, { "v", "m/s" } },
-	[HYLO_MODE_DI_POS] = { { "p", "m" }, { "v", "m/s" } },
-};
-
 const char *hylo_coord_name(hylo_mode mode, unsigned k)
 {
-	return k < hylo_mode_dim(mode) ? coords[mode][k].name : "?";
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	return d && k < d->xs_dim ? d->coord[k].name : "?";
 }
 
 const char *hylo_coord_unit(hylo_mode mode, unsigned k)
 {
-	return k < hylo_mode_dim(mode) ? coords[mode][k].unit : "?";
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	return d && k < d->xs_dim ? d->coord[k].unit : "?";
 }
 
 /* Rounding slack: a speed at its bound, given by its components, comes back
@@ -72,20 +63,17 @@ int hylo_region_state(const hylo_svr_model *m, hylo_mode mode, const hylo_real *
 
 hylo_real hylo_edge_distance(hylo_mode mode, const hylo_real *a, const hylo_real *b)
 {
-	hylo_real dx = b[0] - a[0], dy = b[1] - a[1], dz;
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+	hylo_real s2 = 0, dk;
+	unsigned k;
 
-	switch (mode) {
-	case HYLO_MODE_FLIGHT:
-		dz = b[2] - a[2];
-		return sqrt(dx * dx + dy * dy + dz * dz);
-	case HYLO_MODE_GROUND:
-	case HYLO_MODE_MARINE:
-	case HYLO_MODE_DI_NEG:
-	case HYLO_MODE_DI_POS:
-		return sqrt(dx * dx + dy * dy);
-	default:
+	if (!d)
 		return 0;
+	for (k = 0; k < d->distance_dims; k++) {
+		dk = b[k] - a[k];
+		s2 += dk * dk;
 	}
+	return sqrt(s2);
 }
 
 int hylo_region_edge(const hylo_svr_model *m, hylo_mode mode, const hylo_real *tail,

@@ -1,4 +1,5 @@
 #include "hylo/internal/roadmap.h"
+#include "hylo/modes.h"
 
 #include <math.h>
 #include <string.h>
@@ -18,16 +19,37 @@ static int has_mode(const hylo_robot *robot, hylo_mode mode)
 	return hylo_robot_mode_index(robot, mode) >= 0;
 }
 
+/* Planar (x^s = (px, py, vx, theta)) and airborne modes (hylo/modes.h). */
 static int is_planar(hylo_mode mode)
 {
-	return mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE;
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	return d && d->planar;
+}
+
+static int is_air(hylo_mode mode)
+{
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	return d && d->air;
+}
+
+/* 1 when one of robot's modes is airborne (air) or planar (!air). */
+static int has_kind(const hylo_robot *robot, int air)
+{
+	uint32_t k;
+
+	for (k = 0; k < robot->n_modes; k++)
+		if (air ? is_air(robot->modes[k].mode) : is_planar(robot->modes[k].mode))
+			return 1;
+	return 0;
 }
 
 uint32_t hylo_roadmap_combos(const hylo_roadmap *rm, hylo_mode mode)
 {
 	if (is_planar(mode))
 		return rm->sampling.n_speeds * rm->sampling.n_headings;
-	if (mode == HYLO_MODE_FLIGHT)
+	if (is_air(mode))
 		return rm->n_air_velocities;
 	return hylo_mode_valid((int)mode) ? 1 : 0;
 }
@@ -43,7 +65,7 @@ void hylo_roadmap_state(const hylo_roadmap *rm, uint32_t i, uint32_t c, hylo_rea
 	if (is_planar((hylo_mode)p->mode)) {
 		xs[2] = rm->sampling.speeds[c / nh];
 		xs[3] = rm->sampling.headings[c % nh];
-	} else if (p->mode == HYLO_MODE_FLIGHT) {
+	} else if (is_air((hylo_mode)p->mode)) {
 		xs[2] = p->p.z;
 		xs[3] = rm->air_velocity[c][0];
 		xs[4] = rm->air_velocity[c][1];
@@ -55,7 +77,7 @@ uint32_t hylo_roadmap_class_count(const hylo_roadmap *rm, hylo_mode mode)
 {
 	if (is_planar(mode))
 		return rm->sampling.n_speeds;
-	if (mode == HYLO_MODE_FLIGHT)
+	if (is_air(mode))
 		return rm->sampling.n_air_speeds;
 	return 1;
 }
@@ -64,7 +86,7 @@ uint32_t hylo_roadmap_class(const hylo_roadmap *rm, hylo_mode mode, uint32_t c)
 {
 	if (is_planar(mode))
 		return c / rm->sampling.n_headings;
-	if (mode == HYLO_MODE_FLIGHT)
+	if (is_air(mode))
 		return rm->air_class[c];
 	return 0;
 }
@@ -73,7 +95,7 @@ hylo_real hylo_roadmap_class_speed(const hylo_roadmap *rm, hylo_mode mode, uint3
 {
 	if (is_planar(mode))
 		return rm->sampling.speeds[k];
-	if (mode == HYLO_MODE_FLIGHT)
+	if (is_air(mode))
 		return rm->sampling.air_speeds[k];
 	return 0;
 }
@@ -82,7 +104,7 @@ int hylo_roadmap_at_rest(const hylo_roadmap *rm, hylo_mode mode, uint32_t c)
 {
 	if (is_planar(mode))
 		return rm->sampling.speeds[c / rm->sampling.n_headings] == 0;
-	if (mode == HYLO_MODE_FLIGHT)
+	if (is_air(mode))
 		return rm->air_velocity[c][0] == 0 && rm->air_velocity[c][1] == 0 &&
 		       rm->air_velocity[c][2] == 0;
 	return 1;
@@ -90,7 +112,7 @@ int hylo_roadmap_at_rest(const hylo_roadmap *rm, hylo_mode mode, uint32_t c)
 
 hylo_real hylo_roadmap_radius(const hylo_roadmap *rm, hylo_mode mode)
 {
-	return mode == HYLO_MODE_FLIGHT ? rm->sampling.air_connect_radius
+	return is_air(mode) ? rm->sampling.air_connect_radius
 					: rm->sampling.connect_radius;
 }
 
@@ -182,7 +204,7 @@ static hylo_status check_grid_trained(const hylo_robot *robot, const char *name,
 		const hylo_svr_model *model = robot->modes[k].model;
 		hylo_mode mode = robot->modes[k].mode;
 
-		if (!model || (flight_grid ? mode != HYLO_MODE_FLIGHT : !is_planar(mode)))
+		if (!model || (flight_grid ? !is_air(mode) : !is_planar(mode)))
 			continue;
 		for (i = 0; i < n; i++)
 			if (!hylo_svr_speed_trained(model, v[i]))
@@ -197,8 +219,8 @@ static hylo_status check_grid_trained(const hylo_robot *robot, const char *name,
 static hylo_status check_sampling(const hylo_robot *robot, const hylo_sampling *s,
 				  hylo_reason *r)
 {
-	int planar = has_mode(robot, HYLO_MODE_GROUND) || has_mode(robot, HYLO_MODE_MARINE);
-	int flight = has_mode(robot, HYLO_MODE_FLIGHT);
+	int planar = has_kind(robot, 0);
+	int flight = has_kind(robot, 1);
 	hylo_status st;
 
 	if (!finite_positive(s->spacing) && (planar || !flight))
@@ -288,7 +310,7 @@ static hylo_status add_position(hylo_roadmap *rm, hylo_point p, hylo_mode mode,
 
 static hylo_real mode_spacing(const hylo_sampling *s, hylo_mode mode)
 {
-	return mode == HYLO_MODE_FLIGHT ? s->air_spacing : s->spacing;
+	return is_air(mode) ? s->air_spacing : s->spacing;
 }
 
 static uint32_t free_positions(const hylo_roadmap *rm)
@@ -472,7 +494,7 @@ uint32_t hylo_roadmap_switch_heads(const hylo_roadmap *rm, uint32_t i, uint32_t 
 	if (p->twin == HYLO_NO_POSITION)
 		return 0;
 	t = &rm->pos[p->twin];
-	if (p->mode == HYLO_MODE_FLIGHT || t->mode == HYLO_MODE_FLIGHT) {
+	if (is_air((hylo_mode)p->mode) || is_air((hylo_mode)t->mode)) {
 		/* Takeoff and landing join rest states only. */
 		if (!hylo_roadmap_at_rest(rm, (hylo_mode)p->mode, c))
 			return 0;

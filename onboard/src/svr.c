@@ -2,6 +2,7 @@
 #include <stddef.h>
 #include <string.h>
 #include "hylo/features.h"
+#include "hylo/modes.h"
 #include "hylo/svr.h"
 
 #define TWO_PI 6.283185307179586476925286766559
@@ -123,13 +124,16 @@ static int finite_array(const double *a, uint32_t n)
 static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hylo_reason *r)
 {
 	const hylo_svr_envelope *e = m->envelope;
+	const hylo_feature_layout *l = hylo_feature_layout_of_count(m->n_features);
 	uint64_t n;
 	uint32_t i;
 
-	if (m->n_features != HYLO_FEATURES_PLANAR && m->n_features != HYLO_FEATURES_FLIGHT)
+	if (!l || !l->envelope)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "svr model %s: an envelope needs planar (%d) or flight (%d) features, "
-				 "not %u", name, HYLO_FEATURES_PLANAR, HYLO_FEATURES_FLIGHT,
+				 "not %u", name,
+				 hylo_feature_layout_of(HYLO_LAYOUT_PLANAR)->n_features,
+				 hylo_feature_layout_of(HYLO_LAYOUT_SPATIAL)->n_features,
 				 (unsigned)m->n_features);
 	if (e->n_d == 0 || e->n_z == 0 || e->n_v == 0)
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
@@ -148,7 +152,7 @@ static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hyl
 				 "svr model %s: envelope steps d %g, z %g, v %g m/s (finite, > 0) or "
 				 "origins z %g, v %g not finite", name, e->d_step, e->z_step, e->v_step,
 				 e->z_min, e->v_min);
-	if (m->n_features == HYLO_FEATURES_PLANAR && e->n_z > 1 &&
+	if (l->envelope_turn && e->n_z > 1 &&
 	    !(e->z_min == 0 && fabs(e->n_z * e->z_step - TWO_PI) <= 1e-12 * TWO_PI))
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "svr model %s: a planar envelope's %u turn cells of %g rad from %g "
@@ -317,6 +321,14 @@ int hylo_svr_envelope_speed(const hylo_svr_model *m, double v, uint32_t nodes[2]
 	return m && m->envelope && m->envelope->value && envelope_nodes(m->envelope, v, nodes);
 }
 
+/* 1 when m's envelope's z cells are turns (its features' layout says). */
+static int turn_cells(const hylo_svr_model *m)
+{
+	const hylo_feature_layout *l = hylo_feature_layout_of_count(m->n_features);
+
+	return l && l->envelope_turn;
+}
+
 int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t *cell)
 {
 	const hylo_svr_envelope *e;
@@ -333,7 +345,7 @@ int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t 
 		x = (dz - e->z_min) / e->z_step;
 		/* A planar turn of 2 pi (the goal straight behind with the same
 		 * heading) lies in the last turn cell. */
-		if (x == (double)e->n_z && m->n_features == HYLO_FEATURES_PLANAR)
+		if (x == (double)e->n_z && turn_cells(m))
 			x = e->n_z - 1;
 		if (!(x >= 0 && x < (double)e->n_z))
 			return 0;
@@ -378,10 +390,13 @@ double hylo_svr_predict(const hylo_svr_model *m, const double *x)
 	return label_of(m, hylo_svr_decision(m, z));
 }
 
-/* Feature groups of a model with nf features (see feature_groups). */
+/* Feature groups of a model with nf features: its layout's (hylo/modes.h),
+ * or one group per feature when no layout has nf features. */
 static uint32_t group_count(uint32_t nf)
 {
-	return nf == HYLO_FEATURES_PLANAR || nf == HYLO_FEATURES_FLIGHT ? 3 : nf == HYLO_FEATURES_DI ? 2 : nf;
+	const hylo_feature_layout *l = hylo_feature_layout_of_count(nf);
+
+	return l ? l->n_groups : nf;
 }
 
 /* Doubles per support vector: factor rows, the SV's features, running products. */
@@ -422,23 +437,18 @@ void hylo_svr_cache_reset(hylo_svr_cache *c)
 		c->n_used[k] = 0;
 }
 
-/* The groups of svr.h for nf features (planar (dx', |dy'|, s*dtheta, vx1, vx2,
- * d, turn, arc), flight (dp, v1, v2), the double integrator's (p1, v1, p2,
- * v2)); any other count: one group per feature. */
+/* The groups of svr.h for nf features: those of the feature layout with nf
+ * features (hylo/modes.h); any other count: one group per feature. */
 static void feature_groups(hylo_svr_cache *c, uint32_t nf)
 {
-	static const uint32_t planar[8] = { 3, 0, 1, 2, 5, 6, 7, 4 }, planar_begin[4] = { 0, 1, 7, 8 };
-	static const uint32_t flight[9] = { 3, 4, 5, 0, 1, 2, 6, 7, 8 }, flight_begin[4] = { 0, 3, 6, 9 };
-	static const uint32_t di_begin[3] = { 0, 2, 4 };
+	const hylo_feature_layout *l = hylo_feature_layout_of_count(nf);
 	uint32_t k;
 
 	for (k = 0; k < nf; k++)
-		c->order[k] = nf == HYLO_FEATURES_PLANAR ? planar[k] : nf == HYLO_FEATURES_FLIGHT ? flight[k] : k;
+		c->order[k] = l ? l->order[k] : k;
 	c->n_groups = group_count(nf);
 	for (k = 0; k <= c->n_groups; k++)
-		c->group_begin[k] = nf == HYLO_FEATURES_PLANAR ? planar_begin[k] :
-				    nf == HYLO_FEATURES_FLIGHT ? flight_begin[k] :
-				    nf == HYLO_FEATURES_DI ? di_begin[k] : k;
+		c->group_begin[k] = l ? l->begin[k] : k;
 }
 
 /* row[i] = exp(-gamma |v - s_i|^2) over the w features order[b .. b + w) of

@@ -1,23 +1,7 @@
 #include "hylo/types.h"
 
 #include <math.h>
-
-static const unsigned mode_dims[HYLO_MODE_COUNT] = {
-	[HYLO_MODE_GROUND] = 4,
-	[HYLO_MODE_MARINE] = 4,
-	[HYLO_MODE_FLIGHT] = 6,
-	[HYLO_MODE_DI_NEG] = 2,
-	[HYLO_MODE_DI_POS] = 2,
-};
-
-static const char *const mode_names[HYLO_MODE_COUNT] = {
-	[HYLO_MODE_NONE] = "none",
-	[HYLO_MODE_GROUND] = "ground",
-	[HYLO_MODE_MARINE] = "marine",
-	[HYLO_MODE_FLIGHT] = "flight",
-	[HYLO_MODE_DI_NEG] = "di_neg",
-	[HYLO_MODE_DI_POS] = "di_pos",
-};
+#include "hylo/modes.h"
 
 int hylo_mode_valid(int mode)
 {
@@ -26,26 +10,29 @@ int hylo_mode_valid(int mode)
 
 unsigned hylo_mode_dim(hylo_mode mode)
 {
-	return hylo_mode_valid((int)mode) ? mode_dims[mode] : 0;
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	return d ? d->xs_dim : 0;
 }
 
 const char *hylo_mode_str(hylo_mode mode)
 {
-	return hylo_mode_valid((int)mode) ? mode_names[mode] : "invalid";
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+
+	return d ? d->name : "invalid";
 }
 
 hylo_real hylo_state_speed(hylo_mode mode, const hylo_real *xs)
 {
-	switch (mode) {
-	case HYLO_MODE_GROUND:
-	case HYLO_MODE_MARINE:
-		return xs[2];
-	case HYLO_MODE_FLIGHT:
-		return sqrt(xs[3] * xs[3] + xs[4] * xs[4] + xs[5] * xs[5]);
-	case HYLO_MODE_DI_NEG:
-	case HYLO_MODE_DI_POS:
-		return xs[1];
-	default:
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+	hylo_real s2 = 0;
+	unsigned k;
+
+	if (!d)
 		return 0;
-	}
+	if (d->speed_width == 1)
+		return xs[d->speed_index];
+	for (k = 0; k < d->speed_width; k++)
+		s2 += xs[d->speed_index + k] * xs[d->speed_index + k];
+	return sqrt(s2);
 }

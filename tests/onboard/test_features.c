@@ -15,6 +15,7 @@
 
 #include "hylo/config.h"
 #include "hylo/features.h"
+#include "hylo/modes.h"
 
 #define PI 3.14159265358979323846
 
@@ -182,6 +183,50 @@ static void test_split(void **state)
 	assert_int_equal(hylo_relative_count((hylo_mode)99), 0);
 }
 
+/* The mode records (hylo/modes.h): each mode's layout gives its feature
+ * counts, the layouts' feature counts differ (a model's n_features names its
+ * layout, hence its SVR groups), and each layout's groups partition its
+ * features. */
+static void test_mode_layouts(void **state)
+{
+	int m, k, j;
+
+	(void)state;
+	for (m = HYLO_MODE_NONE + 1; m < HYLO_MODE_COUNT; m++) {
+		const hylo_mode_desc *d = hylo_mode_describe((hylo_mode)m);
+		const hylo_feature_layout *l = hylo_mode_layout((hylo_mode)m);
+
+		assert_non_null(d);
+		assert_non_null(l);
+		assert_int_equal(hylo_feature_count((hylo_mode)m), l->n_features);
+		assert_int_equal(hylo_relative_count((hylo_mode)m), l->n_relative);
+		assert_ptr_equal(hylo_feature_layout_of_count(l->n_features), l);
+		assert_true(d->xs_dim >= 1 && d->xs_dim <= HYLO_XS_DIM);
+		assert_true(d->speed_index + d->speed_width <= d->xs_dim);
+		assert_true(d->distance_dims <= d->xs_dim);
+		assert_int_equal(hylo_mode_parse(d->name), m);
+	}
+	assert_null(hylo_mode_describe(HYLO_MODE_NONE));
+	assert_null(hylo_mode_describe(HYLO_MODE_COUNT));
+	assert_int_equal(hylo_mode_parse("walking"), HYLO_MODE_NONE);
+	for (k = HYLO_LAYOUT_NONE + 1; k < HYLO_LAYOUT_COUNT; k++) {
+		const hylo_feature_layout *l = hylo_feature_layout_of((hylo_layout_kind)k);
+		unsigned seen = 0;
+
+		assert_non_null(l);
+		assert_true(l->n_features <= HYLO_MAX_FEATURES && l->n_groups >= 1);
+		assert_int_equal(l->begin[0], 0);
+		assert_int_equal(l->begin[l->n_groups], l->n_features);
+		for (j = 0; j < l->n_groups; j++)
+			assert_true(l->begin[j] < l->begin[j + 1]);
+		for (j = 0; j < l->n_features; j++)
+			seen |= 1u << l->order[j];
+		assert_int_equal(seen, (1u << l->n_features) - 1);
+		for (j = HYLO_LAYOUT_NONE + 1; j < k; j++)
+			assert_int_not_equal(hylo_feature_layout_of((hylo_layout_kind)j)->n_features, l->n_features);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -189,6 +234,7 @@ int main(void)
 		cmocka_unit_test(test_planar_invariance),
 		cmocka_unit_test(test_planar_known_poses),
 		cmocka_unit_test(test_split),
+		cmocka_unit_test(test_mode_layouts),
 	};
 
 	return cmocka_run_group_tests_name("features", tests, NULL, NULL);

@@ -13,6 +13,8 @@
 #include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/model_table.hpp"
+#include "trainer/modes.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
@@ -65,6 +67,18 @@ int main(int argc, char **argv)
 	derivative_test("ambot", "ground", ga, gb, 1e-8);
 	derivative_test("ambot", "marine", ga, gb, 1e-8);
 	derivative_test("drivocopter", "flight", fa, fb, 1e-7);
+
+	// Each mode's record (hylo/modes.h) states its model's sizes.
+	for (int m = HYLO_MODE_NONE + 1; m < HYLO_MODE_COUNT; m++) {
+		const hylo_mode_desc *d = hylo_mode_describe(static_cast<hylo_mode>(m));
+		const bool same = with_model_type(d->mode, [&](auto t) {
+			using M = typename decltype(t)::type;
+			return M::NX == d->nx && M::NU == d->nu;
+		});
+		check(same && state_dim(d->name) == d->nx && sampled_dim(d->name) == d->xs_dim,
+		      std::string("mode ") + d->name + ": the record's state and input sizes are its model's",
+		      std::to_string(d->nx) + ", " + std::to_string(d->nu));
+	}
 
 	RobotParams di = load_robot("trainer/params/di.yaml");
 	double rho = di.mode("di_neg").at("rho"), d = 0.2;

@@ -6,6 +6,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "hylo/modes.h"
+
 namespace hylo::scene {
 namespace {
 
@@ -119,11 +121,11 @@ State state(const Ctx &c, const YAML::Node &n, const std::string &where)
 {
 	c.keys(n, where, {"mode", "state"});
 	State s;
+	char names[256];
 	YAML::Node m = c.need(n, "mode", where);
 	s.mode = mode_of(c.text(m, where + " mode"));
 	if (!s.mode)
-		c.fail(m, "unknown mode '" + m.as<std::string>() +
-				  "' (ground, marine, flight, di_neg, di_pos)");
+		c.fail(m, "unknown mode '" + m.as<std::string>() + "' (" + hylo_mode_names(names, sizeof names) + ")");
 	size_t dim = static_cast<size_t>(mode_dim(s.mode));
 	std::vector<double> x = c.numbers(c.need(n, "state", where), where + " state", dim, dim);
 	for (size_t k = 0; k < dim; k++)
@@ -220,23 +222,17 @@ Goal goal(const Ctx &c, const YAML::Node &n)
 
 int mode_of(const std::string &name)
 {
-	static const char *names[] = {"none", "ground", "marine", "flight", "di_neg", "di_pos"};
-	for (int m = 1; m < 6; m++)
-		if (name == names[m])
-			return m;
-	return 0;
+	return hylo_mode_parse(name.c_str());
 }
 
 const char *mode_name(int mode)
 {
-	static const char *names[] = {"none", "ground", "marine", "flight", "di_neg", "di_pos"};
-	return mode >= 0 && mode < 6 ? names[mode] : "invalid";
+	return mode == HYLO_MODE_NONE ? "none" : hylo_mode_str(static_cast<hylo_mode>(mode));
 }
 
 int mode_dim(int mode)
 {
-	static const int dims[] = {0, 4, 4, 6, 2, 2};
-	return mode >= 0 && mode < 6 ? dims[mode] : 0;
+	return static_cast<int>(hylo_mode_dim(static_cast<hylo_mode>(mode)));
 }
 
 State parse_state(const std::string &text, const std::string &what)

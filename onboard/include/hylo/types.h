@@ -15,7 +15,17 @@ typedef double hylo_real;
 /* A monotonic clock in milliseconds (the planner's optional time source). */
 typedef double (*hylo_clock_fn)(void *ctx);
 
-/* Locomotion modes; the values are those of goal_t.MODE_* in msgs/. */
+/* A build may add modes after these, as the toy mode of tests/toymode/
+ * does: HYLO_EXTRA_MODES_H names a header that defines
+ * HYLO_EXTRA_MODE_ENUM (their enumerators, from 6 on),
+ * HYLO_EXTRA_MODE_RECORDS (their records, onboard/src/modes.c) and, for
+ * the trainer, their models (trainer/model_table.hpp). */
+#ifdef HYLO_EXTRA_MODES_H
+#include HYLO_EXTRA_MODES_H
+#endif
+
+/* Locomotion modes; the values are those of goal_t.MODE_* in msgs/. Each
+ * mode's description is its record in hylo/modes.h. */
 typedef enum {
 	HYLO_MODE_NONE = 0,
 	HYLO_MODE_GROUND = 1,  /* skid-steer driving, x^s = (px, py, vx, theta) */
@@ -23,7 +33,10 @@ typedef enum {
 	HYLO_MODE_FLIGHT = 3,  /* quadrotor, x^s = (px, py, pz, vx, vy, vz) */
 	HYLO_MODE_DI_NEG = 4,  /* double integrator on p <= 0, x^s = (p, v) */
 	HYLO_MODE_DI_POS = 5,  /* double integrator on p >= 0, x^s = (p, v) */
-	HYLO_MODE_COUNT = 6
+#ifdef HYLO_EXTRA_MODE_ENUM
+	HYLO_EXTRA_MODE_ENUM
+#endif
+	HYLO_MODE_COUNT        /* 6 */
 } hylo_mode;
 
 /* Largest sampled-coordinate dimension (flight). */
