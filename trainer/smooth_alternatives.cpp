@@ -23,7 +23,28 @@ std::string over_budget(const AlternativesBudget &budget, int smoothed, double e
 	return why;
 }
 
+// The outcome with the cheapest trajectory (the earlier of equal ones),
+// among the safe ones only when safe_only; -1: none.
+int cheapest(const std::vector<AlternativeOutcome> &outcomes, bool safe_only)
+{
+	int best = -1;
+	for (size_t k = 0; k < outcomes.size(); k++) {
+		const AlternativeOutcome &o = outcomes[k];
+		if (!o.result.ok || (safe_only && !o.clearance.safe))
+			continue;
+		if (best < 0 || o.result.solution.cost < outcomes[static_cast<size_t>(best)].result.solution.cost)
+			best = static_cast<int>(k);
+	}
+	return best;
+}
+
 }  // namespace
+
+int choose_alternative(const std::vector<AlternativeOutcome> &outcomes)
+{
+	const int safe = cheapest(outcomes, true);
+	return safe >= 0 ? safe : cheapest(outcomes, false);
+}
 
 AlternativesChoice smooth_alternatives(const RobotParams &robot, const std::vector<PlanAlternative> &alternatives,
 				       const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt,
@@ -39,14 +60,13 @@ AlternativesChoice smooth_alternatives(const RobotParams &robot, const std::vect
 		if (o.skipped.empty()) {
 			o.smoothed = true;
 			o.result = smooth_with_fallbacks(robot, a.plan, map, costs, opt);
+			if (o.result.ok)
+				o.clearance = check_clearance(o.result.solution, map, robot.body_radius_m, opt.margin_m);
 			smoothed++;
-			const int k = static_cast<int>(c.outcomes.size());
-			if (o.result.ok && (c.chosen < 0 ||
-					    o.result.solution.cost < c.outcomes[static_cast<size_t>(c.chosen)].result.solution.cost))
-				c.chosen = k;
 		}
 		c.outcomes.push_back(std::move(o));
 	}
+	c.chosen = choose_alternative(c.outcomes);
 	return c;
 }
 

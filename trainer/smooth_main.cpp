@@ -489,6 +489,8 @@ private:
 				} else {
 					a.status = hylo::plan_t::STATUS_OK;
 					a.reason = reason_of(o.result, tried[i]);
+					if (!o.clearance.safe)
+						a.reason += "; " + o.clearance.text();
 					a.method = static_cast<int8_t>(o.result.method);
 					a.smoothed_j = o.result.solution.cost;
 					a.gap_j = gap_of(o.result);
@@ -496,8 +498,9 @@ private:
 				if (!o_.quiet) {
 					char what[160];
 					if (a.status == hylo::plan_t::STATUS_OK)
-						std::snprintf(what, sizeof what, "smoothed %.6g J, method %s, %.2f s to solve",
-							      a.smoothed_j, method_name(o.result.method), o.result.seconds);
+						std::snprintf(what, sizeof what, "smoothed %.6g J, method %s, %.2f s to solve%s",
+							      a.smoothed_j, method_name(o.result.method), o.result.seconds,
+							      o.clearance.safe ? "" : ", not safe");
 					else
 						std::snprintf(what, sizeof what, "%s",
 							      o.smoothed ? "cannot be followed" : o.skipped.c_str());

@@ -291,6 +291,27 @@ void alternatives_choice(const RobotParams &di)
 	      c.outcomes.size() == 2 ? c.outcomes[1].skipped : "");
 }
 
+// The choice prefers a safe trajectory to a cheaper unsafe one, and takes
+// the cheapest unsafe one only when none is safe.
+void alternatives_prefer_safe()
+{
+	auto outcome = [](bool ok, double cost, bool safe) {
+		AlternativeOutcome o;
+		o.smoothed = true;
+		o.result.ok = ok;
+		o.result.solution.cost = cost;
+		o.clearance.safe = safe;
+		return o;
+	};
+	check(choose_alternative({outcome(true, 10, false), outcome(true, 12, true), outcome(false, 5, true)}) == 1,
+	      "alternatives: a safe trajectory wins over a cheaper one the exact check rejects");
+	check(choose_alternative({outcome(true, 12, false), outcome(true, 10, false)}) == 1,
+	      "alternatives: none safe: the cheapest (published not safe)");
+	check(choose_alternative({outcome(false, 1, true), outcome(true, 3, true), outcome(true, 3, true)}) == 1,
+	      "alternatives: a failed smoothing is never chosen; equal costs: the earlier");
+	check(choose_alternative({outcome(false, 1, true)}) == -1, "alternatives: none ok: none chosen");
+}
+
 }  // namespace
 
 int main(int argc, char **argv)
@@ -308,5 +329,6 @@ int main(int argc, char **argv)
 	shore_crossing(ambot);
 	bad_problems(di);
 	alternatives_choice(di);
+	alternatives_prefer_safe();
 	return tap_finish();
 }

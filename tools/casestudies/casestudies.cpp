@@ -50,6 +50,7 @@
 #include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/fallbacks.hpp"
+#include "trainer/smooth_alternatives.hpp"
 #include "trainer/smoother.hpp"
 #include "trainer/svr_export.hpp"
 #include "trainer/switching.hpp"
@@ -634,8 +635,12 @@ std::string ambot_study(const Options &opt, std::string &md)
 		}
 		// The energy plan's alternatives, smoothed as hylo-smooth does.
 		std::string aj;
-		size_t best = 0;   // graph rank - 1 of hylo's result
-		double best_j = e.smoothed;
+		// hylo's result as hylo-smooth chooses it (choose_alternative): the
+		// cheapest safe trajectory of the plan and its alternatives.
+		std::vector<AlternativeOutcome> candidates(1);
+		candidates[0].result.ok = std::isfinite(e.smoothed);
+		candidates[0].result.solution.cost = e.smoothed;
+		candidates[0].clearance.safe = e.clearance >= HYLO_DEFAULT_MARGIN_M - kCheckToleranceM;
 		for (size_t k = 1; k < alts.size(); k++) {
 			PlanResult a = evaluate(ambot, *energy, *alts[k].plan, sc, false);
 			std::string how = "";
@@ -648,12 +653,13 @@ std::string ambot_study(const Options &opt, std::string &md)
 					a.clearance = least_clearance(sm.solution, sc, ambot);
 					if (sm.method != SmoothMethod::Full)
 						how = std::string(" (") + method_name(sm.method) + ")";
-					if (!(a.smoothed >= best_j) || !std::isfinite(best_j)) {
-						best = k;
-						best_j = a.smoothed;
-					}
 				}
 			}
+			AlternativeOutcome o;
+			o.result.ok = std::isfinite(a.smoothed);
+			o.result.solution.cost = a.smoothed;
+			o.clearance.safe = a.clearance >= HYLO_DEFAULT_MARGIN_M - kCheckToleranceM;
+			candidates.push_back(std::move(o));
 			char row[512];
 			std::snprintf(row, sizeof row, "| | alternative %zu | %s | %.1f | | %.1f%s | %.1f | %.1f | %.2f |\n",
 				      k + 1, a.sequence.c_str(), a.predicted, a.smoothed, how.c_str(), a.length, a.water,
@@ -666,6 +672,9 @@ std::string ambot_study(const Options &opt, std::string &md)
 			      num(a.length) + ", \"water_m\": " + num(a.water) + ", \"min_clearance_m\": " +
 			      num(a.clearance) + "}";
 		}
+		const int chosen = choose_alternative(candidates);
+		const size_t best = chosen > 0 ? static_cast<size_t>(chosen) : 0;   // graph rank - 1 of hylo's result
+		const double best_j = candidates[best].result.solution.cost;
 		if (!opt.quick) {
 			char row[256];
 			std::snprintf(row, sizeof row, "| | **hylo** | %s | | | **%.1f** (rank %zu) | | | |\n",
