@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "hylo/region.h"
+#include "hylo/modes.h"
 #include "planner_internal.h"
 
 /*
@@ -216,7 +217,7 @@ static int map_has_domain(const hylo_map *m, const hylo_robot *robot)
 
 	for (k = 0; k < robot->n_modes; k++)
 		for (c = 0; c < cells; c++)
-			if (robot->modes[k].mode == HYLO_MODE_FLIGHT
+			if (hylo_mode_describe(robot->modes[k].mode)->air
 				    ? hylo_map_flight_floor(m, c) <= hylo_map_flight_top(m)
 				    : hylo_map_cell_clear(m, robot->modes[k].mode, c))
 				return 1;
@@ -281,14 +282,15 @@ hylo_status hylo_planner_set_map(hylo_planner *pl, const hylo_map_view *map)
 /* Where a state of mode sits in the work space. */
 static hylo_point state_point(const hylo_map *m, hylo_mode mode, const hylo_real *xs)
 {
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
 	hylo_point p;
 
 	p.x = xs[0];
 	p.y = xs[1];
 	p.z = 0;
-	if (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE)
+	if (d->planar)
 		p.z = hylo_map_height(m, xs[0], xs[1]);
-	else if (mode == HYLO_MODE_FLIGHT)
+	else if (d->air)
 		p.z = xs[2];
 	return p;
 }
@@ -310,7 +312,7 @@ static const char *domain_of(hylo_planner *pl, hylo_point p)
 {
 	int k;
 
-	for (k = HYLO_MODE_GROUND; k < HYLO_MODE_COUNT; k++)
+	for (k = HYLO_MODE_NONE + 1; k < HYLO_MODE_COUNT; k++)
 		if (hylo_robot_mode_index(pl->robot, (hylo_mode)k) >= 0 &&
 		    plain_contains(pl, (hylo_mode)k, p))
 			return hylo_mode_str((hylo_mode)k);
@@ -486,8 +488,8 @@ static hylo_status check_goal(hylo_planner *pl, const hylo_goal *g, hylo_point *
 	for (k = 0; k < pl->robot->n_modes; k++) {
 		const hylo_mode_model *mm = &pl->robot->modes[k];
 		hylo_real reach = max_distance(mm);
-		hylo_real radius = mm->mode == HYLO_MODE_FLIGHT ? g->sampling.air_connect_radius
-								: g->sampling.connect_radius;
+		hylo_real radius = hylo_mode_describe(mm->mode)->air ? g->sampling.air_connect_radius
+								      : g->sampling.connect_radius;
 
 		if (reach > 0 && radius > reach)
 			return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,

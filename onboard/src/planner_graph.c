@@ -3,6 +3,7 @@
 
 #include "hylo/envelope.h"
 #include "hylo/features.h"
+#include "hylo/modes.h"
 #include "hylo/region.h"
 #include "planner_internal.h"
 
@@ -91,11 +92,11 @@ void hylo_planner_bound_tables(hylo_planner *pl)
 
 			memset(xs, 0, sizeof xs);
 			pl->combo_speed_ok[k][c] = 0;
-			if (mode == HYLO_MODE_FLIGHT) {
+			if (hylo_mode_describe(mode)->air) {
 				xs[3] = rm->air_velocity[c][0];
 				xs[4] = rm->air_velocity[c][1];
 				v = sqrt(xs[3] * xs[3] + xs[4] * xs[4]);
-			} else if (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) {
+			} else if (hylo_mode_describe(mode)->planar) {
 				v = s->speeds[c / s->n_headings];
 			} else {
 				continue;   /* the double integrator: no envelope */
@@ -123,9 +124,11 @@ static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_
 	const hylo_mode_model *mm;
 	hylo_real dx = b.x - a.x, dy = b.y - a.y;
 	uint32_t h;
+	int air;
 
 	pb->pl = pl;
 	pb->mode = (hylo_mode)rm->pos[i].mode;
+	air = hylo_mode_describe(pb->mode)->air;
 	pb->slot = hylo_robot_mode_index(pl->robot, pb->mode);
 	mm = &pl->robot->modes[pb->slot];
 	pb->floor = floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(a, b);
@@ -139,7 +142,7 @@ static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_
 	pb->dz = b.z - a.z;
 	pb->phi = with_bearings ? atan2(dy, dx) : 0;
 	pb->roadmap_ends = i < rm->n_positions && j < rm->n_positions;
-	pb->by_turn = pb->model && pb->mode != HYLO_MODE_FLIGHT && pb->model->envelope->n_z > 1 &&
+	pb->by_turn = pb->model && !air && pb->model->envelope->n_z > 1 &&
 		      !(dx == 0 && dy == 0);
 	pb->turn_cells = NULL;
 	/* The first turn cell of the distance (turn cells start at 0). */
@@ -147,7 +150,7 @@ static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_
 	/* A cell for the whole pair (flight: the climb; planar without turns:
 	 * distance only, or in place: turn 0), else per heading pair. */
 	pb->cell_ok = pb->model && !pb->by_turn &&
-		      hylo_svr_envelope_cell(pb->model, pb->d, pb->mode == HYLO_MODE_FLIGHT ? pb->dz : 0,
+		      hylo_svr_envelope_cell(pb->model, pb->d, air ? pb->dz : 0,
 					     &pb->cell);
 	if (with_bearings && pb->by_turn && pb->roadmap_ends)
 		for (h = 0; h < rm->sampling.n_headings; h++)
@@ -212,7 +215,7 @@ static double envelope_value(const hylo_svr_model *m, size_t cell, const uint32_
 static hylo_real envelope_of_states(const hylo_pair_bound *pb, const hylo_real *tail,
 				    const hylo_real *head)
 {
-	if (pb->mode == HYLO_MODE_FLIGHT) {
+	if (hylo_mode_describe(pb->mode)->air) {
 		if (tail[5] != 0 || head[5] != 0)
 			return 0;
 		return hylo_svr_envelope_bound(pb->model, pb->d, pb->dz,
