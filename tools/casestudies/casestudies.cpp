@@ -1353,8 +1353,8 @@ int run(int argc, char **argv)
 		auto t0 = std::chrono::steady_clock::now();
 		auto save = [&](const std::string &md, const std::string &js) {
 			char took[96];
-			std::snprintf(took, sizeof took, "\n(%s%.0f s on %d workers.)\n", opt.quick ? "--quick, " : "",
-				      seconds_since(t0), opt.jobs);
+			std::snprintf(took, sizeof took, "\n(%s%.0f s on %d worker%s.)\n", opt.quick ? "--quick, " : "",
+				      seconds_since(t0), opt.jobs, opt.jobs == 1 ? "" : "s");
 			write_file_atomically(parts + "/" + name + ".md", md + took);
 			write_file_atomically(parts + "/" + name + ".json", js);
 			write_results(opt.out);
