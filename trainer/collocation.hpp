@@ -37,7 +37,7 @@ std::string solve_options_text(const SolveOptions &opt);
 // needed.
 // Throws std::invalid_argument for an unknown mode or a boundary state
 // outside the mode's bounds.
-Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp(hylo_mode mode, const RobotParams &robot, const double *x1s,
 		   const double *x2s, const SolveOptions &opt);
 
 // The BVP's other initial guesses, where its mode has them (ground and
@@ -49,7 +49,7 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 // dataset row made by it), else line. Starts, refined starts and seconds
 // add up. With opt.refine_within finite, line's cost prunes their
 // refinement too.
-Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp_strategies(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			      const double *x2s, const SolveOptions &opt, const Solution &line);
 
 // Solves the BVP from each guess (as solve_bvp_strategies does its own) and
@@ -57,15 +57,15 @@ Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot,
 // refined starts and seconds add up. A guess whose path does not run from
 // the BVP's start to its goal (to 1e-9) or whose states are not state_dim
 // long throws std::invalid_argument.
-Solution solve_bvp_guesses(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp_guesses(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			   const double *x2s, const SolveOptions &opt, const std::vector<Guess> &guesses,
 			   const Solution &incumbent);
 
 // The full state a mode's sampled coordinates stand for (the virtual
 // constraints of docs/models.md section 7).
-std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs);
+std::vector<double> full_state(hylo_mode mode, const RobotParams &robot, const double *xs);
 // The mode's state bounds (lo, hi), state_dim each.
-std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
+std::pair<std::vector<double>, std::vector<double>> state_bounds(hylo_mode mode,
 								 const RobotParams &robot);
 
 // Solves a multi-phase problem (problem.hpp) from every start; keeps the cheapest

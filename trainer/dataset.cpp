@@ -167,8 +167,8 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
 		Solution s;
 		try {
-			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
-					    : solve_bvp(opt.mode, robot, a, b, opt.solve);
+			s = i < line.size() ? solve_bvp_strategies(parse_mode(opt.mode), robot, a, b, opt.solve, line[i])
+					    : solve_bvp(parse_mode(opt.mode), robot, a, b, opt.solve);
 		} catch (const std::exception &e) {
 			s = Solution();
 			s.status_text = kErrorStatus + std::string(e.what());

@@ -377,7 +377,7 @@ int run(int argc, char **argv)
 		std::vector<double> a = parse_vector(solve1, d, "--solve X1"), b = parse_vector(solve2, d, "--solve X2");
 		Solution s;
 		try {
-			s = solve_bvp(mode, robot, a.data(), b.data(), po.gen.solve);
+			s = solve_bvp(parse_mode(mode), robot, a.data(), b.data(), po.gen.solve);
 		} catch (const std::invalid_argument &e) {
 			throw Usage(e.what());
 		}

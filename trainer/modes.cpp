@@ -1,15 +1,30 @@
 #include "trainer/modes.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace hylo::trainer {
 
+hylo_mode parse_mode(const std::string &name)
+{
+	hylo_mode m = hylo_mode_parse(name.c_str());
+	if (m == HYLO_MODE_NONE)
+		throw std::invalid_argument("unknown mode '" + name + "' (" + mode_list() + ")");
+	return m;
+}
+
+const hylo_mode_desc &mode_desc(hylo_mode mode)
+{
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
+	if (!d)
+		throw std::invalid_argument("unknown mode " + std::to_string(static_cast<int>(mode)) + " (" +
+					    mode_list() + ")");
+	return *d;
+}
+
 const hylo_mode_desc &mode_desc(const std::string &mode)
 {
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(mode.c_str()));
-	if (!d)
-		throw std::invalid_argument("unknown mode '" + mode + "' (" + mode_list() + ")");
-	return *d;
+	return mode_desc(parse_mode(mode));
 }
 
 std::string mode_list()

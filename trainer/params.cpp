@@ -109,6 +109,11 @@ const ModeParams &RobotParams::mode(const std::string &name) const
 	return it->second;
 }
 
+const ModeParams &RobotParams::mode(hylo_mode id) const
+{
+	return mode(hylo_mode_str(id));
+}
+
 namespace {
 
 // Where robot files are looked for when the working directory has none: the

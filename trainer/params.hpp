@@ -50,6 +50,7 @@ struct RobotParams {
 	std::string labels_sha256;
 	std::map<std::string, ModeParams> modes;
 	const ModeParams &mode(const std::string &name) const;   // throws ParamError
+	const ModeParams &mode(hylo_mode id) const;              // likewise
 };
 
 // Loads and validates a robot file. Throws ParamError "FILE:LINE: what".

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "hylo/types.h"
+
 namespace hylo::trainer {
 
 // An initial guess of a BVP: the full states it runs through, uniformly in
@@ -32,7 +34,7 @@ struct CorridorBox {
 };
 
 struct PhaseSpec {
-	std::string mode;
+	hylo_mode mode = HYLO_MODE_NONE;
 	int segments = 20;
 	double T_guess = 0;                       // [s]; 0: guess path length / typical speed
 	std::vector<std::vector<double>> guess;   // full states the initial guess runs through (>= 2)

@@ -117,7 +117,7 @@ std::string solution_line(const RobotParams &robot, const std::string &mode, int
 	const size_t nx = static_cast<size_t>(state_dim(mode));
 	std::vector<std::vector<double>> path;
 	if (s.converged)
-		path = transplanted_guess(s.traj, s.T, full_state(mode, robot, a), full_state(mode, robot, b), points).path;
+		path = transplanted_guess(s.traj, s.T, full_state(parse_mode(mode), robot, a), full_state(parse_mode(mode), robot, b), points).path;
 	for (int p = 0; p < points; p++)
 		for (size_t k = 0; k < nx; k++)
 			out.push_back(s.converged ? format_double(path[static_cast<size_t>(p)][k]) : "0");
@@ -132,7 +132,7 @@ std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uin
 	draw_pair(robot.mode(mode), opt.gen.seed, i, a, b, opt.gen.draws);
 	Solution s;
 	try {
-		s = solve_bvp(mode, robot, a, b, opt.gen.solve);
+		s = solve_bvp(parse_mode(mode), robot, a, b, opt.gen.solve);
 	} catch (const std::exception &e) {
 		s = Solution();
 		s.status_text = kErrorStatus + std::string(e.what());
@@ -478,7 +478,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			Solution inc = incumbent(i, text);
 			double x1[6] = {0}, x2[6] = {0};
 			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
-			std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
+			std::vector<double> a = full_state(parse_mode(mode), robot, x1), b = full_state(parse_mode(mode), robot, x2);
 			std::vector<Guess> guesses;
 			for (uint64_t j : near[i]) {
 				Trajectory tr;
@@ -491,7 +491,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				guesses.push_back(transplanted_guess(tr, sol[j].s.T, a, b, opt.path_points));
 			}
 			try {
-				Solution s = solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve, guesses, inc);
+				Solution s = solve_bvp_guesses(parse_mode(mode), robot, x1, x2, opt.gen.solve, guesses, inc);
 				if (better(s, inc))
 					text = csv_row(mode, i, x1, x2, s);
 			} catch (const std::exception &) {

@@ -143,10 +143,13 @@ std::string sequence_of(const std::vector<std::string> &modes)
 	return seq;
 }
 
-std::string sequence_of(const std::vector<int8_t> &modes)
+// Of modes as numbered in goal_t (MODE_*) and onboard (hylo_mode): a plan's
+// (int8_t) or a smoothed trajectory's phases.
+template <class Mode>
+std::string sequence_of(const std::vector<Mode> &modes)
 {
 	std::vector<std::string> names;
-	for (int8_t m : modes)
+	for (Mode m : modes)
 		names.push_back(mode_name(m));
 	return sequence_of(names);
 }
@@ -337,7 +340,7 @@ private:
 		double t0 = 0;
 		for (size_t k = 0; k < s.phases.size(); k++) {
 			const Solution &ph = s.phases[k];
-			int8_t mode = static_cast<int8_t>(mode_number(s.modes[k]));
+			int8_t mode = static_cast<int8_t>(s.modes[k]);
 			for (size_t i = 0; i < ph.traj.t.size(); i++) {
 				std::vector<double> x(16, 0.0), u(4, 0.0);
 				for (int j = 0; j < ph.traj.nx; j++)

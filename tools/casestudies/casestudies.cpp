@@ -258,13 +258,12 @@ hylo_status exact_cost(void *ctx, hylo_mode mode, const hylo_real *tail, const h
 		       uint32_t n, hylo_real *cost, hylo_reason *)
 {
 	auto *c = static_cast<ExactCosts *>(ctx);
-	std::string m = mode_name(mode);
 	auto t0 = std::chrono::steady_clock::now();
 	std::vector<double> v = parallel_map(n, c->jobs, [&](size_t i) {
 		if (di_provably_infeasible(mode, tail, heads[i]))
 			return -2.0;
 		try {
-			Solution s = solve_bvp(m, *c->robot, tail, heads[i], SolveOptions());
+			Solution s = solve_bvp(mode, *c->robot, tail, heads[i], SolveOptions());
 			return s.converged ? s.cost : -1.0;
 		} catch (const std::exception &) {
 			return -1.0;
@@ -539,7 +538,7 @@ PlanResult evaluate(const RobotParams &ambot, const hylo_robot &svr_robot, const
 		r.smoothed_error = sm.replay_error;
 		r.clearance = least_clearance(sm, sc, ambot);
 		for (size_t k = 0; k < sm.phases.size(); k++) {
-			if (sm.modes[k] != "marine")
+			if (sm.modes[k] != HYLO_MODE_MARINE)
 				continue;
 			const Trajectory &t = sm.phases[k].traj;
 			size_t nx = static_cast<size_t>(t.nx);
