@@ -372,25 +372,26 @@ int run(int argc, char **argv)
 		return print_switches(robot, po.gen.solve, json);
 	if (!robot.modes.count(mode))
 		throw Usage("robot " + robot_name + " has no mode '" + mode + "'; " + robots_text(mode == "switch" ? "" : mode));
+	const hylo_mode id = parse_mode(mode);   // inside, the mode travels as hylo_mode
 	if (solve) {
-		int d = sampled_dim(mode);
+		int d = mode_desc(id).xs_dim;
 		std::vector<double> a = parse_vector(solve1, d, "--solve X1"), b = parse_vector(solve2, d, "--solve X2");
 		Solution s;
 		try {
-			s = solve_bvp(parse_mode(mode), robot, a.data(), b.data(), po.gen.solve);
+			s = solve_bvp(id, robot, a.data(), b.data(), po.gen.solve);
 		} catch (const std::invalid_argument &e) {
 			throw Usage(e.what());
 		}
 		print_solution(s, mode, robot_name, a, b, json, traj);
 		return 0;
 	}
-	po.gen.mode = mode;
+	po.gen.mode = id;
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;
-	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(mode);
+	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(id);
 	if (po.gen.draws == 0)
 		po.gen.draws = existing_draws(po.gen);
-	draws_for(mode, po.gen.draws);   // a draw the mode has
+	draws_for(id, po.gen.draws);   // a draw the mode has
 	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
 		stage = po.gen.shards > 1 ? "gen" : "all";
 	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&

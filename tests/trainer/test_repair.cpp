@@ -155,7 +155,7 @@ int main(int argc, char **argv)
 	fs::remove_all(dir);
 	RobotParams di = load_robot("trainer/params/di.yaml");
 	GenOptions g;
-	g.mode = "di_neg";
+	g.mode = HYLO_MODE_DI_NEG;
 	g.samples = 16;
 	g.jobs = 2;
 	g.progress = false;
@@ -163,7 +163,7 @@ int main(int argc, char **argv)
 	generate(di, g);
 	const std::string csv = slurp(g.out_dir + "/di_neg.csv"), meta = slurp(g.out_dir + "/di_neg.csv.meta");
 	std::vector<std::string> rows = lines_of(csv);   // rows[i + 1] is sample i
-	const size_t ic = csv_column("di_neg", "cost_j"), iv = csv_column("di_neg", "converged");
+	const size_t ic = csv_column(HYLO_MODE_DI_NEG, "cost_j"), iv = csv_column(HYLO_MODE_DI_NEG, "converged");
 	// Three converged rows among the first 12: one made dearer, one cheaper
 	// than any solution, one removed (not converged).
 	std::vector<size_t> conv;
