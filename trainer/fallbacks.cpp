@@ -184,7 +184,7 @@ MultiPhaseSolution edges_joined(const RobotParams &robot, const std::vector<Wayp
 	out.converged = true;
 	for (size_t i = 1; i < plan.size(); i++) {
 		const Waypoint &a = plan[i - 1], &b = plan[i];
-		const hylo_mode ma = static_cast<hylo_mode>(a.mode), mb = static_cast<hylo_mode>(b.mode);
+		const hylo_mode ma = a.mode, mb = b.mode;
 		if (ma != mb) {   // a guard pair: the switch itself
 			double c = ma == HYLO_MODE_GROUND && mb == HYLO_MODE_FLIGHT ? costs.takeoff_j
 				 : ma == HYLO_MODE_FLIGHT && mb == HYLO_MODE_GROUND ? costs.landing_j : 0;

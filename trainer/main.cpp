@@ -208,33 +208,33 @@ void print_solution(const Solution &s, const std::string &mode, const std::strin
 int print_switches(const RobotParams &robot, const SolveOptions &opt, bool json)
 {
 	struct Switch {
-		std::string from, to, how;
+		hylo_mode from, to;
+		const char *how;
 		double cost;
 	};
 	std::vector<Switch> sw;
-	const auto &m = robot.modes;
-	if (m.count("di_neg") && m.count("di_pos")) {
-		sw.push_back({"di_pos", "di_neg", "guard p = 0, identity reset", 0});
-		sw.push_back({"di_neg", "di_pos", "guard p = 0, identity reset", 0});
+	if (robot.has(HYLO_MODE_DI_NEG) && robot.has(HYLO_MODE_DI_POS)) {
+		sw.push_back({HYLO_MODE_DI_POS, HYLO_MODE_DI_NEG, "guard p = 0, identity reset", 0});
+		sw.push_back({HYLO_MODE_DI_NEG, HYLO_MODE_DI_POS, "guard p = 0, identity reset", 0});
 	}
-	if (m.count("ground") && m.count("marine")) {
-		sw.push_back({"ground", "marine", "shoreline, phiL = phiR = phi_n(vx)", 0});
-		sw.push_back({"marine", "ground", "shoreline, paddle speeds dropped", 0});
+	if (robot.has(HYLO_MODE_GROUND) && robot.has(HYLO_MODE_MARINE)) {
+		sw.push_back({HYLO_MODE_GROUND, HYLO_MODE_MARINE, "shoreline, phiL = phiR = phi_n(vx)", 0});
+		sw.push_back({HYLO_MODE_MARINE, HYLO_MODE_GROUND, "shoreline, paddle speeds dropped", 0});
 	}
-	if (m.count("ground") && m.count("flight")) {
+	if (robot.has(HYLO_MODE_GROUND) && robot.has(HYLO_MODE_FLIGHT)) {
 		TakeoffLanding tl = takeoff_landing(robot, opt);
-		sw.push_back({"ground", "flight", "takeoff: rest at height h -> hover at h + 1", tl.takeoff_j});
-		sw.push_back({"flight", "ground", "landing: hover at h + 1 -> rest at height h", tl.landing_j});
+		sw.push_back({HYLO_MODE_GROUND, HYLO_MODE_FLIGHT, "takeoff: rest at height h -> hover at h + 1", tl.takeoff_j});
+		sw.push_back({HYLO_MODE_FLIGHT, HYLO_MODE_GROUND, "landing: hover at h + 1 -> rest at height h", tl.landing_j});
 	}
 	if (json)
 		std::printf("{\"robot\":\"%s\",\"switches\":[", robot.robot.c_str());
 	for (size_t i = 0; i < sw.size(); i++) {
 		if (json)
 			std::printf("%s{\"from\":\"%s\",\"to\":\"%s\",\"cost_j\":%.17g,\"how\":\"%s\"}",
-				    i ? "," : "", sw[i].from.c_str(), sw[i].to.c_str(), sw[i].cost, sw[i].how.c_str());
+				    i ? "," : "", hylo_mode_str(sw[i].from), hylo_mode_str(sw[i].to), sw[i].cost, sw[i].how);
 		else
-			std::printf("%s %s -> %s: %.6g J (%s)\n", robot.robot.c_str(), sw[i].from.c_str(),
-				    sw[i].to.c_str(), sw[i].cost, sw[i].how.c_str());
+			std::printf("%s %s -> %s: %.6g J (%s)\n", robot.robot.c_str(), hylo_mode_str(sw[i].from),
+				    hylo_mode_str(sw[i].to), sw[i].cost, sw[i].how);
 	}
 	if (json)
 		std::printf("]}\n");

@@ -44,27 +44,4 @@ std::string mode_name(int m)
 	return d ? d->name : "";
 }
 
-int mode_number(const std::string &mode)
-{
-	return hylo_mode_parse(mode.c_str());
-}
-
-int sampled_dim(const std::string &m)
-{
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
-	return d ? d->xs_dim : 0;
-}
-
-int state_dim(const std::string &m)
-{
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
-	return d ? d->nx : 0;
-}
-
-int input_dim(const std::string &m)
-{
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
-	return d ? d->nu : 0;
-}
-
 }  // namespace hylo::trainer

@@ -41,7 +41,7 @@ struct PhaseSpec {
 	// The guess states lie uniformly in time (a solution's knots and
 	// midpoints), with a corridor too; else, with one, by arc length.
 	bool guess_timed = false;
-	// Bounds of the first and last knot's state (state_dim each; empty: the
+	// Bounds of the first and last knot's state (the record's nx each; empty: the
 	// mode's bounds). Equal bounds fix a component.
 	std::vector<double> first_lo, first_hi, last_lo, last_hi;
 	// Empty: none. Else every knot and midpoint whose normalized time lies in

@@ -121,7 +121,7 @@ std::vector<Waypoint> waypoints_of(const hylo::plan_t &p)
 	std::vector<Waypoint> wps;
 	for (int i = 0; i < p.n_waypoints; i++) {
 		Waypoint w;
-		w.mode = p.mode[static_cast<size_t>(i)];
+		w.mode = static_cast<hylo_mode>(p.mode[static_cast<size_t>(i)]);   // goal_t numbers; smoothing_problem checks them
 		for (int k = 0; k < 6; k++)
 			w.state[k] = p.state[static_cast<size_t>(i)][static_cast<size_t>(k)];
 		w.guard = p.guard[static_cast<size_t>(i)] != 0;
@@ -282,7 +282,7 @@ private:
 
 	TakeoffLanding switch_costs(const std::string &name, const RobotParams &r)
 	{
-		if (!r.modes.count("flight"))
+		if (!r.has(HYLO_MODE_FLIGHT))
 			return {};
 		auto it = costs_.find(name);
 		if (it == costs_.end())

@@ -12,8 +12,8 @@ namespace hylo::trainer {
 
 std::vector<double> sampled(const Waypoint &w)
 {
-	int n = sampled_dim(mode_name(w.mode));
-	return std::vector<double>(w.state, w.state + n);
+	const hylo_mode_desc *d = hylo_mode_describe(w.mode);
+	return std::vector<double>(w.state, w.state + (d ? d->xs_dim : 0));
 }
 
 std::unique_ptr<CorridorMaps> corridor_maps(const RobotParams &robot, const TerrainGrid &map,
@@ -62,12 +62,12 @@ void check_waypoints(const RobotParams &robot, const std::vector<Waypoint> &plan
 	if (plan.size() < 2)
 		throw std::invalid_argument("a plan needs at least two waypoints to smooth");
 	for (size_t i = 0; i < plan.size(); i++) {
-		std::string m = mode_name(plan[i].mode);
-		if (m.empty() || !robot.modes.count(m))
+		const hylo_mode_desc *d = hylo_mode_describe(plan[i].mode);
+		if (!d || !robot.has(plan[i].mode))
 			throw std::invalid_argument("waypoint " + std::to_string(i) + " has mode " +
-						    std::to_string(plan[i].mode) + ", which robot " + robot.robot +
-						    " does not have");
-		for (int k = 0; k < sampled_dim(m); k++)
+						    std::to_string(static_cast<int>(plan[i].mode)) + ", which robot " +
+						    robot.robot + " does not have");
+		for (int k = 0; k < d->xs_dim; k++)
 			if (!std::isfinite(plan[i].state[k]))
 				throw std::invalid_argument("waypoint " + std::to_string(i) + " has a non-finite state");
 	}
@@ -83,7 +83,7 @@ struct Run {
 // The plan's runs of one mode; a switch is a guard pair at one place.
 std::vector<Run> mode_runs(const std::vector<Waypoint> &plan)
 {
-	std::vector<Run> runs{{0, 0, static_cast<hylo_mode>(plan[0].mode)}};
+	std::vector<Run> runs{{0, 0, plan[0].mode}};
 	for (size_t i = 1; i < plan.size(); i++) {
 		if (plan[i].mode == plan[i - 1].mode) {
 			runs.back().last = i;
@@ -92,7 +92,7 @@ std::vector<Run> mode_runs(const std::vector<Waypoint> &plan)
 		if (!plan[i - 1].guard || !plan[i].guard || !same_place(plan[i - 1], plan[i]))
 			throw std::invalid_argument("waypoints " + std::to_string(i - 1) + " and " + std::to_string(i) +
 						    " switch mode without a guard pair at one place");
-		runs.push_back({i, i, static_cast<hylo_mode>(plan[i].mode)});
+		runs.push_back({i, i, plan[i].mode});
 	}
 	return runs;
 }
@@ -326,7 +326,8 @@ std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan)
 		while (i1 + 1 < plan.size() && plan[i1 + 1].mode == plan[i0].mode)
 			i1++;
 		const Waypoint &a = plan[i0], &b = plan[i1];
-		bool flight = mode_desc(static_cast<hylo_mode>(a.mode)).air;
+		const hylo_mode_desc *d = hylo_mode_describe(a.mode);   // unchecked plans too
+		const bool flight = d && d->air;
 		int np = flight ? 3 : 2;
 		for (size_t i = i0 + 1; i < i1; i++) {
 			double f = static_cast<double>(i - i0) / static_cast<double>(i1 - i0);

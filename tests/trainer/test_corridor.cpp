@@ -251,7 +251,7 @@ TerrainGrid staircase()
 Waypoint wp(const std::string &mode, double x, double y, double z_or_v, double theta, bool guard)
 {
 	Waypoint w;
-	w.mode = mode_number(mode);
+	w.mode = parse_mode(mode);
 	w.guard = guard;
 	w.state[0] = x;
 	w.state[1] = y;

@@ -175,17 +175,17 @@ void wall_gates(const RobotParams &drivo)
 	for (int iy = 0; iy < 4; iy++)
 		for (int ix = 0; ix < 8; ix++)
 			m.height_m[static_cast<size_t>(iy * 20 + ix)] = 6;
-	auto wp = [](int mode, double x, double z, bool guard) {
+	auto wp = [](hylo_mode mode, double x, double z, bool guard) {
 		Waypoint w;
 		w.mode = mode;
 		w.guard = guard;
 		w.state[0] = x;
 		w.state[1] = 2;
-		if (mode == mode_number("flight"))
+		if (mode == HYLO_MODE_FLIGHT)
 			w.state[2] = z;
 		return w;
 	};
-	const int G = mode_number("ground"), F = mode_number("flight");
+	const hylo_mode G = HYLO_MODE_GROUND, F = HYLO_MODE_FLIGHT;
 	std::vector<Waypoint> plan = {wp(G, 2, 0, false), wp(G, 6, 0, true),  wp(F, 6, 7, true),
 				      wp(F, 12, 1, true), wp(G, 12, 0, true), wp(G, 16, 0, false)};
 	MultiPhaseProblem p = smoothing_problem(drivo, plan, m, TakeoffLanding{100, 40});
@@ -253,8 +253,8 @@ void wall_gates(const RobotParams &drivo)
 // path is cheaper and is chosen; a count budget of 1 smooths the first alone.
 void alternatives_choice(const RobotParams &di)
 {
-	const int N = mode_number("di_neg"), P = mode_number("di_pos");
-	auto w = [](int mode, double p, double v, bool guard) {
+	const hylo_mode N = HYLO_MODE_DI_NEG, P = HYLO_MODE_DI_POS;
+	auto w = [](hylo_mode mode, double p, double v, bool guard) {
 		Waypoint x;
 		x.mode = mode;
 		x.state[0] = p;

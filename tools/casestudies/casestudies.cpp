@@ -207,7 +207,7 @@ std::vector<Waypoint> waypoints(const hylo_plan &p)
 {
 	std::vector<Waypoint> w(p.n_waypoints);
 	for (uint32_t i = 0; i < p.n_waypoints; i++) {
-		w[i].mode = p.mode[i];
+		w[i].mode = static_cast<hylo_mode>(p.mode[i]);
 		w[i].guard = p.guard[i] != 0;
 		for (int k = 0; k < 6; k++)
 			w[i].state[k] = p.state[i][k];
@@ -289,7 +289,7 @@ hylo_robot di_exact_robot(ExactCosts &costs)
 	// Lower bound of an edge's cost for the clamp and the A* heuristic:
 	// cost >= rho T, and T >= max(|dp|, |dv| / 2) >= distance / sqrt(5) in
 	// the phase plane (|v| <= 1, |v'| <= 2).
-	double rho = costs.robot->mode("di_neg").at("rho");
+	double rho = costs.robot->mode(HYLO_MODE_DI_NEG).at("rho");
 	hylo_robot r{};
 	r.name = "di";
 	r.n_modes = 2;
