@@ -173,7 +173,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	SvrExport m;
 	FitReport rep = fit_cost(nf, rows.x_conv, rows.cost, fo, m);
 	m.robot = robot.robot;
-	m.mode = hylo_mode_str(g.mode);
+	m.mode = g.mode;
 	const CostFloor floor = with_model(p, robot.g, [](const auto &model) { return cost_floor(model); });
 	m.cost_floor_per_m = floor.per_m;
 	m.cost_floor_j = floor.j;
@@ -254,8 +254,8 @@ int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 	} catch (const std::invalid_argument &e) {
 		throw std::invalid_argument(path + ": " + e.what());
 	}
-	if (m.robot != robot.robot || m.mode != hylo_mode_str(opt.gen.mode))
-		throw std::invalid_argument(path + " holds the " + m.robot + " " + m.mode + " model");
+	if (m.robot != robot.robot || m.mode != opt.gen.mode)
+		throw std::invalid_argument(path + " holds the " + m.robot + " " + hylo_mode_str(m.mode) + " model");
 	auto line = std::find_if(m.provenance.begin(), m.provenance.end(),
 				 [](const auto &p) { return p.first == "envelope"; });
 	if (line != m.provenance.end())
