@@ -22,11 +22,6 @@ const hylo_mode_desc &mode_desc(hylo_mode mode)
 	return *d;
 }
 
-const hylo_mode_desc &mode_desc(const std::string &mode)
-{
-	return mode_desc(parse_mode(mode));
-}
-
 std::string mode_list()
 {
 	char buf[256];

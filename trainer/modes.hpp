@@ -17,15 +17,12 @@
 
 namespace hylo::trainer {
 
-// The mode named name: where a mode enters as text (command line, robot
-// and scene files, LCM messages). Throws std::invalid_argument naming the
-// known modes for any other name.
+// The mode named name: where a mode enters as text (the command line).
+// Throws std::invalid_argument naming the known modes for any other name.
 hylo_mode parse_mode(const std::string &name);
 // The record of mode (inside the trainer modes travel as hylo_mode); throws
 // std::invalid_argument for HYLO_MODE_NONE or an invalid value.
 const hylo_mode_desc &mode_desc(hylo_mode mode);
-// The record of the mode named mode (parse_mode, then its record).
-const hylo_mode_desc &mode_desc(const std::string &mode);
 // The modes' names, ", "-separated (for messages).
 std::string mode_list();
 
