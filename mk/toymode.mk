@@ -9,7 +9,7 @@ TOY_TRAINER := $(TOY_DIR)/bin/trainer
 TOY_ONBOARD_OBJS := $(ONBOARD_SRCS:%.c=$(TOY_DIR)/obj/%.o)
 # Trainer sources that see no mode (no hylo/ header, no robot parameters)
 # are the normal build's objects.
-TOY_SHARED_SRCS := trainer/files.cpp trainer/numerics.cpp trainer/processes.cpp trainer/sha256.cpp trainer/svr_fit.cpp
+TOY_SHARED_SRCS := trainer/files.cpp trainer/numerics.cpp trainer/processes.cpp trainer/sha256.cpp
 TOY_TRAINER_OBJS := $(filter-out $(TOY_SHARED_SRCS),$(TRAINER_SRCS)) trainer/main.cpp
 TOY_TRAINER_OBJS := $(TOY_TRAINER_OBJS:%.cpp=$(TOY_DIR)/obj/%.o) $(TOY_SHARED_SRCS:%.cpp=$(BUILD)/obj/%.o)
 

@@ -21,10 +21,10 @@ struct Motion {
 	double p[3], v[3];
 };
 
-Motion motion(const std::string &mode, const double *x)
+Motion motion(const hylo_mode_desc &mode, const double *x)
 {
 	Motion m{};
-	if (mode == "flight") {
+	if (mode.air) {   // flight: (p, body-frame velocity, ..., roll, pitch, yaw, ...)
 		const double cr = std::cos(x[6]), sr = std::sin(x[6]), cp = std::cos(x[7]), sp = std::sin(x[7]),
 			     cy = std::cos(x[8]), sy = std::sin(x[8]);
 		const double R[3][3] = {{cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr},
@@ -115,21 +115,21 @@ ClearanceCheck check_clearance(const MultiPhaseSolution &s, const TerrainGrid &m
 	double t0 = 0;
 	for (size_t k = 0; k < s.phases.size(); k++) {
 		const Trajectory &tr = s.phases[k].traj;
-		const std::string &name = s.modes[k];
-		const hylo_mode mode = static_cast<hylo_mode>(mode_number(name));
-		if (name != "ground" && name != "marine" && name != "flight") {
+		const hylo_mode mode = s.modes[k];
+		const hylo_mode_desc &d = mode_desc(mode);
+		if (!d.planar && !d.air) {
 			t0 += s.phases[k].T;
-			continue;   // no hazards (the double integrator)
+			continue;   // no hazards (the double integrator's phase plane)
 		}
 		auto measure = [&](hylo_point p, double t) {
-			if (name != "flight")
+			if (!d.air)
 				p.z = 0;
 			c.points++;
 			const double d = hylo_hazard_distance(m.get(), mode, p, reach) - body_radius_m;
 			if (d < c.min_clearance_m || c.phase < 0) {
 				c.min_clearance_m = std::min(d, c.min_clearance_m);
 				c.phase = static_cast<int>(k);
-				c.mode = name;
+				c.mode = mode;
 				c.t_s = t0 + t;
 				c.x_m = p.x;
 				c.y_m = p.y;
@@ -145,11 +145,11 @@ ClearanceCheck check_clearance(const MultiPhaseSolution &s, const TerrainGrid &m
 		};
 		const size_t n = tr.t.size(), nx = static_cast<size_t>(tr.nx);
 		for (size_t i = 0; i < n; i++) {
-			const Motion a = motion(name, &tr.x[i * nx]);
+			const Motion a = motion(d, &tr.x[i * nx]);
 			measure({a.p[0], a.p[1], a.p[2]}, tr.t[i]);
 			if (i + 1 == n)
 				break;
-			const Motion b = motion(name, &tr.x[(i + 1) * nx]);
+			const Motion b = motion(d, &tr.x[(i + 1) * nx]);
 			const double h = tr.t[i + 1] - tr.t[i];
 			for (int j = 1; j <= between_knots; j++) {
 				const double f = static_cast<double>(j) / (between_knots + 1);
@@ -177,7 +177,7 @@ std::string ClearanceCheck::text() const
 		return buf;
 	}
 	std::snprintf(buf, sizeof buf, "%sclearance %.3g m %s margin %.3g m (phase %d, %s, t = %.3g s at (%.3g, %.3g, %.3g) m)",
-		      safe ? "" : "not safe: ", min_clearance_m, safe ? ">=" : "<", margin_m, phase, mode.c_str(), t_s,
+		      safe ? "" : "not safe: ", min_clearance_m, safe ? ">=" : "<", margin_m, phase, hylo_mode_str(mode), t_s,
 		      x_m, y_m, z_m);
 	return buf;
 }

@@ -24,7 +24,7 @@ struct ClearanceCheck {
 	// and where; capped at margin + kClearanceReachM (nothing nearer).
 	double min_clearance_m = 0;
 	int phase = -1;              // -1: no phase has hazards (the double integrator)
-	std::string mode;
+	hylo_mode mode = HYLO_MODE_NONE;
 	double t_s = 0, x_m = 0, y_m = 0, z_m = 0;
 	// The first point found outside its mode's domain (phase -1: none).
 	int outside_phase = -1;

@@ -21,14 +21,14 @@ using internal::Stacked;
 using internal::Start;
 
 // Throws std::invalid_argument unless v has n finite components inside [lo, hi].
-void check_state(const std::vector<double> &v, const Bounds &bd, const std::string &mode)
+void check_state(const std::vector<double> &v, const Bounds &bd, hylo_mode mode)
 {
 	for (size_t k = 0; k < v.size(); k++)
 		if (!std::isfinite(v[k]) || v[k] < bd.x_lo[k] - 1e-12 || v[k] > bd.x_hi[k] + 1e-12)
 			throw std::invalid_argument("boundary state component " + std::to_string(k) + " = " +
 						    std::to_string(v[k]) + " is outside [" +
 						    std::to_string(bd.x_lo[k]) + ", " + std::to_string(bd.x_hi[k]) +
-						    "] of mode " + mode);
+						    "] of mode " + hylo_mode_str(mode));
 }
 
 // ---- single-mode BVPs ---------------------------------------------------
@@ -40,7 +40,7 @@ struct Bvp {
 	std::vector<double> a, b;
 };
 
-Bvp bvp(const std::string &mode, const RobotParams &robot, const double *x1s, const double *x2s,
+Bvp bvp(hylo_mode mode, const RobotParams &robot, const double *x1s, const double *x2s,
 	const SolveOptions &opt)
 {
 	Bvp v{internal::mode_info(mode, robot), {}, {}, {}};
@@ -112,7 +112,7 @@ void check_corridor(const PhaseSpec &ps, size_t dims, const std::string &where)
 		const CorridorBox &b = ps.corridor[i];
 		std::string box = where + ": corridor box " + std::to_string(i);
 		if (dims == 0)
-			throw std::invalid_argument(box + ": mode " + ps.mode + " has no corridor");
+			throw std::invalid_argument(box + ": mode " + hylo_mode_str(ps.mode) + " has no corridor");
 		if (b.lo.size() != dims || b.hi.size() != dims)
 			throw std::invalid_argument(box + " has " + std::to_string(b.lo.size()) + " and " +
 						    std::to_string(b.hi.size()) + " bounds, the mode's position " +
@@ -201,7 +201,7 @@ Stacked stacked(const RobotParams &robot, const MultiPhaseProblem &prob)
 	for (size_t k = 0; k < prob.phases.size(); k++) {
 		const PhaseSpec &ps = prob.phases[k];
 		ModeInfo info = internal::mode_info(ps.mode, robot);
-		p.setups.push_back(phase_setup(ps, info, "phase " + std::to_string(k) + " (" + ps.mode + ")"));
+		p.setups.push_back(phase_setup(ps, info, "phase " + std::to_string(k) + " (" + hylo_mode_str(ps.mode) + ")"));
 		p.modes.push_back(ps.mode);
 		p.info.push_back(std::move(info));
 	}
@@ -212,19 +212,19 @@ Stacked stacked(const RobotParams &robot, const MultiPhaseProblem &prob)
 
 }  // namespace
 
-std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs)
+std::vector<double> full_state(hylo_mode mode, const RobotParams &robot, const double *xs)
 {
 	return internal::mode_info(mode, robot).full_state(xs);
 }
 
-std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
+std::pair<std::vector<double>, std::vector<double>> state_bounds(hylo_mode mode,
 								 const RobotParams &robot)
 {
 	Bounds b = internal::mode_info(mode, robot).bounds;
 	return {b.x_lo, b.x_hi};
 }
 
-Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp(hylo_mode mode, const RobotParams &robot, const double *x1s,
 		   const double *x2s, const SolveOptions &opt)
 {
 	Bvp v = bvp(mode, robot, x1s, x2s, opt);
@@ -235,13 +235,13 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 	return opt.strategy_starts ? add_strategies(robot, v, opt, line) : line;
 }
 
-Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp_strategies(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			      const double *x2s, const SolveOptions &opt, const Solution &line)
 {
 	return add_strategies(robot, bvp(mode, robot, x1s, x2s, opt), opt, line);
 }
 
-Solution solve_bvp_guesses(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp_guesses(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			   const double *x2s, const SolveOptions &opt, const std::vector<Guess> &guesses,
 			   const Solution &incumbent)
 {

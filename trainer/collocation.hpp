@@ -30,14 +30,14 @@ namespace hylo::trainer {
 // datasets' meta says so itself ("starts: 3").
 std::string solve_options_text(const SolveOptions &opt);
 
-// Solves the BVP x1s -> x2s (sampled coordinates, sampled_dim(mode) each) of
+// Solves the BVP x1s -> x2s (sampled coordinates, the record's xs_dim each) of
 // mode with the robot's parameters. Several initial guesses (straight lines
 // of three durations; with opt.strategy_starts also solve_bvp_strategies');
 // keeps the cheapest converged one whose replay passes, refining the mesh if
 // needed.
 // Throws std::invalid_argument for an unknown mode or a boundary state
 // outside the mode's bounds.
-Solution solve_bvp(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp(hylo_mode mode, const RobotParams &robot, const double *x1s,
 		   const double *x2s, const SolveOptions &opt);
 
 // The BVP's other initial guesses, where its mode has them (ground and
@@ -49,23 +49,23 @@ Solution solve_bvp(const std::string &mode, const RobotParams &robot, const doub
 // dataset row made by it), else line. Starts, refined starts and seconds
 // add up. With opt.refine_within finite, line's cost prunes their
 // refinement too.
-Solution solve_bvp_strategies(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp_strategies(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			      const double *x2s, const SolveOptions &opt, const Solution &line);
 
 // Solves the BVP from each guess (as solve_bvp_strategies does its own) and
 // returns their best if it is cheaper than incumbent, else incumbent; starts,
 // refined starts and seconds add up. A guess whose path does not run from
-// the BVP's start to its goal (to 1e-9) or whose states are not state_dim
+// the BVP's start to its goal (to 1e-9) or whose states are not the record's nx
 // long throws std::invalid_argument.
-Solution solve_bvp_guesses(const std::string &mode, const RobotParams &robot, const double *x1s,
+Solution solve_bvp_guesses(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			   const double *x2s, const SolveOptions &opt, const std::vector<Guess> &guesses,
 			   const Solution &incumbent);
 
 // The full state a mode's sampled coordinates stand for (the virtual
 // constraints of docs/models.md section 7).
-std::vector<double> full_state(const std::string &mode, const RobotParams &robot, const double *xs);
-// The mode's state bounds (lo, hi), state_dim each.
-std::pair<std::vector<double>, std::vector<double>> state_bounds(const std::string &mode,
+std::vector<double> full_state(hylo_mode mode, const RobotParams &robot, const double *xs);
+// The mode's state bounds (lo, hi), the record's nx each.
+std::pair<std::vector<double>, std::vector<double>> state_bounds(hylo_mode mode,
 								 const RobotParams &robot);
 
 // Solves a multi-phase problem (problem.hpp) from every start; keeps the cheapest

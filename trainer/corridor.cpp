@@ -9,6 +9,7 @@
 #include "hylo/clearance.h"
 #include "hylo/map.h"
 #include "trainer/clearance.hpp"
+#include "trainer/modes.hpp"
 
 namespace hylo::trainer {
 
@@ -21,10 +22,9 @@ ClearanceMap::ClearanceMap(const TerrainGrid &g, double r) : m_(onboard_map(g)),
 
 ClearanceMap::~ClearanceMap() = default;
 
-bool ClearanceMap::clear(const std::string &mode, int ix, int iy) const
+bool ClearanceMap::clear(hylo_mode mode, int ix, int iy) const
 {
-	hylo_mode md = mode == "ground" ? HYLO_MODE_GROUND : HYLO_MODE_MARINE;
-	return hylo_map_cell_clear(m_.get(), md, iy * nx_ + ix) != 0;
+	return hylo_map_cell_clear(m_.get(), mode, iy * nx_ + ix) != 0;
 }
 
 double ClearanceMap::flight_floor(int ix, int iy) const
@@ -76,7 +76,7 @@ std::vector<std::pair<int, int>> axis_seeds(double u0, double u1, int n)
 
 class Grower {
 public:
-	Grower(const std::string &mode, const ClearanceMap &m) : mode_(mode), m_(m), flight_(mode == "flight") {}
+	Grower(hylo_mode mode, const ClearanceMap &m) : mode_(mode), m_(m), flight_(mode_desc(mode).air) {}
 
 	// The box of cells around the box with corners a and b (grid units for x
 	// and y; a segment's ends), grown while clear; false if the cells around
@@ -166,7 +166,7 @@ private:
 		c.z1 = m_.flight_top();
 	}
 
-	const std::string &mode_;
+	const hylo_mode mode_;
 	const ClearanceMap &m_;
 	bool flight_;
 	double zlo_ = 0;   // a flight box's cells must have floors at most this high
@@ -219,7 +219,7 @@ std::vector<double> cell_crossings(const P3 &a, const P3 &b)
 // piece that passes a blocked cell's corner closer than a quarter cell:
 // each part lies in one cell; a flight is lifted instead), else the next
 // level; a piece no level clears gets no box.
-void cover(const std::string &mode, const CorridorMaps &maps, size_t level, const P3 &a, const P3 &b, double s0,
+void cover(hylo_mode mode, const CorridorMaps &maps, size_t level, const P3 &a, const P3 &b, double s0,
 	   double s1, int depth, std::vector<Piece> &out)
 {
 	const TerrainGrid &g = maps.grid();
@@ -242,14 +242,14 @@ void cover(const std::string &mode, const CorridorMaps &maps, size_t level, cons
 		return;
 	}
 	constexpr int kMaxDepth = 8;
-	if (depth < kMaxDepth && length(a, b, mode == "flight") > 0.25 * g.resolution_m) {
+	if (depth < kMaxDepth && length(a, b, mode_desc(mode).air) > 0.25 * g.resolution_m) {
 		P3 m = lerp(a, b, 0.5);
 		double sm = 0.5 * (s0 + s1);
 		cover(mode, maps, level, a, m, s0, sm, depth + 1, out);
 		cover(mode, maps, level, m, b, sm, s1, depth + 1, out);
 		return;
 	}
-	const std::vector<double> cuts = mode == "flight" ? std::vector<double>() : cell_crossings(grid_units(a), grid_units(b));
+	const std::vector<double> cuts = mode_desc(mode).air ? std::vector<double>() : cell_crossings(grid_units(a), grid_units(b));
 	if (!cuts.empty()) {
 		double f0 = 0;
 		for (size_t i = 0; i <= cuts.size(); i++) {
@@ -262,7 +262,7 @@ void cover(const std::string &mode, const CorridorMaps &maps, size_t level, cons
 	}
 	// A flight the cells around cannot hold at its height: lifted to where
 	// they can, at the full clearance (the plan passes too low there).
-	if (mode == "flight" && level == 0 && Grower(mode, *maps.levels()[0]).grow(grid_units(a), grid_units(b), pc.box, true)) {
+	if (mode_desc(mode).air && level == 0 && Grower(mode, *maps.levels()[0]).grow(grid_units(a), grid_units(b), pc.box, true)) {
 		pc.has_box = pc.lifted = true;
 		out.push_back(pc);
 		return;
@@ -278,7 +278,7 @@ void cover(const std::string &mode, const CorridorMaps &maps, size_t level, cons
 // path's box, as a whole, grows clear become one piece: fewer boxes, fewer times the
 // trajectory must be in the next box by a given time. Consecutive pieces
 // without a box become one too.
-std::vector<Piece> joined(const std::vector<Piece> &pieces, const std::string &mode, const CorridorMaps &maps)
+std::vector<Piece> joined(const std::vector<Piece> &pieces, hylo_mode mode, const CorridorMaps &maps)
 {
 	const TerrainGrid &g = maps.grid();
 	auto grid_units = [&](const P3 &p) {
@@ -384,13 +384,14 @@ std::pair<double, double> hand_over(const Polyline &path, const Piece &pa, const
 
 }  // namespace
 
-Corridor build_corridor(const std::string &mode, const std::vector<P3> &path, const CorridorMaps &maps)
+Corridor build_corridor(hylo_mode mode, const std::vector<P3> &path, const CorridorMaps &maps)
 {
-	if (mode != "ground" && mode != "marine" && mode != "flight")
-		throw std::invalid_argument("corridor: mode " + mode + " has no corridor");
+	const hylo_mode_desc &d = mode_desc(mode);
+	if (!d.planar && !d.air)   // a phase plane is not on the map
+		throw std::invalid_argument(std::string("corridor: mode ") + d.name + " has no corridor");
 	if (path.empty())
 		throw std::invalid_argument("corridor: an empty path");
-	const bool flight = mode == "flight";
+	const bool flight = d.air;
 	Polyline line;
 	line.pts = path;
 	if (line.pts.size() == 1)

@@ -34,7 +34,7 @@ public:
 	int nx() const { return nx_; }
 	int ny() const { return ny_; }
 	// Cell (ix, iy) is in the shrunk ground (marine) domain.
-	bool clear(const std::string &mode, int ix, int iy) const;
+	bool clear(hylo_mode mode, int ix, int iy) const;
 	// The lowest height a flight may have over cell (ix, iy) (infinity: none);
 	// the highest anywhere.
 	double flight_floor(int ix, int iy) const;
@@ -69,7 +69,7 @@ struct Corridor {
 	bool first_box = false, last_box = false;   // the path's first (last) piece has a box
 };
 
-// The corridor of a phase of mode ("ground", "marine", "flight") along the
+// The corridor of a phase of a planar or air mode (ground, marine, flight) along the
 // polyline path (positions; z used by flight only). Each segment gets the
 // box of cells around it grown greedily a row or column at a time while it
 // stays clear, at the first level where its cells are clear; a segment
@@ -80,7 +80,7 @@ struct Corridor {
 // share of the path's arc length, handing over to the next box in the
 // middle of the stretch of path both hold, where the knots are bounded to
 // both (5 cm to 0.5 m each way).
-Corridor build_corridor(const std::string &mode, const std::vector<std::array<double, 3>> &path,
+Corridor build_corridor(hylo_mode mode, const std::vector<std::array<double, 3>> &path,
 			const CorridorMaps &maps);
 
 }  // namespace hylo::trainer

@@ -57,7 +57,7 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	std::ostringstream m;
 	// An unsharded stream does not depend on its length: a longer run extends
 	// a shorter one. Shard boundaries do, so sharded files record it.
-	m << "robot: " << robot.robot << "\nmode: " << opt.mode << "\nseed: " << opt.seed << "\n";
+	m << "robot: " << robot.robot << "\nmode: " << hylo_mode_str(opt.mode) << "\nseed: " << opt.seed << "\n";
 	if (opt.shards > 1)
 		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
 	// Flight pairs have been drawn two ways (v2: with cruise pairs), ground
@@ -221,15 +221,15 @@ std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &o
 	const std::string meta = read_file(path + ".meta"), want = straight_meta_text(robot, opt);
 	if (meta != want)
 		throw std::runtime_error("--relabel " + path + ": its " + path + ".meta is not that of a " +
-					 robot.robot + " " + opt.mode + " dataset with seed " +
+					 robot.robot + " " + hylo_mode_str(opt.mode) + " dataset with seed " +
 					 std::to_string(opt.seed) + " from straight-line starts alone under these " +
 					 "settings (" + meta_differences(meta, want) + ")");
 	std::ifstream f(path);
 	std::string text;
 	std::vector<std::string> names = csv_columns(opt.mode);
 	if (!std::getline(f, text) || csv_fields(text) != names)
-		throw std::runtime_error("--relabel " + path + ": line 1 is not the header of a " + opt.mode + " dataset");
-	const std::string &m = opt.mode;
+		throw std::runtime_error("--relabel " + path + ": line 1 is not the header of a " + hylo_mode_str(opt.mode) + " dataset");
+	const hylo_mode m = opt.mode;
 	const size_t i_cost = csv_column(m, "cost_j"), i_T = csv_column(m, "T_s"),
 		     i_conv = csv_column(m, "converged"), i_status = csv_column(m, "status"),
 		     i_iter = csv_column(m, "iterations"), i_seg = csv_column(m, "segments"),
@@ -266,36 +266,34 @@ std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &o
 }  // namespace
 
 // The onboard code's, so training and planning cannot disagree.
-std::vector<double> relative_coords(const std::string &mode, const double *a, const double *b)
+std::vector<double> relative_coords(hylo_mode mode, const double *a, const double *b)
 {
-	const hylo_mode m = static_cast<hylo_mode>(mode_number(mode));
-	std::vector<double> r(hylo_relative_count(m));
+	std::vector<double> r(hylo_relative_count(mode));
 	if (r.empty())
-		throw std::invalid_argument("features: no mode " + mode);
-	hylo_relative(m, a, b, r.data());
+		throw std::invalid_argument(std::string("features: no mode ") + hylo_mode_str(mode));
+	hylo_relative(mode, a, b, r.data());
 	return r;
 }
 
-std::vector<double> features_of_relative(const std::string &mode, const std::vector<double> &r)
+std::vector<double> features_of_relative(hylo_mode mode, const std::vector<double> &r)
 {
-	const hylo_mode m = static_cast<hylo_mode>(mode_number(mode));
-	if (r.size() != hylo_relative_count(m) || r.empty())
+	if (r.size() != hylo_relative_count(mode) || r.empty())
 		throw std::invalid_argument("features: " + std::to_string(r.size()) +
-					    " relative coordinates for mode " + mode);
-	std::vector<double> f(hylo_feature_count(m));
-	hylo_features_of_relative(m, r.data(), f.data());
+					    " relative coordinates for mode " + hylo_mode_str(mode));
+	std::vector<double> f(hylo_feature_count(mode));
+	hylo_features_of_relative(mode, r.data(), f.data());
 	return f;
 }
 
-int feature_count(const std::string &mode)
+int feature_count(hylo_mode mode)
 {
-	unsigned n = hylo_feature_count(static_cast<hylo_mode>(mode_number(mode)));
+	unsigned n = hylo_feature_count(mode);
 	if (n == 0)
-		throw std::invalid_argument("features: no mode " + mode);
+		throw std::invalid_argument(std::string("features: no mode ") + hylo_mode_str(mode));
 	return static_cast<int>(n);
 }
 
-std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
+std::vector<std::vector<double>> feature_symmetries(hylo_mode mode)
 {
 	if (mode_desc(mode).layout != HYLO_LAYOUT_SPATIAL)
 		return {};
@@ -304,7 +302,7 @@ std::vector<std::vector<double>> feature_symmetries(const std::string &mode)
 	return {{1, -1, 1, 1, -1, 1, 1, -1, 1}};
 }
 
-int draws_for(const std::string &mode, int requested)
+int draws_for(hylo_mode mode, int requested)
 {
 	const hylo_mode_desc &d = mode_desc(mode);
 	const bool planar = d.planar;
@@ -313,13 +311,13 @@ int draws_for(const std::string &mode, int requested)
 		return newest;
 	if (requested == newest || (planar && requested == 1))
 		return requested;
-	throw std::invalid_argument("--draws " + std::to_string(requested) + ": " + mode + " pairs are drawn " +
+	throw std::invalid_argument("--draws " + std::to_string(requested) + ": " + hylo_mode_str(mode) + " pairs are drawn " +
 				    (planar ? "as 1 or 2" : "as " + std::to_string(newest) + " only"));
 }
 
 int existing_draws(const GenOptions &opt)
 {
-	const std::string meta = opt.out_dir + "/" + opt.mode + ".csv.meta";
+	const std::string meta = opt.out_dir + "/" + hylo_mode_str(opt.mode) + ".csv.meta";
 	if (!std::filesystem::exists(meta))
 		return 0;
 	for (const auto &kv : internal::meta_lines(read_file(meta)))
@@ -332,7 +330,7 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 {
 	Stream r{mix(seed * 0x2545f4914f6cdd1dULL + i + 1)};
 	const Sampling &s = p.sampling;
-	const std::string &m = p.mode;
+	const hylo_mode m = p.id;
 	const hylo_mode_desc &d = mode_desc(m);
 	if (d.layout == HYLO_LAYOUT_PLANAR) {
 		const bool rest = draws_for(m, draws) >= 2 && s.speed_min_mps <= 0 && s.speed_max_mps >= 0;
@@ -400,7 +398,7 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 TrainedRegion trained_region(const ModeParams &p)
 {
 	const Sampling &s = p.sampling;
-	const hylo_mode_desc &d = mode_desc(p.mode);
+	const hylo_mode_desc &d = mode_desc(p.id);
 	TrainedRegion r;
 	auto bound = [&](unsigned k, double lo, double hi) {
 		r.bounded |= 1u << k;
@@ -420,15 +418,15 @@ TrainedRegion trained_region(const ModeParams &p)
 	return r;
 }
 
-std::vector<std::string> csv_columns(const std::string &mode)
+std::vector<std::string> csv_columns(hylo_mode mode)
 {
 	std::vector<std::string> c = {"index"};
-	unsigned nr = hylo_relative_count(static_cast<hylo_mode>(mode_number(mode)));
+	unsigned nr = hylo_relative_count(mode);
 	if (nr == 0)
-		throw std::invalid_argument("features: no mode " + mode);
+		throw std::invalid_argument(std::string("features: no mode ") + hylo_mode_str(mode));
 	for (unsigned k = 0; k < nr; k++)
 		c.push_back("f" + std::to_string(k));
-	int d = sampled_dim(mode);
+	int d = mode_desc(mode).xs_dim;
 	for (int k = 0; k < d; k++)
 		c.push_back("x1_" + std::to_string(k));
 	for (int k = 0; k < d; k++)
@@ -439,12 +437,12 @@ std::vector<std::string> csv_columns(const std::string &mode)
 	return c;
 }
 
-size_t csv_column(const std::string &mode, const std::string &name)
+size_t csv_column(hylo_mode mode, const std::string &name)
 {
 	std::vector<std::string> names = csv_columns(mode);
 	auto it = std::find(names.begin(), names.end(), name);
 	if (it == names.end())
-		throw std::invalid_argument("a " + mode + " dataset has no column " + name);
+		throw std::invalid_argument(std::string("a ") + hylo_mode_str(mode) + " dataset has no column " + name);
 	return static_cast<size_t>(it - names.begin());
 }
 
@@ -458,13 +456,13 @@ std::vector<std::string> csv_fields(const std::string &row)
 	return f;
 }
 
-std::string csv_row(const std::string &mode, uint64_t i, const double *a, const double *b,
+std::string csv_row(hylo_mode mode, uint64_t i, const double *a, const double *b,
 		    const Solution &s)
 {
 	std::string row = std::to_string(i);
 	for (double f : relative_coords(mode, a, b))
 		row += "," + num(f);
-	int d = sampled_dim(mode);
+	int d = mode_desc(mode).xs_dim;
 	for (int k = 0; k < d; k++)
 		row += "," + num(a[k]);
 	for (int k = 0; k < d; k++)
@@ -483,7 +481,7 @@ std::string csv_row(const std::string &mode, uint64_t i, const double *a, const 
 
 std::string dataset_path(const GenOptions &opt)
 {
-	std::string base = opt.out_dir + "/" + opt.mode;
+	std::string base = opt.out_dir + "/" + hylo_mode_str(opt.mode);
 	if (opt.shards > 1)
 		return base + ".shard-" + std::to_string(opt.shard) + "-of-" + std::to_string(opt.shards) + ".csv";
 	return base + ".csv";

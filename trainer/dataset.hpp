@@ -34,7 +34,8 @@ inline SolveOptions training_solve_options()
 }
 
 struct GenOptions {
-	std::string mode, out_dir;
+	hylo_mode mode = HYLO_MODE_NONE;
+	std::string out_dir;
 	uint64_t samples = 0, seed = 1;
 	int jobs = 1;
 	int shard = 1, shards = 1;         // K of N
@@ -81,29 +82,29 @@ struct RowSink {
 
 // Relative coordinates of docs/models.md section 7 for a pair of sampled states,
 // the columns f0, f1, ... of a dataset (hylo_relative, onboard/features.h).
-std::vector<double> relative_coords(const std::string &mode, const double *x1s, const double *x2s);
+std::vector<double> relative_coords(hylo_mode mode, const double *x1s, const double *x2s);
 
 // The model's features of relative coordinates r (hylo_features_of_relative):
 // what the fit and the onboard planner see.
-std::vector<double> features_of_relative(const std::string &mode, const std::vector<double> &r);
+std::vector<double> features_of_relative(hylo_mode mode, const std::vector<double> &r);
 
 // Number of features of mode (throws std::invalid_argument for no mode).
-int feature_count(const std::string &mode);
+int feature_count(hylo_mode mode);
 
 // Sign flips of the features that leave a mode's optimal cost unchanged, one
 // vector of +-1 per flip (the fit trains on each sample's mirror images too).
 // Flight: the reflection across the displacement's heading (in world axes
 // the reflections x -> -x and y -> -y are exact to 1e-15 in the solver; turns
 // about z are not, by up to 0.1%: ZYX Euler angles).
-std::vector<std::vector<double>> feature_symmetries(const std::string &mode);
+std::vector<std::vector<double>> feature_symmetries(hylo_mode mode);
 
 // The draw a run uses: requested (1 or 2; 0: the newest, 2) for ground and
 // marine, 2 for flight, 1 for the double integrator. Throws
 // std::invalid_argument for a draw the mode does not have.
-int draws_for(const std::string &mode, int requested);
+int draws_for(hylo_mode mode, int requested);
 
 // Sample i's pair under draw `draws` (draws_for): x1s, x2s
-// (sampled_dim(mode) each). Ground and marine, draw 2: each speed is 0
+// (the record's xs_dim each). Ground and marine, draw 2: each speed is 0
 // with probability kRestFraction, else uniform as in draw 1 (every start,
 // goal and switch point is at rest, and draw 1's uniform speeds never are).
 void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s, int draws = 0);
@@ -128,17 +129,17 @@ struct TrainedRegion {
 TrainedRegion trained_region(const ModeParams &p);
 
 // The CSV column names, in order.
-std::vector<std::string> csv_columns(const std::string &mode);
+std::vector<std::string> csv_columns(hylo_mode mode);
 
 // Index of the column called name in csv_columns(mode); throws
 // std::invalid_argument if there is none.
-size_t csv_column(const std::string &mode, const std::string &name);
+size_t csv_column(hylo_mode mode, const std::string &name);
 
 // The comma-separated fields of one CSV row.
 std::vector<std::string> csv_fields(const std::string &row);
 
 // One CSV row (without the newline) for sample i.
-std::string csv_row(const std::string &mode, uint64_t i, const double *x1s, const double *x2s,
+std::string csv_row(hylo_mode mode, uint64_t i, const double *x1s, const double *x2s,
 		    const Solution &s);
 
 // Generates (or resumes) the dataset file of opt; throws std::runtime_error

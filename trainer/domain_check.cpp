@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "hylo/modes.h"
+
 namespace hylo::trainer {
 namespace {
 
@@ -48,14 +50,15 @@ DomainCheck domain_check(const MultiPhaseSolution &s, const TerrainGrid &map)
 	double t0 = 0;
 	for (size_t k = 0; k < s.phases.size(); k++) {
 		const Trajectory &tr = s.phases[k].traj;
-		const std::string &mode = s.modes[k];
-		const bool planar = mode == "ground" || mode == "marine";
-		if (planar || mode == "flight")
+		const hylo_mode mode = s.modes[k];
+		const hylo_domain_kind domain = hylo_mode_domain(mode);
+		const bool surface = domain == HYLO_DOMAIN_LAND || domain == HYLO_DOMAIN_WATER;
+		if (surface || domain == HYLO_DOMAIN_AIR)   // a phase plane has no terrain class
 			for (size_t i = 0; i < tr.t.size(); i++) {
 				const double *x = &tr.x[i * static_cast<size_t>(tr.nx)];
 				double out;
-				if (planar) {
-					out = distance_to_class(map, x[0], x[1], mode == "ground" ? kGround : kWater, reach);
+				if (surface) {
+					out = distance_to_class(map, x[0], x[1], domain == HYLO_DOMAIN_LAND ? kGround : kWater, reach);
 				} else {
 					GridCell c = cell_at(map, x[0], x[1]);
 					out = c.inside ? std::max(0.0, map.height_m[static_cast<size_t>(c.index)] - x[2])
@@ -75,13 +78,14 @@ std::string DomainCheck::text() const
 	if (phase < 0)
 		return "inside its domain";
 	char buf[200];
-	const char *what = mode == "ground" ? "m from ground" : mode == "marine" ? "m from water" : "m below the terrain";
+	const hylo_domain_kind domain = hylo_mode_domain(mode);
+	const char *what = domain == HYLO_DOMAIN_LAND ? "m from ground" : domain == HYLO_DOMAIN_WATER ? "m from water" : "m below the terrain";
 	if (std::isfinite(worst_m))
-		std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: %.3g %s", phase, mode.c_str(),
+		std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: %.3g %s", phase, hylo_mode_str(mode),
 			      t_s, x_m, y_m, worst_m, what);
 	else   // off the map, or farther than domain_check looks
 		std::snprintf(buf, sizeof buf, "phase %d (%s) at t = %.3g s, (%.3g, %.3g) m: off the map or over %.3g %s",
-			      phase, mode.c_str(), t_s, x_m, y_m, reach_m, what);
+			      phase, hylo_mode_str(mode), t_s, x_m, y_m, reach_m, what);
 	return buf;
 }
 

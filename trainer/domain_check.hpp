@@ -19,7 +19,7 @@ namespace hylo::trainer {
 struct DomainCheck {
 	double worst_m = 0;       // 0: inside everywhere
 	int phase = -1;           // where it is worst
-	std::string mode;
+	hylo_mode mode = HYLO_MODE_NONE;
 	double t_s = 0, x_m = 0, y_m = 0;
 	double reach_m = 0;       // how far it looks for a cell of the mode's class
 	std::string text() const;   // "phase 1 (marine) at t = 3.2 s, (4.1, 7.0) m: 0.9 m from water"

@@ -83,13 +83,12 @@ constexpr double kStartTolerance = 0.01;      // refine grid minima within 1% of
 constexpr size_t kMaxStarts = 3;
 constexpr size_t kEdgesPerChunk = 4096;
 
-// The mode named mode when its models may carry an envelope (their feature
-// layout's, hylo/modes.h), else HYLO_MODE_NONE.
-hylo_mode mode_of(const std::string &mode)
+// mode when its models may carry an envelope (their feature layout's,
+// hylo/modes.h), else HYLO_MODE_NONE.
+hylo_mode envelope_mode(hylo_mode mode)
 {
-	const hylo_mode m = hylo_mode_parse(mode.c_str());
-	const hylo_feature_layout *l = hylo_mode_layout(m);
-	return l && l->envelope ? m : HYLO_MODE_NONE;
+	const hylo_feature_layout *l = hylo_mode_layout(mode);
+	return l && l->envelope ? mode : HYLO_MODE_NONE;
 }
 
 double seconds_since(Clock::time_point t0)
@@ -231,7 +230,7 @@ struct Geometry {
 Geometry geometry(const SvrExport &m)
 {
 	Geometry g;
-	const hylo_feature_layout *layout = hylo_mode_layout(hylo_mode_parse(m.mode.c_str()));
+	const hylo_feature_layout *layout = hylo_mode_layout(m.mode);
 	g.flight = layout && layout->kind == HYLO_LAYOUT_SPATIAL;
 	g.max_d = m.max_distance_m;
 	EnvelopeExport &t = g.t;
@@ -1154,7 +1153,7 @@ std::string EnvelopeReport::provenance() const
 
 bool envelope_applies(const SvrExport &m)
 {
-	return mode_of(m.mode) != HYLO_MODE_NONE && m.max_distance_m > 0 && m.speed_max_mps > m.speed_min_mps;
+	return envelope_mode(m.mode) != HYLO_MODE_NONE && m.max_distance_m > 0 && m.speed_max_mps > m.speed_min_mps;
 }
 
 double envelope_speed_step(double lo, double hi)
@@ -1171,10 +1170,10 @@ double envelope_speed_step(double lo, double hi)
 EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt)
 {
 	if (!envelope_applies(m))
-		throw std::invalid_argument("envelope: the " + m.robot + " " + m.mode +
+		throw std::invalid_argument("envelope: the " + m.robot + " " + hylo_mode_str(m.mode) +
 					    " model gets none (ground, marine and flight models with a "
 					    "training distance and speed range only)");
-	const hylo_mode mode = mode_of(m.mode);
+	const hylo_mode mode = envelope_mode(m.mode);
 	SvrExport bare = m;
 	bare.envelope.reset();
 	const hylo_svr_model view = model_view(bare);
@@ -1189,7 +1188,7 @@ EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt)
 	rep.table_seconds = seconds_since(t0);
 	if (opt.progress)
 		std::printf("envelope %s %s: %u x %u x %u cells x %u speed pairs in %.1f s\n", m.robot.c_str(),
-			    m.mode.c_str(), g.t.n_d, g.t.n_z, g.t.n_v, g.pairs(), rep.table_seconds);
+			    hylo_mode_str(m.mode), g.t.n_d, g.t.n_z, g.t.n_v, g.pairs(), rep.table_seconds);
 
 	t0 = Clock::now();
 	std::vector<float> before(est.cost.size());
@@ -1213,13 +1212,13 @@ EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt)
 	if (opt.progress)
 		std::printf("envelope %s %s: worst shortfall %.3g (%zu of %zu edges) -> margin %s (%.1f s); "
 			    "check: %zu of %zu fresh edges below the table, closest %.3g (%.1f s)\n",
-			    m.robot.c_str(), m.mode.c_str(), rep.worst_shortfall, rep.shortfall_edges,
+			    m.robot.c_str(), hylo_mode_str(m.mode), rep.worst_shortfall, rep.shortfall_edges,
 			    opt.check_edges, short_number(rep.margin).c_str(), rep.margin_seconds,
 			    rep.check_violations, opt.check_edges, rep.check_closest, rep.check_seconds);
 	if (rep.check_violations > 0)
 		throw std::runtime_error("envelope: " + std::to_string(rep.check_violations) + " of " +
 					 std::to_string(opt.check_edges) + " fresh random edges cost less than the " +
-					 m.robot + " " + m.mode + " table with margin " + short_number(rep.margin) +
+					 m.robot + " " + hylo_mode_str(m.mode) + " table with margin " + short_number(rep.margin) +
 					 " (by up to " + short_number(check.worst_excess) + " relative)");
 	return rep;
 }

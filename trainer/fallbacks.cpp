@@ -29,7 +29,7 @@ const char *method_name(SmoothMethod m)
 namespace {
 
 // Appends phase solution ph (mode m) to a joined trajectory.
-void append_phase(MultiPhaseSolution &out, const std::string &m, Solution ph)
+void append_phase(MultiPhaseSolution &out, hylo_mode m, Solution ph)
 {
 	out.modes.push_back(m);
 	out.cost += ph.cost;
@@ -84,12 +84,12 @@ MultiPhaseSolution phase_by_phase(const RobotParams &robot, const std::vector<Wa
 		MultiPhaseProblem q;
 		q.phases = {phase_alone(p, k, robot)};
 		q.T_scales = p.T_scales;
-		const std::string &mode = q.phases[0].mode;
+		const hylo_mode mode = q.phases[0].mode;
 		MultiPhaseSolution r = solve_multiphase(robot, q, so);
 		out.solve_seconds += r.solve_seconds;
 		if (!r.converged) {
 			out.converged = false;
-			out.status_text = "phase " + std::to_string(k) + " (" + mode + ") alone: " + r.status_text;
+			out.status_text = "phase " + std::to_string(k) + " (" + hylo_mode_str(mode) + ") alone: " + r.status_text;
 			out.rejection = r.rejection;
 			return out;
 		}
@@ -108,7 +108,7 @@ size_t nearest_inner_waypoint(const std::vector<Waypoint> &p, const DomainCheck 
 	double best_d = std::numeric_limits<double>::infinity();
 	for (size_t i = 1; i + 1 < p.size(); i++) {
 		if (p[i].via || p[i].guard || p[i].mode != p[i - 1].mode || p[i].mode != p[i + 1].mode ||
-		    mode_name(p[i].mode) != d.mode)
+		    p[i].mode != d.mode)
 			continue;
 		double di = std::hypot(p[i].state[0] - d.x_m, p[i].state[1] - d.y_m);
 		if (di < best_d) {
@@ -184,10 +184,10 @@ MultiPhaseSolution edges_joined(const RobotParams &robot, const std::vector<Wayp
 	out.converged = true;
 	for (size_t i = 1; i < plan.size(); i++) {
 		const Waypoint &a = plan[i - 1], &b = plan[i];
-		std::string ma = mode_name(a.mode), mb = mode_name(b.mode);
+		const hylo_mode ma = a.mode, mb = b.mode;
 		if (ma != mb) {   // a guard pair: the switch itself
-			double c = ma == "ground" && mb == "flight" ? costs.takeoff_j
-				 : ma == "flight" && mb == "ground" ? costs.landing_j : 0;
+			double c = ma == HYLO_MODE_GROUND && mb == HYLO_MODE_FLIGHT ? costs.takeoff_j
+				 : ma == HYLO_MODE_FLIGHT && mb == HYLO_MODE_GROUND ? costs.landing_j : 0;
 			out.cost += c;
 			out.replay_cost += c;
 			continue;
@@ -197,7 +197,7 @@ MultiPhaseSolution edges_joined(const RobotParams &robot, const std::vector<Wayp
 		out.solve_seconds += s.solve_seconds;
 		if (!s.converged) {
 			out.converged = false;
-			out.status_text = "edge " + std::to_string(i - 1) + " -> " + std::to_string(i) + " (" + ma +
+			out.status_text = "edge " + std::to_string(i - 1) + " -> " + std::to_string(i) + " (" + hylo_mode_str(ma) +
 					  "): " + s.status_text;
 			if (s.replayed && !s.replay_ok)
 				out.rejection = replay_verdict(s);

@@ -9,7 +9,7 @@ namespace {
 using internal::meta_differences;
 using internal::meta_text;
 
-std::string header_line(const std::string &mode)
+std::string header_line(hylo_mode mode)
 {
 	std::string h;
 	for (const auto &c : csv_columns(mode))
@@ -51,7 +51,7 @@ ShardCheck check_shard(const RobotParams &robot, GenOptions o, int k, std::strin
 	if (text.compare(0, header.size(), header) != 0) {
 		if (text.size() < header.size() && header.compare(0, text.size(), text) == 0)
 			return set(ShardCheck::torn, "a torn header (" + std::to_string(text.size()) + " bytes)");
-		return set(ShardCheck::foreign, "line 1 is not the header of a " + o.mode + " dataset");
+		return set(ShardCheck::foreign, std::string("line 1 is not the header of a ") + hylo_mode_str(o.mode) + " dataset");
 	}
 	const size_t ncols = csv_columns(o.mode).size();
 	size_t pos = header.size();

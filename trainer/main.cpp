@@ -208,33 +208,33 @@ void print_solution(const Solution &s, const std::string &mode, const std::strin
 int print_switches(const RobotParams &robot, const SolveOptions &opt, bool json)
 {
 	struct Switch {
-		std::string from, to, how;
+		hylo_mode from, to;
+		const char *how;
 		double cost;
 	};
 	std::vector<Switch> sw;
-	const auto &m = robot.modes;
-	if (m.count("di_neg") && m.count("di_pos")) {
-		sw.push_back({"di_pos", "di_neg", "guard p = 0, identity reset", 0});
-		sw.push_back({"di_neg", "di_pos", "guard p = 0, identity reset", 0});
+	if (robot.has(HYLO_MODE_DI_NEG) && robot.has(HYLO_MODE_DI_POS)) {
+		sw.push_back({HYLO_MODE_DI_POS, HYLO_MODE_DI_NEG, "guard p = 0, identity reset", 0});
+		sw.push_back({HYLO_MODE_DI_NEG, HYLO_MODE_DI_POS, "guard p = 0, identity reset", 0});
 	}
-	if (m.count("ground") && m.count("marine")) {
-		sw.push_back({"ground", "marine", "shoreline, phiL = phiR = phi_n(vx)", 0});
-		sw.push_back({"marine", "ground", "shoreline, paddle speeds dropped", 0});
+	if (robot.has(HYLO_MODE_GROUND) && robot.has(HYLO_MODE_MARINE)) {
+		sw.push_back({HYLO_MODE_GROUND, HYLO_MODE_MARINE, "shoreline, phiL = phiR = phi_n(vx)", 0});
+		sw.push_back({HYLO_MODE_MARINE, HYLO_MODE_GROUND, "shoreline, paddle speeds dropped", 0});
 	}
-	if (m.count("ground") && m.count("flight")) {
+	if (robot.has(HYLO_MODE_GROUND) && robot.has(HYLO_MODE_FLIGHT)) {
 		TakeoffLanding tl = takeoff_landing(robot, opt);
-		sw.push_back({"ground", "flight", "takeoff: rest at height h -> hover at h + 1", tl.takeoff_j});
-		sw.push_back({"flight", "ground", "landing: hover at h + 1 -> rest at height h", tl.landing_j});
+		sw.push_back({HYLO_MODE_GROUND, HYLO_MODE_FLIGHT, "takeoff: rest at height h -> hover at h + 1", tl.takeoff_j});
+		sw.push_back({HYLO_MODE_FLIGHT, HYLO_MODE_GROUND, "landing: hover at h + 1 -> rest at height h", tl.landing_j});
 	}
 	if (json)
 		std::printf("{\"robot\":\"%s\",\"switches\":[", robot.robot.c_str());
 	for (size_t i = 0; i < sw.size(); i++) {
 		if (json)
 			std::printf("%s{\"from\":\"%s\",\"to\":\"%s\",\"cost_j\":%.17g,\"how\":\"%s\"}",
-				    i ? "," : "", sw[i].from.c_str(), sw[i].to.c_str(), sw[i].cost, sw[i].how.c_str());
+				    i ? "," : "", hylo_mode_str(sw[i].from), hylo_mode_str(sw[i].to), sw[i].cost, sw[i].how);
 		else
-			std::printf("%s %s -> %s: %.6g J (%s)\n", robot.robot.c_str(), sw[i].from.c_str(),
-				    sw[i].to.c_str(), sw[i].cost, sw[i].how.c_str());
+			std::printf("%s %s -> %s: %.6g J (%s)\n", robot.robot.c_str(), hylo_mode_str(sw[i].from),
+				    hylo_mode_str(sw[i].to), sw[i].cost, sw[i].how);
 	}
 	if (json)
 		std::printf("]}\n");
@@ -372,25 +372,26 @@ int run(int argc, char **argv)
 		return print_switches(robot, po.gen.solve, json);
 	if (!robot.modes.count(mode))
 		throw Usage("robot " + robot_name + " has no mode '" + mode + "'; " + robots_text(mode == "switch" ? "" : mode));
+	const hylo_mode id = parse_mode(mode);   // inside, the mode travels as hylo_mode
 	if (solve) {
-		int d = sampled_dim(mode);
+		int d = mode_desc(id).xs_dim;
 		std::vector<double> a = parse_vector(solve1, d, "--solve X1"), b = parse_vector(solve2, d, "--solve X2");
 		Solution s;
 		try {
-			s = solve_bvp(mode, robot, a.data(), b.data(), po.gen.solve);
+			s = solve_bvp(id, robot, a.data(), b.data(), po.gen.solve);
 		} catch (const std::invalid_argument &e) {
 			throw Usage(e.what());
 		}
 		print_solution(s, mode, robot_name, a, b, json, traj);
 		return 0;
 	}
-	po.gen.mode = mode;
+	po.gen.mode = id;
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;
-	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(mode);
+	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(id);
 	if (po.gen.draws == 0)
 		po.gen.draws = existing_draws(po.gen);
-	draws_for(mode, po.gen.draws);   // a draw the mode has
+	draws_for(id, po.gen.draws);   // a draw the mode has
 	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
 		stage = po.gen.shards > 1 ? "gen" : "all";
 	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&

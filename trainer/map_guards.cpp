@@ -98,7 +98,7 @@ SwitchGuard platform_area(const TerrainGrid &m, double x, double y, double half_
 	auto level = [&](int ix, int iy) {
 		size_t k = static_cast<size_t>(iy * m.nx + ix);
 		return m.terrain[k] == kGround && std::fabs(m.height_m[k] - h) < 1e-3 &&
-		       (!clear || clear->clear("ground", ix, iy));
+		       (!clear || clear->clear(HYLO_MODE_GROUND, ix, iy));
 	};
 	int lo[2] = {cx, cy}, hi[2] = {cx, cy};
 	const int size[2] = {m.nx, m.ny}, centre[2] = {cx, cy};
@@ -153,7 +153,7 @@ SwitchGuard clear_platform(const TerrainGrid &map, double x, double y, double ha
 		return platform_area(map, x, y, half_length);
 	GridCell c = cell_at(map, x, y);
 	for (const auto &level : maps->levels())
-		if (c.inside && level->clear("ground", c.index % map.nx, c.index / map.nx)) {
+		if (c.inside && level->clear(HYLO_MODE_GROUND, c.index % map.nx, c.index / map.nx)) {
 			if (level->clearance() < maps->levels().front()->clearance()) {
 				char buf[160];
 				std::snprintf(buf, sizeof buf, "switch at (%.3g, %.3g): its cell is clear by %.3g m, not %.3g m",

@@ -78,7 +78,7 @@ void tune_planar(ModeInfo &i)
 
 }  // namespace
 
-ModeInfo mode_info(const std::string &mode, const RobotParams &robot)
+ModeInfo mode_info(hylo_mode mode, const RobotParams &robot)
 {
 	const hylo_mode_desc &d = mode_desc(mode);   // throws for an unknown mode
 	const ModeParams &p = robot.mode(mode);

@@ -48,7 +48,7 @@ struct ModeInfo {
 
 // The mode's ModeInfo with the robot's parameters. Throws
 // std::invalid_argument for an unknown mode.
-ModeInfo mode_info(const std::string &mode, const RobotParams &robot);
+ModeInfo mode_info(hylo_mode mode, const RobotParams &robot);
 
 }  // namespace hylo::trainer::internal
 

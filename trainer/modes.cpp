@@ -1,14 +1,24 @@
 #include "trainer/modes.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace hylo::trainer {
 
-const hylo_mode_desc &mode_desc(const std::string &mode)
+hylo_mode parse_mode(const std::string &name)
 {
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(mode.c_str()));
+	hylo_mode m = hylo_mode_parse(name.c_str());
+	if (m == HYLO_MODE_NONE)
+		throw std::invalid_argument("unknown mode '" + name + "' (" + mode_list() + ")");
+	return m;
+}
+
+const hylo_mode_desc &mode_desc(hylo_mode mode)
+{
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
 	if (!d)
-		throw std::invalid_argument("unknown mode '" + mode + "' (" + mode_list() + ")");
+		throw std::invalid_argument("unknown mode " + std::to_string(static_cast<int>(mode)) + " (" +
+					    mode_list() + ")");
 	return *d;
 }
 
@@ -27,29 +37,6 @@ std::string mode_name(int m)
 {
 	const hylo_mode_desc *d = hylo_mode_describe(static_cast<hylo_mode>(m));
 	return d ? d->name : "";
-}
-
-int mode_number(const std::string &mode)
-{
-	return hylo_mode_parse(mode.c_str());
-}
-
-int sampled_dim(const std::string &m)
-{
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
-	return d ? d->xs_dim : 0;
-}
-
-int state_dim(const std::string &m)
-{
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
-	return d ? d->nx : 0;
-}
-
-int input_dim(const std::string &m)
-{
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(m.c_str()));
-	return d ? d->nu : 0;
 }
 
 }  // namespace hylo::trainer

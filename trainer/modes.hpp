@@ -1,8 +1,13 @@
-// The modes the trainer knows: each one's record (onboard/include/hylo/modes.h)
-// by name, for the trainer's edges (command line, robot files, dataset and
-// header names). A mode's full state and bounds with a robot's parameters
-// are in collocation.hpp, its model in model_table.hpp, the solver's
-// per-mode configuration in mode_config.hpp.
+// The modes the trainer knows: each one's record (onboard/include/hylo/modes.h).
+// Inside the trainer a mode is a hylo_mode and its record decides what the
+// mode is (planar, air, domain, sizes). Names are parsed where they come
+// in (parse_mode: the command line; the robot file's reader), goal_t
+// numbers cast where plans come in (hylo-smooth's LCM messages, the case
+// studies' planner plans), and names printed (hylo_mode_str, mode_name)
+// where text goes out. A mode's full
+// state and bounds with a robot's parameters are in collocation.hpp, its
+// model in model_table.hpp, the solver's per-mode configuration in
+// mode_config.hpp.
 #ifndef HYLO_TRAINER_MODES_HPP
 #define HYLO_TRAINER_MODES_HPP
 
@@ -12,23 +17,20 @@
 
 namespace hylo::trainer {
 
-// The record of the mode named mode; throws std::invalid_argument naming
-// the known modes for any other name.
-const hylo_mode_desc &mode_desc(const std::string &mode);
+// The mode named name: where a mode enters as text (the command line).
+// Throws std::invalid_argument naming the known modes for any other name.
+hylo_mode parse_mode(const std::string &name);
+// The record of mode (inside the trainer modes travel as hylo_mode); throws
+// std::invalid_argument for HYLO_MODE_NONE or an invalid value.
+const hylo_mode_desc &mode_desc(hylo_mode mode);
 // The modes' names, ", "-separated (for messages).
 std::string mode_list();
 
-// Mode names the trainer knows and their sampled dimension (docs/models.md section 7).
+// Whether mode names a mode (the command line's check).
 bool known_mode(const std::string &mode);
-int sampled_dim(const std::string &mode);
-// Modes as numbered in goal_t (MODE_*) and onboard (hylo_mode); "" or 0 for
-// an unknown one.
+// The name of a mode as numbered in goal_t (MODE_*) and onboard
+// (hylo_mode), for text going out; "" for an unknown one.
 std::string mode_name(int goal_mode);
-int mode_number(const std::string &mode);
-
-// State and input sizes of a mode (0 for an unknown one).
-int state_dim(const std::string &mode);
-int input_dim(const std::string &mode);
 
 }  // namespace hylo::trainer
 

@@ -109,6 +109,16 @@ const ModeParams &RobotParams::mode(const std::string &name) const
 	return it->second;
 }
 
+const ModeParams &RobotParams::mode(hylo_mode id) const
+{
+	return mode(hylo_mode_str(id));
+}
+
+bool RobotParams::has(hylo_mode id) const
+{
+	return modes.count(hylo_mode_str(id)) != 0;
+}
+
 namespace {
 
 // Where robot files are looked for when the working directory has none: the

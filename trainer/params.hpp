@@ -50,6 +50,8 @@ struct RobotParams {
 	std::string labels_sha256;
 	std::map<std::string, ModeParams> modes;
 	const ModeParams &mode(const std::string &name) const;   // throws ParamError
+	const ModeParams &mode(hylo_mode id) const;              // likewise
+	bool has(hylo_mode id) const;                            // the file has mode id
 };
 
 // Loads and validates a robot file. Throws ParamError "FILE:LINE: what".

@@ -26,7 +26,7 @@ namespace {
 
 struct Rows {
 	std::vector<double> x_conv, cost, x_all;
-	std::vector<double> states;   // per row: x1 then x2, sampled_dim(mode) each
+	std::vector<double> states;   // per row: x1 then x2, the record's xs_dim each
 	std::vector<bool> feasible;
 	size_t n = 0;
 	size_t errors = 0;   // rows whose solve threw: read, never labels
@@ -47,7 +47,7 @@ std::string slurp(const std::string &path)
 // end, so a model fitted on its first rows stays reproducible after more are
 // generated. Rows store relative coordinates; the features are computed from
 // them here, so new features need no new dataset.
-Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max_rows)
+Rows read_dataset(const std::string &path, hylo_mode mode, uint64_t max_rows)
 {
 	std::string text = slurp(path);
 	std::istringstream in(text);
@@ -59,13 +59,13 @@ Rows read_dataset(const std::string &path, const std::string &mode, uint64_t max
 	for (const auto &c : cols)
 		expect += (expect.empty() ? "" : ",") + c;
 	if (line != expect)
-		throw std::invalid_argument(path + ":1: not a " + mode + " dataset (unexpected header)");
+		throw std::invalid_argument(path + ":1: not a " + hylo_mode_str(mode) + " dataset (unexpected header)");
 	size_t nr = 0;   // relative coordinates, f0, f1, ...
 	for (const auto &c : cols)
 		nr += c.size() > 1 && c[0] == 'f' && std::isdigit(static_cast<unsigned char>(c[1]));
 	const size_t i_cost = csv_column(mode, "cost_j"), i_conv = csv_column(mode, "converged"),
 		     i_status = csv_column(mode, "status");
-	const size_t i_x1 = csv_column(mode, "x1_0"), dim = static_cast<size_t>(sampled_dim(mode));
+	const size_t i_x1 = csv_column(mode, "x1_0"), dim = static_cast<size_t>(mode_desc(mode).xs_dim);
 	Rows r;
 	for (size_t lineno = 2; r.n < max_rows && std::getline(in, line); lineno++) {
 		std::vector<std::string> f = csv_fields(line);
@@ -118,7 +118,7 @@ TrainedRegion checked_region(const ModeParams &p, const Rows &rows, const std::s
 {
 	const TrainedRegion region = trained_region(p);
 	const hylo_mode mode = p.id;
-	const hylo_mode_desc &d = mode_desc(p.mode);
+	const hylo_mode_desc &d = mode_desc(p.id);
 	const size_t dim = d.xs_dim;
 	hylo_svr_model m{};
 	// The phase plane's draw bounds positions, not displacements.
@@ -218,10 +218,10 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		m.constants = {{"TAKEOFF_J", tl.takeoff_j, "ground rest -> hover 1 m above [J]"},
 			       {"LANDING_J", tl.landing_j, "hover 1 m above -> ground rest [J]"}};
 	}
-	std::string header = g.out_dir + "/" + robot.robot + "_" + g.mode + ".h";
+	std::string header = g.out_dir + "/" + robot.robot + "_" + hylo_mode_str(g.mode) + ".h";
 	write_svr_header(m, header);
 	std::ostringstream js;
-	js << "{\"robot\":\"" << robot.robot << "\",\"mode\":\"" << g.mode << "\",\"samples\":" << rows.n
+	js << "{\"robot\":\"" << robot.robot << "\",\"mode\":\"" << hylo_mode_str(g.mode) << "\",\"samples\":" << rows.n
 	   << ",\"converged\":" << rows.cost.size() << ",\"n_train\":" << rep.n_train
 	   << ",\"n_test\":" << rep.n_test << ",\"n_sv\":" << rep.n_sv << ",\"C\":" << format_double(rep.C)
 	   << ",\"gamma\":" << format_double(rep.gamma) << ",\"epsilon\":" << format_double(rep.epsilon)
@@ -231,12 +231,12 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	   << ",\"fit_s\":" << format_double(rep.fit_seconds)
 	   << ",\"feasibility_accuracy\":" << (have_classifier ? format_double(crep.accuracy) : "null")
 	   << "}\n";
-	write_file_atomically(g.out_dir + "/" + g.mode + ".fit.json", js.str());
+	write_file_atomically(g.out_dir + "/" + hylo_mode_str(g.mode) + ".fit.json", js.str());
 	if (rows.errors)
 		std::fprintf(stderr, "trainer: fit %s %s: %zu rows whose solve ended in an error (status 'error: ...') "
-				     "left out\n", robot.robot.c_str(), g.mode.c_str(), rows.errors);
+				     "left out\n", robot.robot.c_str(), hylo_mode_str(g.mode), rows.errors);
 	std::printf("fit %s %s: %zu of %zu samples converged; %zu SVs; held-out %s; feasibility %s; %.1f s\n",
-		    robot.robot.c_str(), g.mode.c_str(), rows.cost.size(), rows.n, rep.n_sv, buf,
+		    robot.robot.c_str(), hylo_mode_str(g.mode), rows.cost.size(), rows.n, rep.n_sv, buf,
 		    have_classifier ? format_double(crep.accuracy).c_str() : "none", rep.fit_seconds);
 	return 0;
 }
@@ -246,7 +246,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 // header has is computed afresh) and writes the header into models_dir.
 int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 {
-	std::string name = robot.robot + "_" + opt.gen.mode + ".h";
+	std::string name = robot.robot + "_" + hylo_mode_str(opt.gen.mode) + ".h";
 	std::string path = opt.gen.out_dir + "/" + name;
 	SvrExport m;
 	try {
@@ -255,7 +255,7 @@ int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 		throw std::invalid_argument(path + ": " + e.what());
 	}
 	if (m.robot != robot.robot || m.mode != opt.gen.mode)
-		throw std::invalid_argument(path + " holds the " + m.robot + " " + m.mode + " model");
+		throw std::invalid_argument(path + " holds the " + m.robot + " " + hylo_mode_str(m.mode) + " model");
 	auto line = std::find_if(m.provenance.begin(), m.provenance.end(),
 				 [](const auto &p) { return p.first == "envelope"; });
 	if (line != m.provenance.end())
@@ -272,7 +272,7 @@ int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 				  ? m.provenance.end() - 1 : m.provenance.end();
 		m.provenance.insert(at, {"envelope", rep.provenance()});
 		std::printf("envelope %s %s: %s; %.1f s (table %.1f s, margin %.1f s, check %.1f s)\n",
-			    robot.robot.c_str(), opt.gen.mode.c_str(), rep.provenance().c_str(),
+			    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), rep.provenance().c_str(),
 			    rep.table_seconds + rep.margin_seconds + rep.check_seconds, rep.table_seconds,
 			    rep.margin_seconds, rep.check_seconds);
 	}
@@ -297,8 +297,8 @@ std::string provenance_value(const std::string &text, const std::string &key, co
 // draw's definition; nothing else changes: no refit, no new envelope.
 int region_stage(const RobotParams &robot, const PipelineOptions &opt)
 {
-	const std::string &mode = opt.gen.mode;
-	const std::string header = opt.models_dir + "/" + robot.robot + "_" + mode + ".h";
+	const hylo_mode mode = opt.gen.mode;
+	const std::string header = opt.models_dir + "/" + robot.robot + "_" + hylo_mode_str(mode) + ".h";
 	const std::string text = slurp(header);
 	GenOptions g = opt.gen;
 	g.shard = g.shards = 1;
@@ -313,16 +313,16 @@ int region_stage(const RobotParams &robot, const PipelineOptions &opt)
 		throw std::invalid_argument(header + " was fitted from another robot file than " + robot.path);
 	const TrainedRegion r = checked_region(robot.mode(mode), rows, path);
 	write_file_atomically(header, header_with_region(text, r.bounded, r.min, r.max));
-	std::printf("region %s %s: %zu rows inside; written into %s\n", robot.robot.c_str(), mode.c_str(),
+	std::printf("region %s %s: %zu rows inside; written into %s\n", robot.robot.c_str(), hylo_mode_str(mode),
 		    rows.n, header.c_str());
 	return 0;
 }
 
 }  // namespace
 
-uint64_t default_samples(const std::string &mode)
+uint64_t default_samples(hylo_mode mode)
 {
-	return with_model_type(static_cast<hylo_mode>(mode_number(mode)),
+	return with_model_type(mode,
 			       [](auto t) { return decltype(t)::type::kDefaultSamples; });
 }
 
@@ -336,7 +336,7 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 	if (stage == "gather") {
 		GatherReport r = gather(robot, opt.gen);
 		std::printf("gather %s %s: %d shards of %llu samples, seed %llu\n%s", robot.robot.c_str(),
-			    opt.gen.mode.c_str(), opt.gen.shards, static_cast<unsigned long long>(opt.gen.samples),
+			    hylo_mode_str(opt.gen.mode), opt.gen.shards, static_cast<unsigned long long>(opt.gen.samples),
 			    static_cast<unsigned long long>(opt.gen.seed), gather_text(r).c_str());
 		if (!r.foreign.empty())
 			std::fprintf(stderr, "trainer: gather: %zu shard(s) not of this stream or settings; see above\n",
@@ -351,7 +351,7 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 		ro.gen = opt.gen;
 		GenSummary s = opt.solutions ? generate_with_solutions(robot, ro) : generate(robot, opt.gen);
 		std::printf("gen %s %s: %llu samples in %s (%llu resumed), %llu converged, %llu rejected, %.1f s\n",
-			    robot.robot.c_str(), opt.gen.mode.c_str(),
+			    robot.robot.c_str(), hylo_mode_str(opt.gen.mode),
 			    static_cast<unsigned long long>(s.done + s.resumed_from), s.path.c_str(),
 			    static_cast<unsigned long long>(s.resumed_from),
 			    static_cast<unsigned long long>(s.converged),
@@ -359,7 +359,7 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 		if (s.errors)
 			std::fprintf(stderr, "trainer: gen %s %s: %llu samples ended in an error, not an outcome "
 					     "(see above; their rows are not labels)\n",
-				     robot.robot.c_str(), opt.gen.mode.c_str(), static_cast<unsigned long long>(s.errors));
+				     robot.robot.c_str(), hylo_mode_str(opt.gen.mode), static_cast<unsigned long long>(s.errors));
 	}
 	if (stage == "repair") {
 		RepairOptions ro;
@@ -368,14 +368,14 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 		RepairSummary s = repair(robot, ro);
 		if (s.already) {
 			std::printf("repair %s %s: %s records this repair of its first %llu rows already; nothing to do\n",
-				    robot.robot.c_str(), opt.gen.mode.c_str(), s.path.c_str(),
+				    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), s.path.c_str(),
 				    static_cast<unsigned long long>(s.rows));
 		} else {
 			std::printf("repair %s %s: %llu rows of %s (%llu solved again, %llu repaired now), %llu labels "
 				    "lowered by more than 0.5%% (%llu by the solver alone, %llu by a neighbour's "
 				    "warm start; median %.2f%%, largest %.2f%%), %llu newly converged; CPU %.1f s solving again, "
 				    "%.1f s warm-started; %.1f s\n",
-				    robot.robot.c_str(), opt.gen.mode.c_str(), static_cast<unsigned long long>(s.rows),
+				    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), static_cast<unsigned long long>(s.rows),
 				    s.path.c_str(), static_cast<unsigned long long>(s.solved_again),
 				    static_cast<unsigned long long>(s.repaired_now),
 				    static_cast<unsigned long long>(s.lowered),

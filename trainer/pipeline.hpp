@@ -22,7 +22,7 @@ struct PipelineOptions {
 };
 
 // The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000 (di).
-uint64_t default_samples(const std::string &mode);
+uint64_t default_samples(hylo_mode mode);
 
 // Runs stage "gen", "repair", "fit", "export", "all" (gen, fit, export) or
 // "gather"; returns the exit code. "repair" repairs the dataset's first

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "hylo/types.h"
+
 namespace hylo::trainer {
 
 // An initial guess of a BVP: the full states it runs through, uniformly in
@@ -32,14 +34,14 @@ struct CorridorBox {
 };
 
 struct PhaseSpec {
-	std::string mode;
+	hylo_mode mode = HYLO_MODE_NONE;
 	int segments = 20;
 	double T_guess = 0;                       // [s]; 0: guess path length / typical speed
 	std::vector<std::vector<double>> guess;   // full states the initial guess runs through (>= 2)
 	// The guess states lie uniformly in time (a solution's knots and
 	// midpoints), with a corridor too; else, with one, by arc length.
 	bool guess_timed = false;
-	// Bounds of the first and last knot's state (state_dim each; empty: the
+	// Bounds of the first and last knot's state (the record's nx each; empty: the
 	// mode's bounds). Equal bounds fix a component.
 	std::vector<double> first_lo, first_hi, last_lo, last_hi;
 	// Empty: none. Else every knot and midpoint whose normalized time lies in

@@ -96,25 +96,25 @@ struct Stored {
 	std::vector<std::vector<double>> path;   // path_points full states (converged rows)
 };
 
-std::vector<std::string> sidecar_columns(const std::string &mode, int points)
+std::vector<std::string> sidecar_columns(hylo_mode mode, int points)
 {
 	std::vector<std::string> c = {"index", "cost_j", "T_s", "converged", "status", "iterations",
 				      "segments", "replay_error", "replay_cost_j"};
 	for (int p = 0; p < points; p++)
-		for (int k = 0; k < state_dim(mode); k++)
+		for (int k = 0; k < mode_desc(mode).nx; k++)
 			c.push_back("p" + std::to_string(p) + "_x" + std::to_string(k));
 	return c;
 }
 
 // Sample i's sidecar line from its pair and solution: the result columns
 // of its dataset row, then the path.
-std::string solution_line(const RobotParams &robot, const std::string &mode, int points, uint64_t i,
+std::string solution_line(const RobotParams &robot, hylo_mode mode, int points, uint64_t i,
 			  const double *a, const double *b, const Solution &s)
 {
 	std::vector<std::string> f = csv_fields(csv_row(mode, i, a, b, s));
 	std::vector<std::string> out = {std::to_string(i)};
 	out.insert(out.end(), f.end() - 8, f.end());
-	const size_t nx = static_cast<size_t>(state_dim(mode));
+	const size_t nx = static_cast<size_t>(mode_desc(mode).nx);
 	std::vector<std::vector<double>> path;
 	if (s.converged)
 		path = transplanted_guess(s.traj, s.T, full_state(mode, robot, a), full_state(mode, robot, b), points).path;
@@ -127,7 +127,7 @@ std::string solution_line(const RobotParams &robot, const std::string &mode, int
 // Sample i's sidecar line: the current solver's result and its path.
 std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uint64_t i)
 {
-	const std::string &mode = opt.gen.mode;
+	const hylo_mode mode = opt.gen.mode;
 	double a[6] = {0}, b[6] = {0};
 	draw_pair(robot.mode(mode), opt.gen.seed, i, a, b, opt.gen.draws);
 	Solution s;
@@ -140,11 +140,11 @@ std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uin
 	return solution_line(robot, mode, opt.path_points, i, a, b, s);
 }
 
-Stored parse_sidecar_line(const std::string &mode, const std::string &line, uint64_t i, int points,
+Stored parse_sidecar_line(hylo_mode mode, const std::string &line, uint64_t i, int points,
 			  const std::string &where)
 {
 	std::vector<std::string> f = csv_fields(line);
-	const size_t nx = static_cast<size_t>(state_dim(mode));
+	const size_t nx = static_cast<size_t>(mode_desc(mode).nx);
 	if (f.size() != 9 + nx * static_cast<size_t>(points) || f[0] != std::to_string(i))
 		throw std::runtime_error(where + ": not the sidecar row of sample " + std::to_string(i));
 	Stored st;
@@ -338,7 +338,7 @@ bool contains_lines(const std::string &meta, const std::string &lines)
 
 std::string solutions_path(const GenOptions &opt)
 {
-	return opt.out_dir + "/" + opt.mode + ".solutions.csv";
+	return opt.out_dir + "/" + hylo_mode_str(opt.mode) + ".solutions.csv";
 }
 
 GenSummary generate_with_solutions(const RobotParams &robot, const RepairOptions &opt)
@@ -365,7 +365,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	auto t0 = std::chrono::steady_clock::now();
 	RepairOptions opt = ro;
 	opt.gen.shard = opt.gen.shards = 1;
-	const std::string &mode = opt.gen.mode;
+	const hylo_mode mode = opt.gen.mode;
 	const uint64_t n = opt.gen.samples;
 	if (opt.neighbours < 1 || opt.path_points < 2)
 		throw std::invalid_argument("repair needs at least one neighbour and two path points");
@@ -387,13 +387,13 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	std::vector<std::string> lines = lines_of(input);
 	const std::string header = join(csv_columns(mode), ",");
 	if (lines.empty() || lines[0] != header)
-		throw std::invalid_argument(sum.path + ": line 1 is not the header of a " + mode + " dataset");
+		throw std::invalid_argument(sum.path + ": line 1 is not the header of a " + hylo_mode_str(mode) + " dataset");
 	if (lines.size() < n + 1)
 		throw std::invalid_argument("repair: " + sum.path + " has " + std::to_string(lines.size() - 1) +
 					    " rows, fewer than the " + std::to_string(n) + " asked for");
 	// The rows must be this stream's samples.
 	const size_t ix = csv_column(mode, "x1_0"), ic = csv_column(mode, "cost_j");
-	const int d = sampled_dim(mode);
+	const int d = mode_desc(mode).xs_dim;
 	std::vector<std::vector<double>> coords(n);
 	std::vector<Solution> stored(n);
 	for (uint64_t i = 0; i < n; i++) {
@@ -482,7 +482,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			std::vector<Guess> guesses;
 			for (uint64_t j : near[i]) {
 				Trajectory tr;
-				tr.nx = state_dim(mode);
+				tr.nx = mode_desc(mode).nx;
 				const auto &path = sol[j].path;
 				for (size_t p = 0; p < path.size(); p++) {
 					tr.t.push_back(sol[j].s.T * static_cast<double>(p) / static_cast<double>(path.size() - 1));

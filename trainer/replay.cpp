@@ -169,7 +169,7 @@ std::string replay_verdict(const Solution &s)
 	return c.check + ": " + buf;
 }
 
-void replay(const std::string &mode, const RobotParams &robot, Solution &s, double state_tol)
+void replay(hylo_mode mode, const RobotParams &robot, Solution &s, double state_tol)
 {
 	const ModeParams &p = robot.mode(mode);
 	with_model(p, robot.g, [&](const auto &model) { replay_model(model, s, state_tol); });

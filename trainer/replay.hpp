@@ -15,7 +15,7 @@ namespace hylo::trainer {
 // Re-integrates a solution's control with CVODE (input interpolated as the
 // transcription does: linear between knots, through the midpoint); fills
 // replay_cost and replay_error. Exposed for tests (a corrupted control).
-void replay(const std::string &mode, const RobotParams &robot, Solution &s,
+void replay(hylo_mode mode, const RobotParams &robot, Solution &s,
 	    double state_tol = kReplayStateTol);
 
 // Why a replayed solution was rejected ("end state: replayed end state off by

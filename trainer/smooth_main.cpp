@@ -121,7 +121,7 @@ std::vector<Waypoint> waypoints_of(const hylo::plan_t &p)
 	std::vector<Waypoint> wps;
 	for (int i = 0; i < p.n_waypoints; i++) {
 		Waypoint w;
-		w.mode = p.mode[static_cast<size_t>(i)];
+		w.mode = static_cast<hylo_mode>(p.mode[static_cast<size_t>(i)]);   // goal_t numbers; smoothing_problem checks them
 		for (int k = 0; k < 6; k++)
 			w.state[k] = p.state[static_cast<size_t>(i)][static_cast<size_t>(k)];
 		w.guard = p.guard[static_cast<size_t>(i)] != 0;
@@ -143,10 +143,13 @@ std::string sequence_of(const std::vector<std::string> &modes)
 	return seq;
 }
 
-std::string sequence_of(const std::vector<int8_t> &modes)
+// Of modes as numbered in goal_t (MODE_*) and onboard (hylo_mode): a plan's
+// (int8_t) or a smoothed trajectory's phases.
+template <class Mode>
+std::string sequence_of(const std::vector<Mode> &modes)
 {
 	std::vector<std::string> names;
-	for (int8_t m : modes)
+	for (Mode m : modes)
 		names.push_back(mode_name(m));
 	return sequence_of(names);
 }
@@ -279,7 +282,7 @@ private:
 
 	TakeoffLanding switch_costs(const std::string &name, const RobotParams &r)
 	{
-		if (!r.modes.count("flight"))
+		if (!r.has(HYLO_MODE_FLIGHT))
 			return {};
 		auto it = costs_.find(name);
 		if (it == costs_.end())
@@ -337,7 +340,7 @@ private:
 		double t0 = 0;
 		for (size_t k = 0; k < s.phases.size(); k++) {
 			const Solution &ph = s.phases[k];
-			int8_t mode = static_cast<int8_t>(mode_number(s.modes[k]));
+			int8_t mode = static_cast<int8_t>(s.modes[k]);
 			for (size_t i = 0; i < ph.traj.t.size(); i++) {
 				std::vector<double> x(16, 0.0), u(4, 0.0);
 				for (int j = 0; j < ph.traj.nx; j++)

@@ -96,15 +96,15 @@ bool around_solution(MultiPhaseProblem &q, const MultiPhaseSolution &s, const Co
 		for (size_t i = 0; i < n; i++) {
 			const double *x = &tr.x[i * nx];
 			ps.guess.emplace_back(x, x + nx);
-			path.push_back({x[0], x[1], ps.mode == "flight" ? x[2] : 0.0});
+			path.push_back({x[0], x[1], mode_desc(ps.mode).air ? x[2] : 0.0});
 			times.push_back(std::min(1.0, std::max(0.0, tr.t[i] / s.phases[k].T)));
 		}
 		ps.guess_timed = true;
 		ps.T_guess = s.phases[k].T;
 		ps.segments = s.phases[k].segments;
-		if (ps.mode != "flight" || ps.corridor.empty())
+		if (!mode_desc(ps.mode).air || ps.corridor.empty())
 			continue;
-		Corridor c = build_corridor("flight", path, maps);
+		Corridor c = build_corridor(ps.mode, path, maps);
 		if (!c.notes.empty() || !c.first_box || !c.last_box)
 			continue;   // keep the old boxes rather than get less clearance
 		for (CorridorBox &b : c.boxes) {

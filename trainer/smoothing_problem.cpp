@@ -12,8 +12,8 @@ namespace hylo::trainer {
 
 std::vector<double> sampled(const Waypoint &w)
 {
-	int n = sampled_dim(mode_name(w.mode));
-	return std::vector<double>(w.state, w.state + n);
+	const hylo_mode_desc *d = hylo_mode_describe(w.mode);
+	return std::vector<double>(w.state, w.state + (d ? d->xs_dim : 0));
 }
 
 std::unique_ptr<CorridorMaps> corridor_maps(const RobotParams &robot, const TerrainGrid &map,
@@ -62,12 +62,12 @@ void check_waypoints(const RobotParams &robot, const std::vector<Waypoint> &plan
 	if (plan.size() < 2)
 		throw std::invalid_argument("a plan needs at least two waypoints to smooth");
 	for (size_t i = 0; i < plan.size(); i++) {
-		std::string m = mode_name(plan[i].mode);
-		if (m.empty() || !robot.modes.count(m))
+		const hylo_mode_desc *d = hylo_mode_describe(plan[i].mode);
+		if (!d || !robot.has(plan[i].mode))
 			throw std::invalid_argument("waypoint " + std::to_string(i) + " has mode " +
-						    std::to_string(plan[i].mode) + ", which robot " + robot.robot +
-						    " does not have");
-		for (int k = 0; k < sampled_dim(m); k++)
+						    std::to_string(static_cast<int>(plan[i].mode)) + ", which robot " +
+						    robot.robot + " does not have");
+		for (int k = 0; k < d->xs_dim; k++)
 			if (!std::isfinite(plan[i].state[k]))
 				throw std::invalid_argument("waypoint " + std::to_string(i) + " has a non-finite state");
 	}
@@ -76,14 +76,14 @@ void check_waypoints(const RobotParams &robot, const std::vector<Waypoint> &plan
 // Waypoints first..last of a plan, all in one mode.
 struct Run {
 	size_t first = 0, last = 0;
-	std::string mode;
+	hylo_mode mode;
 	bool single() const { return first == last; }
 };
 
 // The plan's runs of one mode; a switch is a guard pair at one place.
 std::vector<Run> mode_runs(const std::vector<Waypoint> &plan)
 {
-	std::vector<Run> runs{{0, 0, mode_name(plan[0].mode)}};
+	std::vector<Run> runs{{0, 0, plan[0].mode}};
 	for (size_t i = 1; i < plan.size(); i++) {
 		if (plan[i].mode == plan[i - 1].mode) {
 			runs.back().last = i;
@@ -92,7 +92,7 @@ std::vector<Run> mode_runs(const std::vector<Waypoint> &plan)
 		if (!plan[i - 1].guard || !plan[i].guard || !same_place(plan[i - 1], plan[i]))
 			throw std::invalid_argument("waypoints " + std::to_string(i - 1) + " and " + std::to_string(i) +
 						    " switch mode without a guard pair at one place");
-		runs.push_back({i, i, mode_name(plan[i].mode)});
+		runs.push_back({i, i, plan[i].mode});
 	}
 	return runs;
 }
@@ -128,7 +128,7 @@ std::vector<Piece> cut_run(const std::vector<Waypoint> &plan, const Run &r, cons
 	std::vector<Piece> pieces{{sampled(plan[r.first])}};
 	for (size_t i = r.first + 1; i <= r.last; i++) {
 		std::vector<double> a = sampled(plan[i - 1]), b = sampled(plan[i]);
-		if (r.mode == "flight")
+		if (mode_desc(r.mode).air)   // flights are cut at the walls they cross
 			for (const WallCrossing &c : wall_crossings(map, a.data(), b.data())) {
 				std::vector<double> x(6);
 				for (int j = 0; j < 6; j++)
@@ -165,7 +165,7 @@ double flight_time_guess(const Piece &xs)
 
 // The phase of mode through the states xs: its guess runs through them, its
 // segments per edge of the plan, its end knots within the mode's bounds.
-PhaseSpec phase_through(const std::string &mode, const RobotParams &robot, const Piece &xs, const SmoothOptions &opt)
+PhaseSpec phase_through(hylo_mode mode, const RobotParams &robot, const Piece &xs, const SmoothOptions &opt)
 {
 	PhaseSpec s;
 	s.mode = mode;
@@ -175,7 +175,7 @@ PhaseSpec phase_through(const std::string &mode, const RobotParams &robot, const
 		s.guess.push_back(s.guess[0]);
 	int edges = static_cast<int>(xs.size()) - 1;
 	s.segments = std::min(opt.max_segments, std::max(opt.min_segments, opt.segments_per_edge * edges));
-	if (mode == "flight")
+	if (mode_desc(mode).air)
 		s.T_guess = flight_time_guess(xs);
 	auto b = state_bounds(mode, robot);
 	s.first_lo = s.last_lo = b.first;
@@ -191,8 +191,8 @@ Layout lay_out_phases(const RobotParams &robot, const std::vector<Waypoint> &pla
 	l.runs = mode_runs(plan);
 	const std::vector<Run> &runs = l.runs;
 	const size_t R = runs.size();
-	l.takeoff_first = R > 1 && runs[0].single() && runs[0].mode == "ground" && runs[1].mode == "flight";
-	l.landing_last = R > 1 && runs[R - 1].single() && runs[R - 1].mode == "ground" && runs[R - 2].mode == "flight";
+	l.takeoff_first = R > 1 && runs[0].single() && runs[0].mode == HYLO_MODE_GROUND && runs[1].mode == HYLO_MODE_FLIGHT;
+	l.landing_last = R > 1 && runs[R - 1].single() && runs[R - 1].mode == HYLO_MODE_GROUND && runs[R - 2].mode == HYLO_MODE_FLIGHT;
 	l.first_phase.resize(R);
 	l.last_phase.resize(R);
 	for (size_t k = 0; k < R; k++) {
@@ -208,9 +208,11 @@ Layout lay_out_phases(const RobotParams &robot, const std::vector<Waypoint> &pla
 	return l;
 }
 
-bool has_corridor(const std::string &mode)
+// Modes that move in the map's work space (not a phase plane) have corridors.
+bool has_corridor(hylo_mode mode)
 {
-	return mode == "ground" || mode == "marine" || mode == "flight";
+	const hylo_mode_desc &d = mode_desc(mode);
+	return d.planar || d.air;
 }
 
 // Each phase's corridor along its guess path (notes in the problem's notes),
@@ -224,12 +226,12 @@ void add_corridors(Layout &l, const CorridorMaps &maps)
 			continue;
 		std::vector<std::array<double, 3>> path;
 		for (const auto &x : s.guess)
-			path.push_back({x[0], x[1], s.mode == "flight" ? x[2] : 0.0});
+			path.push_back({x[0], x[1], mode_desc(s.mode).air ? x[2] : 0.0});
 		Corridor c = build_corridor(s.mode, path, maps);
 		s.corridor = std::move(c.boxes);
 		l.boxed[k] = {c.first_box, c.last_box};
 		for (const std::string &n : c.notes)
-			p.notes.push_back("phase " + std::to_string(k) + " (" + s.mode + ") corridor: " + n);
+			p.notes.push_back("phase " + std::to_string(k) + " (" + hylo_mode_str(s.mode) + ") corridor: " + n);
 	}
 }
 
@@ -240,7 +242,7 @@ void hold_ends(Layout &l, const RobotParams &robot, const std::vector<Waypoint> 
 {
 	auto hover_above = [&](const Waypoint &w) {
 		double xs[6] = {w.state[0], w.state[1], height_at(map, w.state[0], w.state[1]) + 1, 0, 0, 0};
-		return full_state("flight", robot, xs);
+		return full_state(HYLO_MODE_FLIGHT, robot, xs);
 	};
 	PhaseSpec &head = l.p.phases.front(), &tail = l.p.phases.back();
 	head.first_lo = head.first_hi = l.takeoff_first ? hover_above(plan.front()) : head.guess.front();
@@ -264,10 +266,10 @@ SwitchGuard switch_guard(Layout &l, size_t k, const std::vector<Waypoint> &plan,
 			 const SmoothOptions &opt, const CorridorMaps *maps)
 {
 	const Waypoint &g = plan[l.runs[k].last];
-	const std::string &a = l.runs[k].mode, &b = l.runs[k + 1].mode;
+	const hylo_mode a = l.runs[k].mode, b = l.runs[k + 1].mode;
 	const size_t ka = l.last_phase[k], kb = l.first_phase[k + 1];
 	SwitchGuard guard;
-	if ((a == "ground" && b == "marine") || (a == "marine" && b == "ground")) {
+	if ((a == HYLO_MODE_GROUND && b == HYLO_MODE_MARINE) || (a == HYLO_MODE_MARINE && b == HYLO_MODE_GROUND)) {
 		bool boxes = l.boxed[ka][1] && l.boxed[kb][0] &&
 			     shore_from_boxes(l.p.phases[ka].corridor.back(), l.p.phases[kb].corridor.front(), g.state[0],
 					      g.state[1], opt.guard_half_length_m, guard);
@@ -278,7 +280,7 @@ SwitchGuard switch_guard(Layout &l, size_t k, const std::vector<Waypoint> &plan,
 						    ": the corridors do not meet at the shore; the fitted shoreline instead");
 		}
 	} else {   // takeoff or landing: where the robot is on the ground
-		const Waypoint &ground = a == "ground" ? g : plan[l.runs[k + 1].first];
+		const Waypoint &ground = a == HYLO_MODE_GROUND ? g : plan[l.runs[k + 1].first];
 		guard = clear_platform(map, ground.state[0], ground.state[1], opt.guard_half_length_m, maps, l.p.notes);
 	}
 	return guard;
@@ -324,7 +326,8 @@ std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan)
 		while (i1 + 1 < plan.size() && plan[i1 + 1].mode == plan[i0].mode)
 			i1++;
 		const Waypoint &a = plan[i0], &b = plan[i1];
-		bool flight = mode_name(a.mode) == "flight";
+		const hylo_mode_desc *d = hylo_mode_describe(a.mode);   // unchecked plans too
+		const bool flight = d && d->air;
 		int np = flight ? 3 : 2;
 		for (size_t i = i0 + 1; i < i1; i++) {
 			double f = static_cast<double>(i - i0) / static_cast<double>(i1 - i0);

@@ -33,7 +33,7 @@
 namespace hylo::trainer {
 
 struct Waypoint {
-	int mode = 0;                  // goal_t MODE_*
+	hylo_mode mode = HYLO_MODE_NONE;   // numbered as goal_t MODE_*
 	double state[6] = {};          // sampled coordinates (docs/models.md section 7)
 	bool guard = false;
 	// The smoothed trajectory must pass through this waypoint's position

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "hylo/types.h"
+
 namespace hylo::trainer {
 
 // Tolerances a replay must meet (docs/models.md section 1): the end state within
@@ -114,7 +116,7 @@ struct MultiPhaseSolution {
 	std::string rejection;
 	// The cheapest solution Ipopt reached whose replay failed [J] (infinity: none).
 	double rejected_cost = std::numeric_limits<double>::infinity();
-	std::vector<std::string> modes;
+	std::vector<hylo_mode> modes;
 	std::vector<Solution> phases;  // per phase: cost, T, trajectory (t from 0), replay
 	double solve_seconds = 0;
 	// What the problem's builder could not give as asked (the smoother: a

@@ -238,13 +238,13 @@ private:
 	// Replays phase k's solution ph; if it fails and note_rejection, says why.
 	bool replay_phase(const Coarse &c, size_t k, Solution &ph, bool note_rejection)
 	{
-		const std::string &mode = c.p.modes[k];
+		const hylo_mode mode = c.p.modes[k];
 		replay(mode, robot_, ph, opt_.replay_state_tol);
 		if (opt_.debug)
-			std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g: %s\n", mode.c_str(),
+			std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g: %s\n", hylo_mode_str(mode),
 				     ph.replay_error, ph.replay_cost, ph.cost, replay_verdict(ph).c_str());
 		if (!ph.replay_ok && note_rejection)
-			rejection_ = "phase " + std::to_string(k) + " (" + mode + ", " +
+			rejection_ = "phase " + std::to_string(k) + " (" + hylo_mode_str(mode) + ", " +
 				     std::to_string(c.p.setups[k].segments) + " segments): " + replay_verdict(ph);
 		return ph.replay_ok;
 	}

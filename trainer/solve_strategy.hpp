@@ -23,7 +23,7 @@ namespace hylo::trainer::internal {
 // their setups and the rows by knot reference (resolved per mesh, since
 // offsets change).
 struct Stacked {
-	std::vector<std::string> modes;
+	std::vector<hylo_mode> modes;
 	std::vector<ModeInfo> info;
 	std::vector<PhaseSetup> setups;
 	std::vector<LinearRow> rows;

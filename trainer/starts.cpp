@@ -50,12 +50,12 @@ std::vector<Start> guess_starts(const Bounds &bd, const std::vector<Guess> &gues
 	return starts;
 }
 
-void check_guesses(const std::string &mode, const std::vector<Guess> &guesses, const std::vector<double> &a,
+void check_guesses(hylo_mode mode, const std::vector<Guess> &guesses, const std::vector<double> &a,
 		   const std::vector<double> &b)
 {
 	for (size_t g = 0; g < guesses.size(); g++) {
 		const auto &path = guesses[g].path;
-		std::string where = "guess " + std::to_string(g) + " of a " + mode + " BVP: ";
+		std::string where = "guess " + std::to_string(g) + " of a " + hylo_mode_str(mode) + " BVP: ";
 		if (path.size() < 2)
 			throw std::invalid_argument(where + "its path needs at least two states");
 		for (const auto &x : path)

@@ -44,7 +44,7 @@ std::vector<Start> guess_starts(const Bounds &bd, const std::vector<Guess> &gues
 
 // Throws std::invalid_argument naming the guess unless each runs from a to
 // b (to 1e-9) through states of a's size, with a positive finite duration.
-void check_guesses(const std::string &mode, const std::vector<Guess> &guesses, const std::vector<double> &a,
+void check_guesses(hylo_mode mode, const std::vector<Guess> &guesses, const std::vector<double> &a,
 		   const std::vector<double> &b);
 
 // A multi-phase problem's starts: every phase's T_guess times each scale,

@@ -17,13 +17,13 @@
 namespace hylo::trainer {
 namespace {
 
-// The record of the mode named mode (hylo/modes.h: its enum value and the
-// constant's name, c_name, that a header's _MODE macro writes).
-const hylo_mode_desc &mode_enum(const std::string &mode)
+// The record of mode (hylo/modes.h: its name and the constant's name,
+// c_name, that a header's _MODE macro writes).
+const hylo_mode_desc &mode_record(hylo_mode mode)
 {
-	const hylo_mode_desc *d = hylo_mode_describe(hylo_mode_parse(mode.c_str()));
+	const hylo_mode_desc *d = hylo_mode_describe(mode);
 	if (!d)
-		throw std::invalid_argument("svr export: unknown mode '" + mode + "'");
+		throw std::invalid_argument("svr export: unknown mode " + std::to_string(static_cast<int>(mode)));
 	return *d;
 }
 
@@ -121,9 +121,9 @@ void check(const SvrExport &m)
 	if (!is_identifier(m.robot, false))
 		throw std::invalid_argument("svr export: robot name '" + m.robot +
 					    "' is not a lower-case C identifier");
-	const unsigned nf = hylo_feature_count(mode_enum(m.mode).mode);
+	const unsigned nf = hylo_feature_count(mode_record(m.mode).mode);
 	if (static_cast<unsigned>(m.n_features) != nf)
-		throw std::invalid_argument("svr export: mode " + m.mode + " has " + std::to_string(nf) +
+		throw std::invalid_argument(std::string("svr export: mode ") + hylo_mode_str(m.mode) + " has " + std::to_string(nf) +
 					    " features, the model " + std::to_string(m.n_features));
 	check_arrays(m.n_features, m.sv, m.coef, m.feature_offset, m.feature_scale, m.gamma, m.rho,
 		     "cost model");
@@ -154,9 +154,9 @@ void check(const SvrExport &m)
 					    "speed_min_mps <= speed_max_mps");
 	if (m.envelope) {
 		const EnvelopeExport &e = *m.envelope;
-		const hylo_feature_layout *layout = hylo_mode_layout(mode_enum(m.mode).mode);
+		const hylo_feature_layout *layout = hylo_mode_layout(m.mode);
 		if (!layout || !layout->envelope)
-			throw std::invalid_argument("svr export: mode " + m.mode + " has no envelope");
+			throw std::invalid_argument(std::string("svr export: mode ") + hylo_mode_str(m.mode) + " has no envelope");
 		if (e.n_d == 0 || e.n_z == 0 || e.n_v == 0)
 			throw std::invalid_argument("svr export: envelope cell counts must be >= 1");
 		const uint64_t n = static_cast<uint64_t>(e.n_d) * e.n_z * e.n_v * e.n_v;
@@ -270,7 +270,7 @@ std::string format_double(double v)
 std::string svr_header_text(const SvrExport &m)
 {
 	check(m);
-	const std::string name = m.robot + "_" + m.mode;
+	const std::string name = m.robot + "_" + mode_record(m.mode).name;
 	const std::string id = "hylo_model_" + name;
 	const std::string mac = "HYLO_MODEL_" + upper(name);
 	std::string prov;
@@ -295,7 +295,7 @@ std::string svr_header_text(const SvrExport &m)
 	       "; this hylo reads another (HYLO_MODEL_FORMAT_VERSION in hylo/svr.h): use a matching hylo or "
 	       "regenerate the model\"\n";
 	out += "#endif\n";
-	out += "#define " + mac + "_MODE " + mode_enum(m.mode).c_name + "\n";
+	out += "#define " + mac + "_MODE " + mode_record(m.mode).c_name + "\n";
 	out += "#define " + mac + "_N_SV " + std::to_string(m.coef.size()) + "\n";
 	out += "#define " + mac + "_N_FEATURES " + std::to_string(m.n_features) + "\n";
 	for (const auto &c : m.constants)
@@ -516,13 +516,13 @@ const std::string &field(const std::map<std::string, std::string> &f, const std:
 SvrExport parse_svr_header(const std::string &text)
 {
 	const HeaderParts h = split_header(text);
-	std::string mode;
+	hylo_mode mode_id = HYLO_MODE_NONE;   // the header's _MODE macro: where its mode comes in
 	for (const auto &d : h.defines)
 		if (d.first.size() > 5 && d.first.compare(d.first.size() - 5, 5, "_MODE") == 0)
 			for (int k = HYLO_MODE_NONE + 1; k < HYLO_MODE_COUNT; k++)
 				if (d.second == hylo_mode_describe(static_cast<hylo_mode>(k))->c_name)
-					mode = hylo_mode_describe(static_cast<hylo_mode>(k))->name;
-	if (mode.empty())
+					mode_id = static_cast<hylo_mode>(k);
+	if (mode_id == HYLO_MODE_NONE)
 		throw std::invalid_argument("svr header: no HYLO_MODEL_<NAME>_MODE");
 	if (h.models.empty())
 		throw std::invalid_argument("svr header: no hylo_svr_model");
@@ -540,13 +540,14 @@ SvrExport parse_svr_header(const std::string &text)
 	const std::string id = h.models[0];   // the cost model; the classifier follows it
 	const auto &f = fields(h, id);
 	const std::string &qname = field(f, "name");
+	const std::string mode = hylo_mode_str(mode_id);
 	SvrExport m;
 	const std::string name = qname.size() >= 2 ? qname.substr(1, qname.size() - 2) : "";
 	if (name.size() <= mode.size() + 1 || name.compare(name.size() - mode.size() - 1, std::string::npos, "_" + mode) != 0)
 		throw std::invalid_argument("svr header: model name '" + name + "' does not end in _" + mode);
 	m.robot = name.substr(0, name.size() - mode.size() - 1);
-	m.mode = mode;
-	m.n_features = static_cast<int>(hylo_feature_count(mode_enum(mode).mode));
+	m.mode = mode_id;
+	m.n_features = static_cast<int>(hylo_feature_count(mode_id));
 	m.gamma = number(field(f, "gamma"));
 	m.rho = number(field(f, "rho"));
 	m.sv = numbers(h, id + "_sv");

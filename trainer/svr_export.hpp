@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "hylo/types.h"
+
 namespace hylo::trainer {
 
 // A named constant written as `#define HYLO_MODEL_<NAME>_<key> value`,
@@ -43,7 +45,7 @@ struct EnvelopeExport {
 // Everything the header holds. Field meanings: onboard/include/hylo/svr.h.
 struct SvrExport {
 	std::string robot;              // lower-case C identifier, e.g. "ambot"
-	std::string mode;               // its name (hylo/modes.h: "ground", ...)
+	hylo_mode mode = HYLO_MODE_NONE;   // the header names it twice (its _MODE macro, its name's end)
 	int n_features = 0;
 	double gamma = 0, rho = 0;
 	std::vector<double> sv;         // n_sv * n_features, standardized, row-major

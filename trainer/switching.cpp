@@ -67,8 +67,8 @@ void default_bounds(PhaseSpec &s, const RobotParams &robot)
 TakeoffLanding takeoff_landing(const RobotParams &robot, const SolveOptions &opt)
 {
 	double lo[6] = {0, 0, 0, 0, 0, 0}, hi[6] = {0, 0, 1, 0, 0, 0};
-	Solution up = solve_bvp("flight", robot, lo, hi, opt);
-	Solution down = solve_bvp("flight", robot, hi, lo, opt);
+	Solution up = solve_bvp(HYLO_MODE_FLIGHT, robot, lo, hi, opt);
+	Solution down = solve_bvp(HYLO_MODE_FLIGHT, robot, hi, lo, opt);
 	if (!up.converged || !down.converged)
 		throw std::runtime_error("the takeoff or landing optimization did not converge");
 	return {up.cost, down.cost};
@@ -82,35 +82,35 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 	PhaseSpec &a = p.phases[k], &b = p.phases[k + 1];
 	default_bounds(a, robot);
 	default_bounds(b, robot);
-	const std::string pair = a.mode + " -> " + b.mode;
-	if ((a.mode == "di_pos" && b.mode == "di_neg") || (a.mode == "di_neg" && b.mode == "di_pos")) {
+	const std::string pair = std::string(hylo_mode_str(a.mode)) + " -> " + hylo_mode_str(b.mode);
+	if ((a.mode == HYLO_MODE_DI_POS && b.mode == HYLO_MODE_DI_NEG) || (a.mode == HYLO_MODE_DI_NEG && b.mode == HYLO_MODE_DI_POS)) {
 		fix(a.last_lo, a.last_hi, 0, 0.0);
 		p.rows.push_back(carry(k, 0, 0));
 		p.rows.push_back(carry(k, 1, 1));
-	} else if ((a.mode == "ground" && b.mode == "marine") || (a.mode == "marine" && b.mode == "ground")) {
+	} else if ((a.mode == HYLO_MODE_GROUND && b.mode == HYLO_MODE_MARINE) || (a.mode == HYLO_MODE_MARINE && b.mode == HYLO_MODE_GROUND)) {
 		for (int i = 0; i < 6; i++)
 			p.rows.push_back(carry(k, i, i));
-		if (b.mode == "marine") {
+		if (b.mode == HYLO_MODE_MARINE) {
 			double xs[4] = {0, 0, 1, 0};   // phi_n is linear in vx: its slope
-			double slope = full_state("marine", robot, xs)[6];
+			double slope = full_state(HYLO_MODE_MARINE, robot, xs)[6];
 			p.rows.push_back(carry(k, 2, 6, slope));
 			p.rows.push_back(carry(k, 2, 7, slope));
 		}
 		on_guard(p, k, g);
-	} else if (a.mode == "ground" && b.mode == "flight") {
+	} else if (a.mode == HYLO_MODE_GROUND && b.mode == HYLO_MODE_FLIGHT) {
 		for (int i : {2, 3, 5})
 			fix(a.last_lo, a.last_hi, i, 0.0);
 		double xs[6] = {0, 0, g.height_m + 1, 0, 0, 0};
-		std::vector<double> hover = full_state("flight", robot, xs);
+		std::vector<double> hover = full_state(HYLO_MODE_FLIGHT, robot, xs);
 		for (int i = 2; i < 16; i++)
 			fix(b.first_lo, b.first_hi, i, hover[static_cast<size_t>(i)]);
 		p.rows.push_back(carry(k, 0, 0));
 		p.rows.push_back(carry(k, 1, 1));
 		on_guard(p, k, g);
 		p.switch_cost += costs.takeoff_j;
-	} else if (a.mode == "flight" && b.mode == "ground") {
+	} else if (a.mode == HYLO_MODE_FLIGHT && b.mode == HYLO_MODE_GROUND) {
 		double xs[6] = {0, 0, g.height_m + 1, 0, 0, 0};
-		std::vector<double> hover = full_state("flight", robot, xs);
+		std::vector<double> hover = full_state(HYLO_MODE_FLIGHT, robot, xs);
 		for (int i = 2; i < 16; i++)
 			fix(a.last_lo, a.last_hi, i, hover[static_cast<size_t>(i)]);
 		for (int i : {2, 3, 4, 5})
@@ -126,13 +126,13 @@ void join_phases(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const
 
 void join_gate(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const WallGate &g)
 {
-	if (k + 1 >= p.phases.size() || p.phases[k].mode != "flight" || p.phases[k + 1].mode != "flight")
+	if (k + 1 >= p.phases.size() || p.phases[k].mode != HYLO_MODE_FLIGHT || p.phases[k + 1].mode != HYLO_MODE_FLIGHT)
 		throw std::invalid_argument("join_gate: phases " + std::to_string(k) + " and " + std::to_string(k + 1) +
 					    " are not two flight phases");
 	PhaseSpec &a = p.phases[k];
 	default_bounds(a, robot);
 	default_bounds(p.phases[k + 1], robot);
-	for (int i = 0; i < state_dim("flight"); i++)
+	for (int i = 0; i < mode_desc(HYLO_MODE_FLIGHT).nx; i++)
 		p.rows.push_back(carry(k, i, i));
 	fix(a.last_lo, a.last_hi, g.axis == 0 ? 0 : 1, g.c);
 	a.last_lo[2] = std::max(a.last_lo[2], g.z_min);
@@ -146,7 +146,7 @@ void join_via(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const do
 	PhaseSpec &a = p.phases[k];
 	default_bounds(a, robot);
 	default_bounds(p.phases[k + 1], robot);
-	for (int i = 0; i < state_dim(a.mode); i++)
+	for (int i = 0; i < mode_desc(a.mode).nx; i++)
 		p.rows.push_back(carry(k, i, i));
 	const hylo_mode_desc &d = mode_desc(a.mode);   // position coordinates: 3 air, 2 planar, else 1
 	const int n = d.air ? 3 : d.planar ? 2 : 1;
@@ -154,7 +154,7 @@ void join_via(MultiPhaseProblem &p, size_t k, const RobotParams &robot, const do
 		fix(a.last_lo, a.last_hi, i, position[i]);
 }
 
-PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,
+PhaseSpec phase_between(hylo_mode mode, const RobotParams &robot, const double *xs0,
 			const double *xs1, const double *guess0, const double *guess1, int segments)
 {
 	PhaseSpec p;
@@ -172,7 +172,7 @@ PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const
 }
 
 namespace {
-const char *di_side(const double *x) { return x[0] > 0 ? "di_pos" : "di_neg"; }
+hylo_mode di_side(const double *x) { return x[0] > 0 ? HYLO_MODE_DI_POS : HYLO_MODE_DI_NEG; }
 }  // namespace
 
 MultiPhaseSolution di_two_phase(const RobotParams &di, const double *a, const double *b, double v_guess)

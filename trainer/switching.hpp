@@ -57,7 +57,7 @@ void join_via(MultiPhaseProblem &problem, size_t k, const RobotParams &robot, co
 
 // A phase of mode from sampled state xs0 to xs1 (either nullptr: left free
 // within the mode's bounds), its guess a straight line guess0 -> guess1.
-PhaseSpec phase_between(const std::string &mode, const RobotParams &robot, const double *xs0,
+PhaseSpec phase_between(hylo_mode mode, const RobotParams &robot, const double *xs0,
 			const double *xs1, const double *guess0, const double *guess1, int segments);
 
 // The hybrid double integrator a -> (0, v) -> b (a and b on opposite sides

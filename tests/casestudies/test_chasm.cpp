@@ -19,7 +19,6 @@
 #include "tools/casestudies/chasm.hpp"
 
 using namespace hylo::casestudies;
-using hylo::trainer::mode_number;
 using hylo::trainer::Waypoint;
 
 namespace {
@@ -55,7 +54,7 @@ std::string low_at_edges(const Profile &c, const std::vector<Waypoint> &p, const
 {
 	std::string low;
 	for (size_t i = 1; i < p.size(); i++) {
-		if (p[i].mode != mode_number("flight") || p[i - 1].mode != mode_number("flight"))
+		if (p[i].mode != HYLO_MODE_FLIGHT || p[i - 1].mode != HYLO_MODE_FLIGHT)
 			continue;
 		for (int k = 0; k <= 20; k++) {
 			const double x = p[i - 1].state[0] + (p[i].state[0] - p[i - 1].state[0]) * k / 20;
@@ -88,7 +87,7 @@ bool same_cells(const hylo::scene::Scene &a, const hylo::scene::Scene &b)
 std::string route_fault(const Profile &c, const Route &r, double lambda)
 {
 	const std::vector<Waypoint> p = sequence_plan(c, r, lambda);
-	const int G = mode_number("ground");
+	const hylo_mode G = HYLO_MODE_GROUND;
 	std::string want = "DF";   // a takeoff at the start is a ground waypoint too
 	for (size_t k = 0; k < r.landings.size(); k++)
 		want += "DF";
@@ -205,13 +204,13 @@ int main()
 		std::vector<Waypoint> p = sequence_plan(c50, seq, 0.0);
 		const Waypoint &a = p.front(), &b = p.back();
 		bool ok = letters(p) == (seq.front() == 'F' ? "D" : "") + seq + (seq.back() == 'F' ? "D" : "");
-		ok = ok && a.mode == mode_number("ground") && a.state[0] == 10 && a.state[2] == 0;
-		ok = ok && b.mode == mode_number("ground") && b.state[0] == 80 && b.state[2] == 0;
+		ok = ok && a.mode == HYLO_MODE_GROUND && a.state[0] == 10 && a.state[2] == 0;
+		ok = ok && b.mode == HYLO_MODE_GROUND && b.state[0] == 80 && b.state[2] == 0;
 		// Switch points (ground guards) between the ends: one per change of
 		// mode in seq, each a cell from a wall.
 		size_t at_walls = 0;
 		for (size_t i = 1; i + 1 < p.size(); i++)
-			if (p[i].guard && p[i].mode == mode_number("ground")) {
+			if (p[i].guard && p[i].mode == HYLO_MODE_GROUND) {
 				double x = p[i].state[0];
 				at_walls += std::fabs(x - 19.5) < 1e-12 || std::fabs(x - 20.5) < 1e-12 ||
 					    std::fabs(x - 69.5) < 1e-12 || std::fabs(x - 70.5) < 1e-12;
@@ -231,7 +230,7 @@ int main()
 	// not clear: the switch points move a cell further, into clear cells.
 	std::string at;
 	for (const Waypoint &w : sequence_plan(profile_of(s50, 0.44), "DFDFD", 0.0))
-		if (w.guard && w.mode == mode_number("ground"))
+		if (w.guard && w.mode == HYLO_MODE_GROUND)
 			at += std::to_string(static_cast<int>(std::lround(10 * w.state[0]))) + " ";
 	check(at == "190 210 690 710 ", "body and margin 0.44 m: DFDFD switches 1 m from the walls (19, 21, 69, 71 m)",
 	      "at (dm): " + at);

@@ -128,7 +128,7 @@ int main(int argc, char **argv)
 
 		hylo::trainer::SvrExport m;
 		m.robot = "testbot";
-		m.mode = "ground";
+		m.mode = HYLO_MODE_GROUND;
 		m.n_features = kF;
 		m.gamma = reg->param.gamma;
 		m.rho = reg->rho[0];

@@ -21,7 +21,7 @@ using namespace hylo::trainer;
 
 namespace {
 
-SvrExport small(const std::string &mode, int nf)
+SvrExport small(hylo_mode mode, int nf)
 {
 	SvrExport m;
 	m.robot = "testbot";
@@ -106,7 +106,7 @@ void round_trip(const SvrExport &m, const std::string &name)
 
 int main()
 {
-	SvrExport ground = small("ground", 8);
+	SvrExport ground = small(HYLO_MODE_GROUND, 8);
 	round_trip(ground, "a ground model comes back field for field");
 	ground.envelope = table(3, 1, 2);
 	ground.provenance.insert(ground.provenance.end() - 1, {"envelope", "3 x 1 x 2 cells, margin 0.001"});
@@ -124,7 +124,7 @@ int main()
 	turning.envelope->z_min = 0;
 	turning.envelope->z_step = 2 * 3.14159265358979323846 / 16;
 	round_trip(turning, "with an envelope of 16 turn cells over [0, 2 pi]");
-	SvrExport flight = small("flight", 9);
+	SvrExport flight = small(HYLO_MODE_FLIGHT, 9);
 	flight.constants = {{"TAKEOFF_J", 375.33, "ground rest -> hover 1 m above [J]"},
 			    {"LANDING_J", 385.6, "hover 1 m above -> ground rest [J]"}};
 	flight.envelope = table(2, 3, 3);
@@ -133,7 +133,7 @@ int main()
 	flight.state_min = {0, 0, 0, -8, -8, -0.25};
 	flight.state_max = {0, 0, 0, 8, 8, 1e-300};
 	round_trip(flight, "with its trained region (vx, vy, vz bounded)");
-	SvrExport di = small("di_neg", 4);
+	SvrExport di = small(HYLO_MODE_DI_NEG, 4);
 	di.robot = "di";
 	round_trip(di, "a double-integrator model (whose name repeats its mode's prefix)");
 

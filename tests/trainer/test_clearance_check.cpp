@@ -46,7 +46,7 @@ MultiPhaseSolution drive(const std::vector<std::pair<double, double>> &xy, doubl
 	}
 	ph.T = ph.traj.t.back();
 	s.phases.push_back(ph);
-	s.modes.push_back("ground");
+	s.modes.push_back(HYLO_MODE_GROUND);
 	return s;
 }
 
@@ -65,7 +65,7 @@ int main()
 	for (int i = 0; i <= 8; i++)
 		line.push_back({2 + 0.5 * i, 4.0});
 	ClearanceCheck c = check_clearance(drive(line, 1.0), g, body, margin);
-	check(c.safe && near(c.min_clearance_m, 0.65) && c.phase == 0 && c.mode == "ground",
+	check(c.safe && near(c.min_clearance_m, 0.65) && c.phase == 0 && c.mode == HYLO_MODE_GROUND,
 	      "a drive 1 m beside an obstacle: safe, clearance 0.65 m beyond a 0.35 m body", c.text());
 
 	// The same drive at y = 4.6: 0.05 m beyond the body, under the margin.
@@ -122,9 +122,9 @@ int main()
 	}
 	ph.T = 2;
 	f.phases.push_back(ph);
-	f.modes.push_back("flight");
+	f.modes.push_back(HYLO_MODE_FLIGHT);
 	c = check_clearance(f, w, 0.32, margin);
-	check(!c.safe && near(c.min_clearance_m, std::hypot(0.3, 0.2) - 0.32, 1e-6) && c.mode == "flight" &&
+	check(!c.safe && near(c.min_clearance_m, std::hypot(0.3, 0.2) - 0.32, 1e-6) && c.mode == HYLO_MODE_FLIGHT &&
 		      near(c.z_m, 1.2, 1e-6),
 	      "a flight 0.3 m beside and 0.2 m above a wall's top edge: 3-D clearance, not safe", c.text());
 	return tap_finish();

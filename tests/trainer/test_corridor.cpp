@@ -60,10 +60,10 @@ struct PointCheck {
 // A ground or marine position: in a cell of its class (closed squares), and
 // its distance to obstacles, wall edges (ground: adjacent ground cells
 // stepping more than max_step) and the map's edge.
-PointCheck planar_check(const TerrainGrid &m, const std::string &mode, double x, double y, double body)
+PointCheck planar_check(const TerrainGrid &m, hylo_mode mode, double x, double y, double body)
 {
 	const double res = m.resolution_m, X1 = m.origin_x_m + m.nx * res, Y1 = m.origin_y_m + m.ny * res;
-	const int8_t own = mode == "ground" ? 1 : 2;
+	const int8_t own = mode == HYLO_MODE_GROUND ? 1 : 2;
 	PointCheck c;
 	double d = std::min({x - m.origin_x_m, X1 - x, y - m.origin_y_m, Y1 - y});
 	c.inside = false;
@@ -75,7 +75,7 @@ PointCheck planar_check(const TerrainGrid &m, const std::string &mode, double x,
 				c.inside = true;
 			if (m.terrain[k] == 0)
 				d = std::min(d, to_rect(x, y, x0, x0 + res, y0, y0 + res));
-			if (mode != "ground" || m.terrain[k] != 1)
+			if (mode != HYLO_MODE_GROUND || m.terrain[k] != 1)
 				continue;
 			auto wall = [&](size_t j) {
 				return m.terrain[j] == 1 && std::fabs(m.height_m[j] - m.height_m[k]) > m.max_step_m;
@@ -120,11 +120,11 @@ std::string worst_point(const MultiPhaseSolution &s, const TerrainGrid &m, doubl
 		const Trajectory &tr = s.phases[k].traj;
 		for (size_t i = 0; i < tr.t.size(); i++) {
 			const double *x = &tr.x[i * static_cast<size_t>(tr.nx)];
-			PointCheck c = s.modes[k] == "flight" ? flight_check(m, x[0], x[1], x[2], body)
+			PointCheck c = s.modes[k] == HYLO_MODE_FLIGHT ? flight_check(m, x[0], x[1], x[2], body)
 							      : planar_check(m, s.modes[k], x[0], x[1], body);
-			std::string where = "phase " + std::to_string(k) + " (" + s.modes[k] + ") point " + std::to_string(i) +
+			std::string where = "phase " + std::to_string(k) + " (" + hylo_mode_str(s.modes[k]) + ") point " + std::to_string(i) +
 					    " at (" + fmt(x[0]) + ", " + fmt(x[1]) +
-					    (s.modes[k] == "flight" ? ", " + fmt(x[2]) : "") + ")";
+					    (s.modes[k] == HYLO_MODE_FLIGHT ? ", " + fmt(x[2]) : "") + ")";
 			if (!c.inside)
 				return where + " is outside its domain";
 			if (c.clearance < low) {
@@ -165,10 +165,10 @@ void l_bounds(const RobotParams &ambot)
 	for (int n : {5, 10, 20}) {
 		internal::PhaseSetup s;
 		s.segments = n;
-		auto b = state_bounds("ground", ambot);
+		auto b = state_bounds(HYLO_MODE_GROUND, ambot);
 		double a[4] = {0.5, 0.5, 0, 1.5708}, e[4] = {4.5, 4.5, 0, 0};
-		s.first_lo = s.first_hi = full_state("ground", ambot, a);
-		s.last_lo = s.last_hi = full_state("ground", ambot, e);
+		s.first_lo = s.first_hi = full_state(HYLO_MODE_GROUND, ambot, a);
+		s.last_lo = s.last_hi = full_state(HYLO_MODE_GROUND, ambot, e);
 		s.guess = {s.first_lo, s.last_lo};
 		s.corridor = kL;
 		internal::HsPhase<GroundModel> ph(GroundModel(ambot.mode("ground"), ambot.g), s);
@@ -200,8 +200,8 @@ void l_bounds(const RobotParams &ambot)
 void l_shaped_phase(const RobotParams &ambot)
 {
 	double a[4] = {0.5, 0.5, 0, 1.5708}, c[4] = {0.5, 4.5, 0, 0}, b[4] = {4.5, 4.5, 0, 0};
-	PhaseSpec s = phase_between("ground", ambot, a, b, a, b, 12);
-	s.guess = {full_state("ground", ambot, a), full_state("ground", ambot, c), full_state("ground", ambot, b)};
+	PhaseSpec s = phase_between(HYLO_MODE_GROUND, ambot, a, b, a, b, 12);
+	s.guess = {full_state(HYLO_MODE_GROUND, ambot, a), full_state(HYLO_MODE_GROUND, ambot, c), full_state(HYLO_MODE_GROUND, ambot, b)};
 	s.corridor = kL;
 	MultiPhaseProblem p;
 	p.phases = {s};
@@ -251,7 +251,7 @@ TerrainGrid staircase()
 Waypoint wp(const std::string &mode, double x, double y, double z_or_v, double theta, bool guard)
 {
 	Waypoint w;
-	w.mode = mode_number(mode);
+	w.mode = parse_mode(mode);
 	w.guard = guard;
 	w.state[0] = x;
 	w.state[1] = y;
@@ -274,8 +274,8 @@ void staircase_corridor(const RobotParams &ambot)
 	TerrainGrid m = staircase();
 	const double r = ambot.body_radius_m + 0.1;
 	CorridorMaps maps(m, r, 0.02);
-	Corridor g = build_corridor("ground", {{2, 2, 0}, {5, 5.5, 0}, {8, 8.5, 0}}, maps);
-	Corridor w = build_corridor("marine", {{8, 8.5, 0}, {13, 13, 0}}, maps);
+	Corridor g = build_corridor(HYLO_MODE_GROUND, {{2, 2, 0}, {5, 5.5, 0}, {8, 8.5, 0}}, maps);
+	Corridor w = build_corridor(HYLO_MODE_MARINE, {{8, 8.5, 0}, {13, 13, 0}}, maps);
 	const ClearanceMap &clear = *maps.levels().front();
 	bool ok = g.notes.empty() && w.notes.empty() && g.first_box && g.last_box && w.first_box && !g.boxes.empty();
 	std::string why = ok ? "" : "notes: " + (g.notes.empty() ? std::string() : g.notes[0]) +
@@ -284,7 +284,7 @@ void staircase_corridor(const RobotParams &ambot)
 		for (const CorridorBox &b : c->boxes)
 			for (int iy = static_cast<int>(b.lo[1]); ok && iy < static_cast<int>(b.hi[1]); iy++)
 				for (int ix = static_cast<int>(b.lo[0]); ok && ix < static_cast<int>(b.hi[0]); ix++)
-					if (!clear.clear(c == &g ? "ground" : "marine", ix, iy)) {
+					if (!clear.clear(c == &g ? HYLO_MODE_GROUND : HYLO_MODE_MARINE, ix, iy)) {
 						ok = false;
 						why = "cell (" + std::to_string(ix) + ", " + std::to_string(iy) + ") of a box is not clear";
 					}
@@ -318,14 +318,14 @@ void corner_pass(const RobotParams &ambot)
 	for (int ix = 27; ix <= 32; ix++)
 		m.terrain[static_cast<size_t>(13 * 60 + ix)] = 0;
 	CorridorMaps maps(m, ambot.body_radius_m + 0.1, 0.02);
-	Corridor g = build_corridor("ground", {{11.8912, 7.2921, 0}, {13.3401, 5.5821, 0}, {16.5834, 3.2932, 0}}, maps);
+	Corridor g = build_corridor(HYLO_MODE_GROUND, {{11.8912, 7.2921, 0}, {13.3401, 5.5821, 0}, {16.5834, 3.2932, 0}}, maps);
 	const ClearanceMap &clear = *maps.levels().front();
 	bool ok = g.notes.empty() && g.first_box && g.last_box && !g.boxes.empty();
 	std::string why = g.notes.empty() ? "" : g.notes[0];
 	for (const CorridorBox &b : g.boxes)
 		for (long iy = std::lround(b.lo[1] / 0.5); ok && iy < std::lround(b.hi[1] / 0.5); iy++)
 			for (long ix = std::lround(b.lo[0] / 0.5); ok && ix < std::lround(b.hi[0] / 0.5); ix++)
-				if (!clear.clear("ground", static_cast<int>(ix), static_cast<int>(iy))) {
+				if (!clear.clear(HYLO_MODE_GROUND, static_cast<int>(ix), static_cast<int>(iy))) {
 					ok = false;
 					why = "cell (" + std::to_string(ix) + ", " + std::to_string(iy) + ") of a box is not clear";
 				}
@@ -338,7 +338,7 @@ void too_wide()
 {
 	TerrainGrid m = staircase();
 	CorridorMaps maps(m, 3.0, 0.02);
-	Corridor g = build_corridor("ground", {{2, 2, 0}, {5, 5.5, 0}, {8, 8.5, 0}}, maps);
+	Corridor g = build_corridor(HYLO_MODE_GROUND, {{2, 2, 0}, {5, 5.5, 0}, {8, 8.5, 0}}, maps);
 	bool said = !g.notes.empty() && g.notes[0].find("not 3.02 m") != std::string::npos;
 	check(said && g.boxes.size() >= 1, "a clearance the map cannot give: the corridor's notes say where it gives less",
 	      g.notes.empty() ? "no note" : g.notes[0]);

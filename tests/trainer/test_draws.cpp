@@ -24,7 +24,7 @@ namespace {
 using namespace hylo::trainer;
 namespace fs = std::filesystem;
 
-bool refused(const std::string &mode, int draws)
+bool refused(hylo_mode mode, int draws)
 {
 	try {
 		draws_for(mode, draws);
@@ -52,7 +52,7 @@ int main()
 	std::ifstream f("trainer/datasets/ambot/ground.csv");
 	std::string line;
 	std::getline(f, line);
-	const size_t x1 = csv_column("ground", "x1_0");
+	const size_t x1 = csv_column(HYLO_MODE_GROUND, "x1_0");
 	int same = 0, rows = 0;
 	std::string why;
 	for (uint64_t i = 0; i < 50 && std::getline(f, line); i++, rows++) {
@@ -106,15 +106,15 @@ int main()
 	}
 
 	// Which draws a mode has.
-	check(draws_for("ground", 0) == 2 && draws_for("marine", 1) == 1 && draws_for("flight", 0) == 2 &&
-		      draws_for("di_neg", 0) == 1 && refused("ground", 3) && refused("flight", 1) &&
-		      refused("di_pos", 2),
+	check(draws_for(HYLO_MODE_GROUND, 0) == 2 && draws_for(HYLO_MODE_MARINE, 1) == 1 && draws_for(HYLO_MODE_FLIGHT, 0) == 2 &&
+		      draws_for(HYLO_MODE_DI_NEG, 0) == 1 && refused(HYLO_MODE_GROUND, 3) && refused(HYLO_MODE_FLIGHT, 1) &&
+		      refused(HYLO_MODE_DI_POS, 2),
 	      "draws: ground and marine 1 or 2 (newest 2), flight 2, double integrator 1; others refused");
 
 	// The meta: draw 2 recorded, draw 1 of ground without a line (as the
 	// committed metas), flight's line as before.
 	GenOptions o;
-	o.mode = "ground";
+	o.mode = HYLO_MODE_GROUND;
 	o.draws = 2;
 	const std::string m2 = internal::meta_text(ambot, o);
 	o.draws = 1;

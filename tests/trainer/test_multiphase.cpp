@@ -82,8 +82,8 @@ void derivative_tests(const RobotParams &ambot)
 	// in the inputs grows with T and swamps the finite differences.
 	double a[4] = {0.1, 0.2, 0.3, 0.4}, s[4] = {0.4, 0.5, 0.6, 0.45}, b[4] = {0.7, 0.8, 0.9, 0.5};
 	MultiPhaseProblem p;
-	p.phases = {phase_between("ground", ambot, a, nullptr, a, s, 3),
-		    phase_between("marine", ambot, nullptr, b, s, b, 3)};
+	p.phases = {phase_between(HYLO_MODE_GROUND, ambot, a, nullptr, a, s, 3),
+		    phase_between(HYLO_MODE_MARINE, ambot, nullptr, b, s, b, 3)};
 	join_phases(p, 0, ambot, SwitchGuard{0.4, -1.0, 0.4, 2.0, 0});
 	derivative_test(ambot, p, 1e-8, "ambot ground -> marine, joined");
 
@@ -95,13 +95,13 @@ void takeoff_landing_joins(const RobotParams &drivo)
 	double g0[4] = {0, 0, 0, 0}, g1[4] = {5, 0, 0, 0}, g3[4] = {20, 0, 0, 0};
 	double f1[6] = {5, 0, 7, 0, 0, 0}, f2[6] = {15, 0, 7, 0, 0, 0};
 	MultiPhaseProblem q;
-	q.phases = {phase_between("ground", drivo, g0, nullptr, g0, g1, 3),
-		    phase_between("flight", drivo, nullptr, nullptr, f1, f2, 3),
-		    phase_between("ground", drivo, nullptr, g3, g1, g3, 3)};
+	q.phases = {phase_between(HYLO_MODE_GROUND, drivo, g0, nullptr, g0, g1, 3),
+		    phase_between(HYLO_MODE_FLIGHT, drivo, nullptr, nullptr, f1, f2, 3),
+		    phase_between(HYLO_MODE_GROUND, drivo, nullptr, g3, g1, g3, 3)};
 	join_phases(q, 0, drivo, SwitchGuard{2, 0, 8, 0, 6}, TakeoffLanding{100, 40});
 	join_phases(q, 1, drivo, SwitchGuard{12, 0, 18, 0, 6}, TakeoffLanding{100, 40});
 	double hover_xs[6] = {0, 0, 7, 0, 0, 0};
-	std::vector<double> hover = full_state("flight", drivo, hover_xs);
+	std::vector<double> hover = full_state(HYLO_MODE_FLIGHT, drivo, hover_xs);
 	bool ok = q.switch_cost == 140;
 	const PhaseSpec &d1 = q.phases[0], &fl = q.phases[1], &d2 = q.phases[2];
 	for (int i : {2, 3, 5})   // at rest before takeoff and after landing
@@ -124,12 +124,12 @@ void shore_crossing(const RobotParams &ambot)
 	double a[4] = {0, 0, 0, 0}, b[4] = {8, 3, 0, 0};
 	double th = std::atan2(3.0, 8.0), s[4] = {4, 1.5, 0.4, th};
 	MultiPhaseProblem p;
-	p.phases = {phase_between("ground", ambot, a, nullptr, a, s, 20),
-		    phase_between("marine", ambot, nullptr, b, s, b, 20)};
+	p.phases = {phase_between(HYLO_MODE_GROUND, ambot, a, nullptr, a, s, 20),
+		    phase_between(HYLO_MODE_MARINE, ambot, nullptr, b, s, b, 20)};
 	join_phases(p, 0, ambot, SwitchGuard{4, -4, 4, 6, 0});
 	MultiPhaseSolution m = solve_multiphase(ambot, p, SolveOptions());
-	Solution g = solve_bvp("ground", ambot, a, s, SolveOptions());
-	Solution w = solve_bvp("marine", ambot, s, b, SolveOptions());
+	Solution g = solve_bvp(HYLO_MODE_GROUND, ambot, a, s, SolveOptions());
+	Solution w = solve_bvp(HYLO_MODE_MARINE, ambot, s, b, SolveOptions());
 	double fixed = g.cost + w.cost;
 	std::printf("# ambot shore crossing: free switch %.6g J (T %.3g s, %.2f s to solve), "
 		    "fixed switch %.6g J\n", m.cost, m.T, m.solve_seconds, fixed);
@@ -143,7 +143,7 @@ void shore_crossing(const RobotParams &ambot)
 	bool carried = m.converged;
 	for (int i = 0; carried && i < 6; i++)
 		carried = std::fabs(mx[static_cast<size_t>(i)] - gx[end + static_cast<size_t>(i)]) < 1e-6;
-	double phin = full_state("marine", ambot, s)[6] / s[2] * gx[end + 2];
+	double phin = full_state(HYLO_MODE_MARINE, ambot, s)[6] / s[2] * gx[end + 2];
 	carried = carried && std::fabs(mx[6] - phin) < 1e-6 && std::fabs(mx[7] - phin) < 1e-6;
 	check(on_shore && carried, "Ambot ground -> marine: the switch is on the shoreline and the reset "
 				  "carries the state (phi = phi_n(vx))");
@@ -155,12 +155,12 @@ void bad_problems(const RobotParams &di)
 {
 	double a[2] = {0.5, 0}, b[2] = {-0.5, 0};
 	MultiPhaseProblem p;
-	p.phases = {phase_between("di_pos", di, a, nullptr, a, a, 5),
-		    phase_between("di_pos", di, nullptr, b, a, a, 5)};
+	p.phases = {phase_between(HYLO_MODE_DI_POS, di, a, nullptr, a, a, 5),
+		    phase_between(HYLO_MODE_DI_POS, di, nullptr, b, a, a, 5)};
 	check_throws([&] { join_phases(p, 0, di, SwitchGuard{}); }, "di_pos -> di_pos",
 		     "a switch between two phases of one mode is refused");
 	MultiPhaseProblem q;
-	q.phases = {phase_between("di_pos", di, a, nullptr, a, a, 5)};
+	q.phases = {phase_between(HYLO_MODE_DI_POS, di, a, nullptr, a, a, 5)};
 	LinearRow r;
 	r.terms = {{KnotRef{3, true, 0}, 1.0}};
 	q.rows = {r};
@@ -175,21 +175,21 @@ void wall_gates(const RobotParams &drivo)
 	for (int iy = 0; iy < 4; iy++)
 		for (int ix = 0; ix < 8; ix++)
 			m.height_m[static_cast<size_t>(iy * 20 + ix)] = 6;
-	auto wp = [](int mode, double x, double z, bool guard) {
+	auto wp = [](hylo_mode mode, double x, double z, bool guard) {
 		Waypoint w;
 		w.mode = mode;
 		w.guard = guard;
 		w.state[0] = x;
 		w.state[1] = 2;
-		if (mode == mode_number("flight"))
+		if (mode == HYLO_MODE_FLIGHT)
 			w.state[2] = z;
 		return w;
 	};
-	const int G = mode_number("ground"), F = mode_number("flight");
+	const hylo_mode G = HYLO_MODE_GROUND, F = HYLO_MODE_FLIGHT;
 	std::vector<Waypoint> plan = {wp(G, 2, 0, false), wp(G, 6, 0, true),  wp(F, 6, 7, true),
 				      wp(F, 12, 1, true), wp(G, 12, 0, true), wp(G, 16, 0, false)};
 	MultiPhaseProblem p = smoothing_problem(drivo, plan, m, TakeoffLanding{100, 40});
-	bool ok = p.phases.size() == 4 && p.phases[1].mode == "flight" && p.phases[2].mode == "flight";
+	bool ok = p.phases.size() == 4 && p.phases[1].mode == HYLO_MODE_FLIGHT && p.phases[2].mode == HYLO_MODE_FLIGHT;
 	if (ok) {
 		const PhaseSpec &a = p.phases[1];
 		ok = a.last_lo[0] == 8 && a.last_hi[0] == 8 && a.last_lo[2] == 6.5 && a.guess.back()[2] >= 6.5;
@@ -224,7 +224,7 @@ void wall_gates(const RobotParams &drivo)
 	// phases, the flight starts and ends hovering 1 m above those points.
 	std::vector<Waypoint> hop = {wp(G, 2, 0, true), wp(F, 2, 7, true), wp(F, 12, 1, true), wp(G, 12, 0, true)};
 	MultiPhaseProblem q = smoothing_problem(drivo, hop, m, TakeoffLanding{100, 40});
-	ok = q.phases.size() == 2 && q.phases[0].mode == "flight" && q.phases[1].mode == "flight" &&
+	ok = q.phases.size() == 2 && q.phases[0].mode == HYLO_MODE_FLIGHT && q.phases[1].mode == HYLO_MODE_FLIGHT &&
 	     q.switch_cost == 140;
 	if (ok)
 		ok = q.phases[0].first_lo[0] == 2 && q.phases[0].first_hi[2] == 7 && q.phases[0].first_lo[5] == 0 &&
@@ -253,8 +253,8 @@ void wall_gates(const RobotParams &drivo)
 // path is cheaper and is chosen; a count budget of 1 smooths the first alone.
 void alternatives_choice(const RobotParams &di)
 {
-	const int N = mode_number("di_neg"), P = mode_number("di_pos");
-	auto w = [](int mode, double p, double v, bool guard) {
+	const hylo_mode N = HYLO_MODE_DI_NEG, P = HYLO_MODE_DI_POS;
+	auto w = [](hylo_mode mode, double p, double v, bool guard) {
 		Waypoint x;
 		x.mode = mode;
 		x.state[0] = p;

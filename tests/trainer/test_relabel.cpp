@@ -72,7 +72,7 @@ int main(int argc, char **argv)
 	fs::create_directories(dir);
 	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
 	GenOptions o;
-	o.mode = "ground";
+	o.mode = HYLO_MODE_GROUND;
 	o.draws = 1;   // the stream whose sample 6 is a goal behind
 	o.samples = 8;   // sample 6's goal is behind
 	o.jobs = 2;
@@ -99,7 +99,7 @@ int main(int argc, char **argv)
 		      slurp(line.out_dir + "/ground.csv.meta").find("starts:") == std::string::npos,
 	      "the meta tells the two labelers apart (starts: 3)");
 
-	std::vector<std::string> names = csv_columns("ground");
+	std::vector<std::string> names = csv_columns(HYLO_MODE_GROUND);
 	size_t cost = static_cast<size_t>(std::find(names.begin(), names.end(), "cost_j") - names.begin());
 	size_t conv = static_cast<size_t>(std::find(names.begin(), names.end(), "converged") - names.begin());
 	std::string la = slurp(line.out_dir + "/ground.csv");

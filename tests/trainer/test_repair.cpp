@@ -117,23 +117,23 @@ int main(int argc, char **argv)
 		SolveOptions o = training_solve_options();
 		SolveOptions line_opt = o;
 		line_opt.strategy_starts = false;
-		Solution line = solve_bvp("ground", ambot, a, b, line_opt);
+		Solution line = solve_bvp(HYLO_MODE_GROUND, ambot, a, b, line_opt);
 		// The neighbour solved from one start reversing towards its goal (its
 		// rear facing it), as planar_strategy_guesses makes it.
-		std::vector<double> fa = full_state("ground", ambot, a), fb = full_state("ground", ambot, bn);
+		std::vector<double> fa = full_state(HYLO_MODE_GROUND, ambot, a), fb = full_state(HYLO_MODE_GROUND, ambot, bn);
 		double bearing = std::atan2(bn[1], bn[0]) + 3.14159265358979323846;
 		double h = -0.14 + std::remainder(bearing + 0.14, 2 * 3.14159265358979323846);
 		double mid[4] = {0.5 * bn[0], 0.5 * bn[1], -0.6, h};
-		Solution none, nb = solve_bvp_guesses("ground", ambot, a, bn, o, {{6.0, {fa, full_state("ground", ambot, mid), fb}}}, none);
+		Solution none, nb = solve_bvp_guesses(HYLO_MODE_GROUND, ambot, a, bn, o, {{6.0, {fa, full_state(HYLO_MODE_GROUND, ambot, mid), fb}}}, none);
 		// Transplanted into sample 0 and solved from it alone.
-		Guess g = transplanted_guess(nb.traj, nb.T, fa, full_state("ground", ambot, b), 21);
-		Solution warm = solve_bvp_guesses("ground", ambot, a, b, o, {g}, none);
+		Guess g = transplanted_guess(nb.traj, nb.T, fa, full_state(HYLO_MODE_GROUND, ambot, b), 21);
+		Solution warm = solve_bvp_guesses(HYLO_MODE_GROUND, ambot, a, b, o, {g}, none);
 		std::printf("# ambot ground sample 0: straight lines %.4f J, neighbour %.4f J, warm-started %.4f J\n",
 			    line.cost, nb.cost, warm.cost);
 		// The two basins: about 98 J backing towards the goal, about 131 J
 		// driving forward and turning (straight lines, and the committed
 		// label 130.2 J).
-		check(g.path.size() == 21 && g.path.front() == fa && g.path.back() == full_state("ground", ambot, b),
+		check(g.path.size() == 21 && g.path.front() == fa && g.path.back() == full_state(HYLO_MODE_GROUND, ambot, b),
 		      "a transplanted path runs exactly from the row's start to its goal");
 		check(nb.converged && warm.converged && line.converged && warm.cost < 0.8 * line.cost && warm.cost < 100,
 		      "Ambot ground sample 0: a neighbour's solution leads into the basin below 100 J, the straight lines "
@@ -143,7 +143,7 @@ int main(int argc, char **argv)
 		try {
 			Guess bad = g;
 			bad.path.back()[0] += 0.5;
-			solve_bvp_guesses("ground", ambot, a, b, o, {bad}, none);
+			solve_bvp_guesses(HYLO_MODE_GROUND, ambot, a, b, o, {bad}, none);
 		} catch (const std::invalid_argument &e) {
 			threw = std::string(e.what()).find("does not run from the BVP's start to its goal") != std::string::npos;
 		}
@@ -155,7 +155,7 @@ int main(int argc, char **argv)
 	fs::remove_all(dir);
 	RobotParams di = load_robot("trainer/params/di.yaml");
 	GenOptions g;
-	g.mode = "di_neg";
+	g.mode = HYLO_MODE_DI_NEG;
 	g.samples = 16;
 	g.jobs = 2;
 	g.progress = false;
@@ -163,7 +163,7 @@ int main(int argc, char **argv)
 	generate(di, g);
 	const std::string csv = slurp(g.out_dir + "/di_neg.csv"), meta = slurp(g.out_dir + "/di_neg.csv.meta");
 	std::vector<std::string> rows = lines_of(csv);   // rows[i + 1] is sample i
-	const size_t ic = csv_column("di_neg", "cost_j"), iv = csv_column("di_neg", "converged");
+	const size_t ic = csv_column(HYLO_MODE_DI_NEG, "cost_j"), iv = csv_column(HYLO_MODE_DI_NEG, "converged");
 	// Three converged rows among the first 12: one made dearer, one cheaper
 	// than any solution, one removed (not converged).
 	std::vector<size_t> conv;

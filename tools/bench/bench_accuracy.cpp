@@ -154,8 +154,7 @@ void solve_all(std::vector<Edge> &edges, const std::map<std::string, RobotParams
 {
 	std::vector<std::string> res = fork_each(edges.size(), jobs, [&](size_t i) {
 		const Edge &e = edges[i];
-		const std::string mode = hylo_mode_str(e.mode);
-		Solution s = solve_bvp(mode, robots.at(robot_of[i]), e.a, e.b, training_solve_options());
+		Solution s = solve_bvp(e.mode, robots.at(robot_of[i]), e.a, e.b, training_solve_options());
 		char buf[64];
 		std::snprintf(buf, sizeof buf, "%d %.17g", s.converged ? 1 : 0, s.cost);
 		return std::string(buf);

@@ -20,7 +20,8 @@ namespace {
 using namespace hylo::trainer;
 
 struct Case {
-	const char *robot, *mode;
+	const char *robot;
+	hylo_mode mode;
 	std::vector<std::vector<double>> pairs;   // x1s then x2s, flattened
 };
 
@@ -41,7 +42,7 @@ int bare_solves(const std::vector<Case> &cases, const char *path)
 	std::fprintf(f, "[\n");
 	bool first = true;
 	for (const Case &c : cases) {
-		if (std::string(c.mode) == "flight")
+		if (c.mode == HYLO_MODE_FLIGHT)
 			continue;
 		RobotParams r = load_robot(robot_file(c.robot));
 		for (const auto &p : c.pairs) {
@@ -58,7 +59,7 @@ int bare_solves(const std::vector<Case> &cases, const char *path)
 				secs.push_back(s.solve_seconds);
 			}
 			std::fprintf(f, "%s {\"robot\": \"%s\", \"mode\": \"%s\", \"x1s\": [", first ? "" : ",\n",
-				     c.robot, c.mode);
+				     c.robot, hylo_mode_str(c.mode));
 			for (size_t k = 0; k < d; k++)
 				std::fprintf(f, "%s%.17g", k ? ", " : "", p[k]);
 			std::fprintf(f, "], \"x2s\": [");
@@ -88,10 +89,10 @@ int main(int argc, char **argv)
 		return 2;
 	}
 	const std::vector<Case> cases = {
-		{"di", "di_neg", {{-0.5, 0, -0.3, 0}, {-0.9, 0.3, -0.1, -0.2}, {-0.2, -0.5, -0.8, 0.1}, {-0.6, 0.2, -0.6, -0.2}, {-0.4, 0, -0.1, 0}}},
-		{"ambot", "ground", {{0, 0, 1, 0, 3, 0, 1, 0}, {0, 0, 0, 0, 3, 1, 0.5, 0.5}, {0, 0, 0.5, 0, 2, -2, 0.5, -1.5}, {0, 0, 0, 0, -2, 1, 0, 3.1}, {0, 0, 1, 0, 4, 1, 0.8, 0.2}}},
-		{"ambot", "marine", {{0, 0, 0.5, 0, 3, 1, 0.5, 0.5}, {0, 0, 0, 0, 2, 0, 0, 0}, {0, 0, 0.8, 0, 4, -1, 0.8, -0.3}, {0, 0, 0.3, 0, -1, 2, 0.3, 2.0}, {0, 0, 0.6, 0, 3, 0, 0.6, 0}}},
-		{"drivocopter", "flight", {{0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}, {0, 0, 1, 0, 0, 0, 3, 1, 1.5, 0, 0, 0}, {0, 0, 1, 2, 0, 0, 6, 2, 0, 4, 1, -1}, {0, 0, 1, 5, -1, 0, -2, 4, 3, 0, 0, 0}, {0, 0, 0, 6, 0, 0, 8, 0, 0, 6, 0, 0}}},
+		{"di", HYLO_MODE_DI_NEG, {{-0.5, 0, -0.3, 0}, {-0.9, 0.3, -0.1, -0.2}, {-0.2, -0.5, -0.8, 0.1}, {-0.6, 0.2, -0.6, -0.2}, {-0.4, 0, -0.1, 0}}},
+		{"ambot", HYLO_MODE_GROUND, {{0, 0, 1, 0, 3, 0, 1, 0}, {0, 0, 0, 0, 3, 1, 0.5, 0.5}, {0, 0, 0.5, 0, 2, -2, 0.5, -1.5}, {0, 0, 0, 0, -2, 1, 0, 3.1}, {0, 0, 1, 0, 4, 1, 0.8, 0.2}}},
+		{"ambot", HYLO_MODE_MARINE, {{0, 0, 0.5, 0, 3, 1, 0.5, 0.5}, {0, 0, 0, 0, 2, 0, 0, 0}, {0, 0, 0.8, 0, 4, -1, 0.8, -0.3}, {0, 0, 0.3, 0, -1, 2, 0.3, 2.0}, {0, 0, 0.6, 0, 3, 0, 0.6, 0}}},
+		{"drivocopter", HYLO_MODE_FLIGHT, {{0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}, {0, 0, 1, 0, 0, 0, 3, 1, 1.5, 0, 0, 0}, {0, 0, 1, 2, 0, 0, 6, 2, 0, 4, 1, -1}, {0, 0, 1, 5, -1, 0, -2, 4, 3, 0, 0, 0}, {0, 0, 0, 6, 0, 0, 8, 0, 0, 6, 0, 0}}},
 	};
 	std::vector<BenchRow> rows;
 	std::printf("trainer solve time per BVP (all starts, continuation and refinement), median\n");
@@ -109,11 +110,11 @@ int main(int argc, char **argv)
 				its.push_back(s.iterations);
 			}
 		}
-		std::string name = std::string(c.robot) + " " + c.mode;
+		std::string name = std::string(c.robot) + " " + hylo_mode_str(c.mode);
 		std::printf("  %-20s %6zu %10d %10.3f %10.0f\n", name.c_str(), c.pairs.size(), ok,
 			    median(secs), median(its));
-		rows.push_back(bench_row("trainer_solve_s_" + std::string(c.robot) + "_" + c.mode, median(secs), "s"));
-		rows.push_back(bench_row("trainer_accepted_" + std::string(c.robot) + "_" + c.mode, ok,
+		rows.push_back(bench_row("trainer_solve_s_" + std::string(c.robot) + "_" + hylo_mode_str(c.mode), median(secs), "s"));
+		rows.push_back(bench_row("trainer_accepted_" + std::string(c.robot) + "_" + hylo_mode_str(c.mode), ok,
 					 "of " + std::to_string(c.pairs.size()) + " BVPs"));
 	}
 	if (!write_bench_results(argv[1], rows))

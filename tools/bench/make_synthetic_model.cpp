@@ -61,7 +61,7 @@ int main(int argc, char **argv)
 		const double hi[kR] = {kRadius, kRadius, kPi, 1, 1};
 		hylo::trainer::SvrExport m;
 		m.robot = "synthetic";
-		m.mode = "ground";
+		m.mode = HYLO_MODE_GROUND;
 		m.n_features = kF;
 		SplitMix rng{20261122};
 		std::vector<double> raw(kSv * kF), cost(kSv);

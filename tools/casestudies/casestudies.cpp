@@ -207,7 +207,7 @@ std::vector<Waypoint> waypoints(const hylo_plan &p)
 {
 	std::vector<Waypoint> w(p.n_waypoints);
 	for (uint32_t i = 0; i < p.n_waypoints; i++) {
-		w[i].mode = p.mode[i];
+		w[i].mode = static_cast<hylo_mode>(p.mode[i]);
 		w[i].guard = p.guard[i] != 0;
 		for (int k = 0; k < 6; k++)
 			w[i].state[k] = p.state[i][k];
@@ -258,13 +258,12 @@ hylo_status exact_cost(void *ctx, hylo_mode mode, const hylo_real *tail, const h
 		       uint32_t n, hylo_real *cost, hylo_reason *)
 {
 	auto *c = static_cast<ExactCosts *>(ctx);
-	std::string m = mode_name(mode);
 	auto t0 = std::chrono::steady_clock::now();
 	std::vector<double> v = parallel_map(n, c->jobs, [&](size_t i) {
 		if (di_provably_infeasible(mode, tail, heads[i]))
 			return -2.0;
 		try {
-			Solution s = solve_bvp(m, *c->robot, tail, heads[i], SolveOptions());
+			Solution s = solve_bvp(mode, *c->robot, tail, heads[i], SolveOptions());
 			return s.converged ? s.cost : -1.0;
 		} catch (const std::exception &) {
 			return -1.0;
@@ -290,7 +289,7 @@ hylo_robot di_exact_robot(ExactCosts &costs)
 	// Lower bound of an edge's cost for the clamp and the A* heuristic:
 	// cost >= rho T, and T >= max(|dp|, |dv| / 2) >= distance / sqrt(5) in
 	// the phase plane (|v| <= 1, |v'| <= 2).
-	double rho = costs.robot->mode("di_neg").at("rho");
+	double rho = costs.robot->mode(HYLO_MODE_DI_NEG).at("rho");
 	hylo_robot r{};
 	r.name = "di";
 	r.n_modes = 2;
@@ -539,7 +538,7 @@ PlanResult evaluate(const RobotParams &ambot, const hylo_robot &svr_robot, const
 		r.smoothed_error = sm.replay_error;
 		r.clearance = least_clearance(sm, sc, ambot);
 		for (size_t k = 0; k < sm.phases.size(); k++) {
-			if (sm.modes[k] != "marine")
+			if (sm.modes[k] != HYLO_MODE_MARINE)
 				continue;
 			const Trajectory &t = sm.phases[k].traj;
 			size_t nx = static_cast<size_t>(t.nx);

@@ -10,7 +10,6 @@
 namespace hylo::casestudies {
 
 using scene::Scene;
-using trainer::mode_number;
 using trainer::Waypoint;
 
 size_t Profile::segment_at(double x) const
@@ -189,7 +188,7 @@ std::vector<Route> routes(const Profile &c)
 
 Route route_of_plan(const Profile &c, const std::vector<Waypoint> &plan)
 {
-	const int G = mode_number("ground");
+	const hylo_mode G = HYLO_MODE_GROUND;
 	std::vector<std::pair<size_t, size_t>> runs;   // [first, last] waypoint of each mode's run
 	for (size_t i = 0; i < plan.size(); i++)
 		if (i == 0 || plan[i].mode != plan[i - 1].mode)
@@ -210,7 +209,7 @@ Route route_of_plan(const Profile &c, const std::vector<Waypoint> &plan)
 
 std::vector<Waypoint> sequence_plan(const Profile &c, const Route &r, double lambda)
 {
-	const int G = mode_number("ground"), F = mode_number("flight");
+	const hylo_mode G = HYLO_MODE_GROUND, F = HYLO_MODE_FLIGHT;
 	std::vector<Waypoint> w;
 	auto ground = [&](double x, double v, double heading, bool guard) {
 		Waypoint p;
@@ -328,7 +327,7 @@ std::string letters(const std::vector<Waypoint> &plan)
 	std::string s;
 	for (size_t i = 0; i < plan.size(); i++)
 		if (i == 0 || plan[i].mode != plan[i - 1].mode)
-			s += plan[i].mode == mode_number("flight") ? 'F' : 'D';
+			s += plan[i].mode == HYLO_MODE_FLIGHT ? 'F' : 'D';
 	return s;
 }
 
