@@ -12,7 +12,7 @@
 
 #include "hylo/modes.h"
 #include "trainer/models.hpp"
-#include "trainer/params.hpp"
+#include "trainer/robot_params.hpp"
 
 // A build's extra modes (hylo/types.h): their models, and the cases
 // HYLO_EXTRA_MODEL_TYPE_CASES and HYLO_EXTRA_MODEL_CASES of the switches below.

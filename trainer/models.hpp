@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "trainer/params.hpp"
+#include "trainer/robot_params.hpp"
 
 namespace hylo::trainer {
 

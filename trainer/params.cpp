@@ -93,32 +93,6 @@ struct Reader {
 
 }  // namespace
 
-double ModeParams::at(const std::string &key) const
-{
-	auto it = values.find(key);
-	if (it == values.end())
-		throw ParamError("mode " + mode + " has no parameter '" + key + "'");
-	return it->second;
-}
-
-const ModeParams &RobotParams::mode(const std::string &name) const
-{
-	auto it = modes.find(name);
-	if (it == modes.end())
-		throw ParamError(path + ": robot " + robot + " has no mode '" + name + "'");
-	return it->second;
-}
-
-const ModeParams &RobotParams::mode(hylo_mode id) const
-{
-	return mode(hylo_mode_str(id));
-}
-
-bool RobotParams::has(hylo_mode id) const
-{
-	return modes.count(hylo_mode_str(id)) != 0;
-}
-
 namespace {
 
 // Where robot files are looked for when the working directory has none: the
