@@ -59,16 +59,13 @@ static hylo_status push(hylo_planner *pl, const copies *cp, uint32_t u, hylo_rea
 static int open_copies(const hylo_planner *pl, const copies *cp, uint32_t i, uint8_t *open)
 {
 	const hylo_position *p = &pl->roadmap.pos[i];
-	uint32_t c, k;
+	uint32_t k;
 	int any = 0;
 
-	for (c = 0; c < p->n_combos; c++) {
-		open[c] = 0;
-		for (k = 0; k < cp->n_off; k++)
-			if (!hylo_search_closed(cp->s, p->node_base + c + cp->off[k]))
-				open[c] |= (uint8_t)(1u << k);
-		any |= open[c];
-	}
+	memset(open, 0, p->n_combos);
+	for (k = 0; k < cp->n_off; k++)
+		any |= hylo_search_mark_open(cp->s, p->node_base + cp->off[k], p->n_combos,
+					     (uint8_t)(1u << k), open);
 	return any;
 }
 
@@ -348,7 +345,11 @@ static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t u, uint32_
 			break;
 		if (!open_copies(pl, &moves, j, open))
 			continue;
-		hylo_planner_pair_bound(pl, i, j, &pb);
+		/* The pair's turn cells are cached under j's entry naming i. */
+		if (k < n_adj && i < rm->n_positions && rm->adj_reverse[rm->pos[i].adj_begin + k] != UINT32_MAX)
+			hylo_planner_pair_bound_into(pl, i, j, rm->adj_reverse[rm->pos[i].adj_begin + k], &pb);
+		else
+			hylo_planner_pair_bound(pl, i, j, &pb);
 		hylo_planner_bounds_from(&pb, c, tail, j, lb);
 		for (c2 = 0; c2 < rm->pos[j].n_combos; c2++)
 			if (!isfinite(lb[c2]))

@@ -442,6 +442,22 @@ hylo_status hylo_roadmap_neighbours(const hylo_roadmap *rm, hylo_roadmap_ws *ws,
 	return HYLO_OK;
 }
 
+/* adj_reverse: for each entry (i names j), j's entry naming i
+ * (UINT32_MAX: none, which a symmetric radius never leaves). */
+static void link_reverse(hylo_roadmap *rm)
+{
+	uint32_t i, a, b;
+
+	for (i = 0; i < rm->n_positions; i++)
+		for (a = rm->pos[i].adj_begin; a < rm->pos[i].adj_end; a++) {
+			const hylo_position *q = &rm->pos[rm->adjacency[a]];
+
+			for (b = q->adj_begin; b < q->adj_end && rm->adjacency[b] != i; b++)
+				;
+			rm->adj_reverse[a] = b < q->adj_end ? b : UINT32_MAX;
+		}
+}
+
 static hylo_status connect_positions(hylo_roadmap *rm, hylo_roadmap_ws *ws, const hylo_map *m,
 				     hylo_reason *r)
 {
@@ -482,6 +498,7 @@ static hylo_status connect_positions(hylo_roadmap *rm, hylo_roadmap_ws *ws, cons
 		rm->n_adjacency += n;
 		p->adj_end = rm->n_adjacency;
 	}
+	link_reverse(rm);
 	return HYLO_OK;
 }
 

@@ -404,6 +404,10 @@ static void check_roadmap(tu_map *m, hylo_goal g)
 			for (back = q->adj_begin; back < q->adj_end; back++)
 				found |= rm->adjacency[back] == i;
 			assert_true(found);
+			/* The way back is the entry that names i. */
+			back = rm->adj_reverse[k];
+			assert_true(back >= q->adj_begin && back < q->adj_end);
+			assert_int_equal(rm->adjacency[back], i);
 		}
 		if (p->twin != HYLO_NO_POSITION) {
 			const hylo_position *t = &rm->pos[p->twin];

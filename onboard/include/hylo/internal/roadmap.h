@@ -64,6 +64,9 @@ typedef struct {
 	uint8_t air_class[HYLO_MAX_COMBOS];  /* index of each flight velocity's speed in air_speeds */
 	hylo_position pos[HYLO_MAX_POSITIONS];
 	uint32_t adjacency[HYLO_MAX_ADJACENCY];
+	/* The way back: when i's entry a names j, j's entry adj_reverse[a]
+	 * names i (the lists are symmetric; UINT32_MAX if not). */
+	uint32_t adj_reverse[HYLO_MAX_ADJACENCY];
 	uint32_t n_adjacency;
 	uint32_t node_pos[HYLO_MAX_NODES]; /* position of each node */
 } hylo_roadmap;

@@ -179,6 +179,22 @@ static inline int hylo_search_closed(const hylo_search *s, uint32_t v)
 	return s && v < s->n_nodes && s->heap_pos[v] == HYLO_SEARCH_CLOSED;
 }
 
+/** Sets bit in open[c] for every c < n whose node first + c is not closed;
+ * 1 when any is. The callbacks' row-at-a-time form of hylo_search_closed. */
+static inline int hylo_search_mark_open(const hylo_search *s, uint32_t first, uint32_t n,
+					uint8_t bit, uint8_t *open)
+{
+	uint32_t c;
+	int any = 0;
+
+	for (c = 0; c < n; c++)
+		if (!hylo_search_closed(s, first + c)) {
+			open[c] |= bit;
+			any = 1;
+		}
+	return any;
+}
+
 /** Best known cost from the start to v; +inf when v was not reached. */
 hylo_real hylo_search_cost(const hylo_search *s, uint32_t v);
 
