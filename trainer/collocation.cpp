@@ -176,6 +176,7 @@ PhaseSetup phase_setup(const PhaseSpec &ps, const ModeInfo &info, const std::str
 	s.T_guess = ps.T_guess > 0 ? ps.T_guess : internal::duration_guess(info.bounds, info.typical_speed, length);
 	check_corridor(ps, static_cast<size_t>(info.position_dims), where);
 	s.corridor = ps.corridor;
+	s.corridor_inset_m = ps.corridor_inset_m;
 	s.guess_by_arc_length = !ps.corridor.empty() && !ps.guess_timed;
 	return s;
 }

@@ -46,6 +46,7 @@ struct PhaseSetup {
 	std::vector<double> first_lo, first_hi;    // bounds of the first knot's state (NX each)
 	std::vector<double> last_lo, last_hi;      // bounds of the last knot's state
 	std::vector<CorridorBox> corridor;         // PhaseSpec::corridor (checked by solve_multiphase)
+	double corridor_inset_m = 0;               // PhaseSpec::corridor_inset_m
 	// The guess states are at times proportional to their arc length, not
 	// uniform (a corridor's boxes are timed so; a mode's own path guess is
 	// timed uniformly).
@@ -130,7 +131,8 @@ public:
 			}
 		}
 		for (int p = 0; p < npts_ && !s_.corridor.empty(); p++)
-			in_corridor(time_of(p), xl + zi(p), xu + zi(p));
+			in_corridor(time_of(p), p == knot(0) || p == knot(N_) ? 0 : s_.corridor_inset_m, xl + zi(p),
+				    xu + zi(p));
 		end_bounds(knot(0), s_.first_lo, s_.first_hi, xl, xu);
 		end_bounds(knot(N_), s_.last_lo, s_.last_hi, xl, xu);
 		xl[Ti()] = s_.T_fixed > 0 ? s_.T_fixed : b_.T_min;
@@ -410,17 +412,23 @@ private:
 	}
 
 	// Position bounds of a point at normalized time s, lo and hi narrowed to
-	// every corridor box whose interval holds s.
-	void in_corridor(double s, Number *lo, Number *hi) const
+	// every corridor box whose interval holds s, inset inside them where
+	// their intersection is wider than twice that.
+	void in_corridor(double s, double inset, Number *lo, Number *hi) const
 	{
 		constexpr double eps = 1e-12;
-		for (const CorridorBox &b : s_.corridor) {
-			if (s < b.tau0 - eps || s > b.tau1 + eps)
-				continue;
-			for (size_t k = 0; k < b.lo.size(); k++) {
-				lo[k] = std::max(lo[k], b.lo[k]);
-				hi[k] = std::min(hi[k], b.hi[k]);
-			}
+		for (size_t k = 0; k < (s_.corridor.empty() ? 0 : s_.corridor[0].lo.size()); k++) {
+			double l = lo[k], h = hi[k];
+			bool boxed = false;
+			for (const CorridorBox &b : s_.corridor)
+				if (s >= b.tau0 - eps && s <= b.tau1 + eps) {
+					l = std::max(l, b.lo[k]);
+					h = std::min(h, b.hi[k]);
+					boxed = true;
+				}
+			const bool room = boxed && h - l > 2 * inset;
+			lo[k] = room ? l + inset : l;
+			hi[k] = room ? h - inset : h;
 		}
 	}
 

@@ -50,6 +50,10 @@ struct PhaseSpec {
 	// with it (their own alone where that is empty). The initial guess then
 	// runs through the guess states at times proportional to arc length.
 	std::vector<CorridorBox> corridor;
+	// Every point but the first and last knot kept this far inside each box
+	// (in a direction where the boxes it lies in leave room for it): the
+	// cubic between two knots on a box's face may cross it by a hair.
+	double corridor_inset_m = 0;
 };
 
 // A state component of a phase's first or last knot.

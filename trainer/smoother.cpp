@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "trainer/clearance.hpp"
 #include "trainer/corridor.hpp"
 
 namespace hylo::trainer {
@@ -75,6 +76,27 @@ double time_at_fraction(const std::vector<std::array<double, 3>> &path, const st
 	return times.back();
 }
 
+// Every phase of q starts at solution s's (its knots and midpoints, its
+// duration and mesh). False when s has a phase without a trajectory.
+bool start_from(MultiPhaseProblem &q, const MultiPhaseSolution &s)
+{
+	for (size_t k = 0; k < q.phases.size() && k < s.phases.size(); k++) {
+		PhaseSpec &ps = q.phases[k];
+		const Trajectory &tr = s.phases[k].traj;
+		const size_t nx = static_cast<size_t>(tr.nx), n = tr.t.size();
+		if (n < 2 || s.phases[k].T <= 0)
+			return false;
+		ps.guess.clear();
+		for (size_t i = 0; i < n; i++)
+			ps.guess.emplace_back(&tr.x[i * nx], &tr.x[i * nx] + nx);
+		ps.guess_timed = true;
+		ps.T_guess = s.phases[k].T;
+		ps.segments = s.phases[k].segments;
+	}
+	q.T_scales = {1.0};
+	return true;
+}
+
 // The problem again from its solution s: every phase starts at s (its
 // knots and midpoints), and each flight's corridor is rebuilt along s's
 // path and timed by s's own times, so s lies in it. The first corridor
@@ -84,26 +106,21 @@ double time_at_fraction(const std::vector<std::array<double, 3>> &path, const st
 bool around_solution(MultiPhaseProblem &q, const MultiPhaseSolution &s, const CorridorMaps &maps)
 {
 	bool changed = false;
+	if (!start_from(q, s))
+		return false;
 	for (size_t k = 0; k < q.phases.size() && k < s.phases.size(); k++) {
 		PhaseSpec &ps = q.phases[k];
 		const Trajectory &tr = s.phases[k].traj;
 		const size_t nx = static_cast<size_t>(tr.nx), n = tr.t.size();
-		if (n < 2 || s.phases[k].T <= 0)
-			return false;
-		ps.guess.clear();
+		if (!mode_desc(ps.mode).air || ps.corridor.empty())
+			continue;
 		std::vector<std::array<double, 3>> path;
 		std::vector<double> times;
 		for (size_t i = 0; i < n; i++) {
 			const double *x = &tr.x[i * nx];
-			ps.guess.emplace_back(x, x + nx);
-			path.push_back({x[0], x[1], mode_desc(ps.mode).air ? x[2] : 0.0});
+			path.push_back({x[0], x[1], x[2]});
 			times.push_back(std::min(1.0, std::max(0.0, tr.t[i] / s.phases[k].T)));
 		}
-		ps.guess_timed = true;
-		ps.T_guess = s.phases[k].T;
-		ps.segments = s.phases[k].segments;
-		if (!mode_desc(ps.mode).air || ps.corridor.empty())
-			continue;
 		Corridor c = build_corridor(ps.mode, path, maps);
 		if (!c.notes.empty() || !c.first_box || !c.last_box)
 			continue;   // keep the old boxes rather than get less clearance
@@ -114,7 +131,6 @@ bool around_solution(MultiPhaseProblem &q, const MultiPhaseSolution &s, const Co
 		ps.corridor = std::move(c.boxes);
 		changed = true;
 	}
-	q.T_scales = {1.0};
 	return changed;
 }
 
@@ -154,6 +170,47 @@ void refine_corridors(const RobotParams &robot, const TerrainGrid &map, const Sm
 	}
 }
 
+// How far inside its boxes keep_inside keeps a trajectory's points: far
+// more than a cubic bulges between two knots on a face (micrometres on the
+// committed scenes), too little to change its cost measurably.
+constexpr double kInsetM = 1e-3;
+
+// The exact check (trainer/clearance.hpp) also samples the cubic between
+// knots: where a solution's knots ride a corridor's face, it can cross the
+// face by a hair and leave the domain or the margin. Then the problem is
+// solved again from s with every point but the phase ends kInsetM inside
+// its boxes, and that solution is taken when it passes the check.
+void keep_inside(const RobotParams &robot, const TerrainGrid &map, const SmoothOptions &opt,
+		 MultiPhaseProblem &prob, MultiPhaseSolution &s)
+{
+	const double body = opt.body_radius_m >= 0 ? opt.body_radius_m : robot.body_radius_m;
+	const ClearanceCheck before = check_clearance(s, map, body, opt.margin_m);
+	if (before.safe || !opt.corridors)
+		return;
+	MultiPhaseProblem q = prob;
+	for (PhaseSpec &ps : q.phases)
+		ps.corridor_inset_m = kInsetM;
+	MultiPhaseSolution r;
+	try {
+		if (!start_from(q, s))
+			return;
+		r = solve_multiphase(robot, q, smoothing_solve_options(opt, true));
+	} catch (const std::invalid_argument &) {   // s stands
+		return;
+	}
+	s.solve_seconds += r.solve_seconds;
+	if (!r.converged || !check_clearance(r, map, body, opt.margin_m).safe)
+		return;
+	char buf[200];
+	std::snprintf(buf, sizeof buf, "kept %.3g m inside its corridors (the check found it %s): %.1f J -> %.1f J",
+		      kInsetM, before.outside_phase >= 0 ? "leaving its domain" : "short of the margin", s.cost, r.cost);
+	r.solve_seconds = s.solve_seconds;
+	r.notes = s.notes;
+	r.notes.push_back(buf);
+	s = std::move(r);
+	prob = std::move(q);
+}
+
 }  // namespace
 
 MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypoint> &plan,
@@ -178,6 +235,7 @@ MultiPhaseSolution smooth_plan(const RobotParams &robot, const std::vector<Waypo
 			*from_straightened = attempt == 1;
 		if (s.converged) {
 			refine_corridors(robot, map, opt, prob, s);
+			keep_inside(robot, map, opt, prob, s);
 			break;
 		}
 		why += attempt ? "; straightened: " + s.status_text + (s.rejection.empty() ? "" : " (" + s.rejection + ")")

@@ -314,6 +314,49 @@ void alternatives_prefer_safe()
 
 }  // namespace
 
+// Ground round a corner to the shore x = 4, then water to the goal: the
+// ground's corridor is an L of two boxes (up x <= 1, then along
+// 2 <= y <= 3), so the way round rides the corner's faces. With
+// corridor_inset_m every point but the phase ends keeps 0.01 m inside its
+// boxes; the switch point stays on the shore (an inset there would leave
+// the two phases no common point).
+void corridor_inset(const RobotParams &ambot)
+{
+	double a[4] = {0, 0, 0, M_PI / 2}, b[4] = {8, 2.5, 0, 0}, s[4] = {4, 2.5, 0.4, 0};
+	MultiPhaseProblem p;
+	p.phases = {phase_between(HYLO_MODE_GROUND, ambot, a, nullptr, a, s, 20),
+		    phase_between(HYLO_MODE_MARINE, ambot, nullptr, b, s, b, 20)};
+	join_phases(p, 0, ambot, SwitchGuard{4, -4, 4, 6, 0});
+	p.phases[0].corridor = {{0, 0.5, {-1, -1}, {1, 3}}, {0.5, 1, {0, 2}, {4, 3}}};
+	p.phases[1].corridor = {{0, 1, {4, -4}, {9, 6}}};
+	// The least distance of a phase-interior point to a face of a box that holds it.
+	auto nearest_face = [&](const MultiPhaseSolution &m) {
+		double d = INFINITY;
+		for (size_t k = 0; k < 2 && m.converged; k++) {
+			const Trajectory &tr = m.phases[k].traj;
+			const size_t nx = static_cast<size_t>(tr.nx), n = tr.t.size();
+			for (size_t i = 1; i + 1 < n; i++)
+				for (const CorridorBox &box : p.phases[k].corridor) {
+					const double tau = tr.t[i] / m.phases[k].T;
+					if (tau < box.tau0 - 1e-9 || tau > box.tau1 + 1e-9)
+						continue;
+					for (size_t c = 0; c < 2; c++)
+						d = std::min({d, tr.x[i * nx + c] - box.lo[c], box.hi[c] - tr.x[i * nx + c]});
+				}
+		}
+		return d;
+	};
+	MultiPhaseSolution on_face = solve_multiphase(ambot, p, SolveOptions());
+	for (PhaseSpec &ps : p.phases)
+		ps.corridor_inset_m = 0.01;
+	MultiPhaseSolution m = solve_multiphase(ambot, p, SolveOptions());
+	const auto &gx = m.converged ? m.phases[0].traj.x : std::vector<double>{};
+	const bool on_shore = m.converged && std::fabs(gx[gx.size() - 6] - 4) < 1e-6;
+	check(on_face.converged && nearest_face(on_face) < 1e-3 && on_shore && nearest_face(m) >= 0.01 - 1e-9,
+	      "corridor inset: a phase that rides its boxes' faces keeps 0.01 m inside, the switch on the shore",
+	      "without " + fmt(nearest_face(on_face)) + " m, with " + fmt(nearest_face(m)) + " m");
+}
+
 int main(int argc, char **argv)
 {
 	if (!pin_numerics(argc, argv))
@@ -327,6 +370,7 @@ int main(int argc, char **argv)
 	di_case(di, 0.8, 0.2, -0.8, 0.0);
 	di_case(di, 0.7, -0.1, -0.5, 0.2);
 	shore_crossing(ambot);
+	corridor_inset(ambot);
 	bad_problems(di);
 	alternatives_choice(di);
 	alternatives_prefer_safe();
