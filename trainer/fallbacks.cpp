@@ -268,9 +268,21 @@ private:
 }  // namespace
 
 MultiPhaseSolution graph_path_trajectory(const RobotParams &robot, const std::vector<Waypoint> &plan,
-					 const TakeoffLanding &costs, const SolveOptions &opt)
+					 const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
 {
-	MultiPhaseSolution out = edges_joined(robot, plan, costs, opt);
+	if (opt.corridors && plan.size() > 2) {
+		std::vector<Waypoint> edges = plan;
+		for (Waypoint &w : edges)
+			w.via = true;   // every inner waypoint ends a phase: a phase per edge
+		MultiPhaseSolution s;
+		try {
+			s = phase_by_phase(robot, edges, map, costs, opt);
+		} catch (const std::invalid_argument &) {   // the edges alone, below
+		}
+		if (s.converged)
+			return s;
+	}
+	MultiPhaseSolution out = edges_joined(robot, plan, costs, smoothing_solve_options(opt, false));
 	if (out.converged && out.phases.empty()) {
 		out.converged = false;
 		out.status_text = "the plan has no edge to follow";
@@ -309,7 +321,7 @@ SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<W
 	if (chain.step(SmoothMethod::PhaseByPhase, [&] { return phase_by_phase(robot, plan, map, costs, opt); }))
 		return r;
 	if (chain.step(SmoothMethod::GraphPath,
-		       [&] { return graph_path_trajectory(robot, plan, costs, smoothing_solve_options(opt, false)); }))
+		       [&] { return graph_path_trajectory(robot, plan, map, costs, opt); }))
 		return r;
 	r.failure = r.rejections.back().substr(std::string(method_name(SmoothMethod::GraphPath)).size() + 2);
 	return r;

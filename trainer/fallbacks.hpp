@@ -46,8 +46,9 @@ struct SmoothResult {
 //   phase by phase       each phase solved on its own, the switch states
 //                        fixed at the plan's guard points (switch points
 //                        pinned, the states the plan has there)
-//   graph path           every plan edge solved on its own (the trainer's
-//                        single-mode BVP, strategy starts), joined in time
+//   graph path           every plan edge solved on its own in its corridor
+//                        (else as the trainer's single-mode BVP, strategy
+//                        starts), joined in time
 // A step's trajectory is taken if every phase replays (replay_verdict) and it
 // stays within domain_tolerance_m of its map's domain (domain_check).
 // Not ok only when an edge of the plan itself cannot be solved: failure
@@ -55,12 +56,16 @@ struct SmoothResult {
 SmoothResult smooth_with_fallbacks(const RobotParams &robot, const std::vector<Waypoint> &plan,
 				   const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt);
 
-// The graph path step alone: every edge of the plan solved on its own and
-// the solutions joined in time (switches as in smoothing_problem: a guard
-// pair adds its switching cost, no phase). Not converged when an edge fails;
-// rejection then names it.
+// The graph path step alone: every edge of the plan a phase of its own
+// between the plan's states at its ends, in its corridor (opt.corridors:
+// the smoothing problem with every waypoint a via point and the switch
+// points pinned, each phase solved alone, as phase by phase); where that
+// fails, or without corridors, every edge solved on its own as a BVP
+// (strategy starts) and the solutions joined in time (a guard pair adds its
+// switching cost, no phase). Not converged when an edge fails; rejection
+// then names it.
 MultiPhaseSolution graph_path_trajectory(const RobotParams &robot, const std::vector<Waypoint> &plan,
-					 const TakeoffLanding &costs, const SolveOptions &opt);
+					 const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt);
 
 // Exact cost of the plan's own path: every edge solved on its own as a
 // single-phase problem (opt with the strategy starts too, as the training

@@ -17,7 +17,9 @@
 
 #include "tests/tap.hpp"
 #include "tests/trainer/grids.hpp"
+#include "trainer/clearance.hpp"
 #include "trainer/collocation.hpp"
+#include "trainer/fallbacks.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/replay.hpp"
@@ -357,6 +359,34 @@ void corridor_inset(const RobotParams &ambot)
 	      "without " + fmt(nearest_face(on_face)) + " m, with " + fmt(nearest_face(m)) + " m");
 }
 
+// The graph path fallback keeps its corridors: Ambot's plan along y = 0.5
+// on a 2 m wide strip (the map's edge a hazard: 0.15 m beyond the body at
+// the waypoints), headings -0.8 rad at the waypoints. Each edge solved on
+// its own swings towards the edge, 0.09 m beyond the body; each edge in
+// its corridor keeps the 0.1 m margin.
+void graph_path_corridors(const RobotParams &ambot)
+{
+	TerrainGrid m = flat_ground(12, 4, 0.5);
+	auto wp = [](double x, double v) {
+		Waypoint w;
+		w.mode = HYLO_MODE_GROUND;
+		w.state[0] = x;
+		w.state[1] = 0.5;
+		w.state[2] = v;
+		w.state[3] = -0.8;
+		return w;
+	};
+	const std::vector<Waypoint> plan = {wp(1, 0), wp(2.5, 0), wp(4, 0)};
+	SmoothOptions free_edges;
+	free_edges.corridors = false;
+	MultiPhaseSolution a = graph_path_trajectory(ambot, plan, m, TakeoffLanding{}, free_edges);
+	MultiPhaseSolution b = graph_path_trajectory(ambot, plan, m, TakeoffLanding{}, SmoothOptions());
+	ClearanceCheck ca = check_clearance(a, m, ambot.body_radius_m, 0.1), cb = check_clearance(b, m, ambot.body_radius_m, 0.1);
+	check(a.converged && b.converged && b.phases.size() == 2 && !ca.safe && cb.safe,
+	      "graph path: each edge in its corridor keeps the margin (on its own it does not)",
+	      ca.text() + " / " + cb.text());
+}
+
 int main(int argc, char **argv)
 {
 	if (!pin_numerics(argc, argv))
@@ -371,6 +401,7 @@ int main(int argc, char **argv)
 	di_case(di, 0.7, -0.1, -0.5, 0.2);
 	shore_crossing(ambot);
 	corridor_inset(ambot);
+	graph_path_corridors(ambot);
 	bad_problems(di);
 	alternatives_choice(di);
 	alternatives_prefer_safe();
