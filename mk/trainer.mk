@@ -60,12 +60,18 @@ CORRIDOR_TEST := $(BUILD)/test/trainer/test_corridor
 $(CORRIDOR_TEST): tests/trainer/test_corridor.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+WALL_CROSSINGS_TEST := $(BUILD)/test/trainer/test_wall_crossings
+$(WALL_CROSSINGS_TEST): tests/trainer/test_wall_crossings.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
 # Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
 # test_collocation under several OpenBLAS kernel settings and hwcaps masks.
 tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
-ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) tests/trainer/test_trainer_cli.sh \
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
+	$(WALL_CROSSINGS_TEST)
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
+	$(WALL_CROSSINGS_TEST) tests/trainer/test_trainer_cli.sh \
 	tests/trainer/test_numerics.sh
 
 # make models: regenerates every committed model (datasets resume; see

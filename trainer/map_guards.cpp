@@ -165,32 +165,72 @@ SwitchGuard clear_platform(const TerrainGrid &map, double x, double y, double ha
 	return platform_area(map, x, y, half_length);
 }
 
+namespace {
+
+// The cells of columns x0..x1, rows y0..y1.
+struct CellBox {
+	int32_t x0, x1, y0, y1;
+	bool holds(const CellBox &c) const { return c.x0 >= x0 && c.x0 <= x1 && c.y0 >= y0 && c.y0 <= y1; }
+};
+
+}  // namespace
+
 std::vector<WallCrossing> wall_crossings(const TerrainGrid &m, const double *a, const double *b)
 {
+	const double o[2] = {m.origin_x_m, m.origin_y_m}, r = m.resolution_m;
+	const double ua[2] = {(a[0] - o[0]) / r, (a[1] - o[1]) / r}, ub[2] = {(b[0] - o[0]) / r, (b[1] - o[1]) / r};
+	// The flight floor over some cells: their highest (map.c: a point on a
+	// grid line is over every cell it touches).
+	auto highest = [&](const CellBox &c) {
+		double h = -HUGE_VAL;
+		for (int32_t iy = c.y0; iy <= c.y1; iy++)
+			for (int32_t ix = c.x0; ix <= c.x1; ix++)
+				h = std::max(h, static_cast<double>(m.height_m[static_cast<size_t>(iy * m.nx + ix)]));
+		return h;
+	};
+	auto touching = [&](const double *u) {
+		CellBox c;
+		hylo_cell_span(u[0], m.nx, &c.x0, &c.x1);
+		hylo_cell_span(u[1], m.ny, &c.y0, &c.y1);
+		return c;
+	};
 	std::vector<WallCrossing> out;
-	double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-	int steps = std::max(1, static_cast<int>(std::ceil(4 * len / m.resolution_m)));
-	GridCell prev = cell_at(m, a[0], a[1]);
-	for (int i = 1; i <= steps && prev.inside; i++) {
-		double t = static_cast<double>(i) / steps;
-		GridCell c = cell_at(m, a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
-		if (!c.inside || c.index == prev.index) {
-			prev = c;
-			continue;
-		}
-		double h0 = m.height_m[static_cast<size_t>(prev.index)], h1 = m.height_m[static_cast<size_t>(c.index)];
-		if (std::fabs(h1 - h0) > m.max_step_m) {
-			int ix0 = prev.index % m.nx, ix1 = c.index % m.nx, iy0 = prev.index / m.nx, iy1 = c.index / m.nx;
-			WallGate g;
-			g.axis = ix0 != ix1 ? 0 : 1;
-			g.c = g.axis == 0 ? m.origin_x_m + std::max(ix0, ix1) * m.resolution_m
-					  : m.origin_y_m + std::max(iy0, iy1) * m.resolution_m;
-			g.z_min = std::max(h0, h1) + kAirClearanceM;
-			double d = b[g.axis] - a[g.axis];
-			out.push_back({std::fabs(d) > 1e-12 ? (g.c - a[g.axis]) / d : t, g});
-		}
-		prev = c;
-	}
+	// from -> to across grid line u = line_u (or v = line_v), at a point
+	// over the cells at: a wall where the floor there and one side's differ
+	// by more than max_step.
+	auto cross = [&](double t, const CellBox &from, const CellBox &to, const CellBox &at, int32_t line_u,
+			 int32_t line_v) {
+		const double h = highest(at);
+		if (h - std::min(highest(from), highest(to)) <= m.max_step_m)
+			return;
+		WallGate g;
+		g.axis = line_u >= 0 ? 0 : 1;   // through a vertex: its x line
+		g.c = o[g.axis] + (g.axis == 0 ? line_u : line_v) * r;
+		g.z_min = h + kAirClearanceM;
+		out.push_back({t, g});
+	};
+	// An end on a grid line is in the cell cell_at gives it, so that a flight
+	// through a waypoint on a wall's line is cut once: at the end of the edge
+	// that reaches that cell, or at the start of the one that leaves it.
+	auto end_cell = [&](const double *p, CellBox &c) {
+		const GridCell g = cell_at(m, p[0], p[1]);
+		c = {g.index % m.nx, g.index % m.nx, g.index / m.nx, g.index / m.nx};
+		return g.inside;
+	};
+	auto line_between = [](int32_t c, int32_t lo, int32_t hi) { return c < lo ? lo : c > hi ? c : -1; };
+	hylo_cell_walk w;
+	hylo_cell_walk_start(&w, m.nx, m.ny, ua[0], ua[1], ub[0], ub[1]);
+	hylo_cell_piece p, q;
+	CellBox end;
+	if (!hylo_cell_walk_next(&w, &p))
+		return out;
+	CellBox pc{p.x0, p.x1, p.y0, p.y1};
+	if (end_cell(a, end) && !pc.holds(end))
+		cross(0, end, pc, touching(ua), line_between(end.x0, p.x0, p.x1), line_between(end.y0, p.y0, p.y1));
+	for (; hylo_cell_walk_next(&w, &q); p = q, pc = {p.x0, p.x1, p.y0, p.y1})
+		cross(p.t1, pc, {q.x0, q.x1, q.y0, q.y1}, {p.ex0, p.ex1, p.ey0, p.ey1}, p.cross_u, p.cross_v);
+	if (w.t >= 1 && end_cell(b, end) && !pc.holds(end))
+		cross(1, pc, end, touching(ub), line_between(end.x0, p.x0, p.x1), line_between(end.y0, p.y0, p.y1));
 	return out;
 }
 

@@ -42,11 +42,17 @@ bool shore_from_boxes(const CorridorBox &a, const CorridorBox &b, double x, doub
 SwitchGuard clear_platform(const TerrainGrid &map, double x, double y, double half_length, const CorridorMaps *maps,
 			   std::vector<std::string> &notes);
 
-// Where the straight flight a -> b (sampled flight states) crosses a wall: a
-// cell boundary across which the terrain height steps by more than the
-// map's max_step. The gate lies on that boundary, kAirClearanceM above the
-// higher side (the planner's flight clearance); t is where along a -> b
-// (0..1).
+// Where the straight flight a -> b (sampled flight states) crosses a wall,
+// walking the cells it passes through exactly (hylo_cell_walk, the onboard
+// domain check's walk): a point where it passes from cell to cell and the
+// terrain under it (the highest cell the point touches: on a vertex, all
+// four) and the terrain on one side differ by more than the map's max_step.
+// An end on a grid line counts as in the cell cell_at gives it, so that a
+// flight through a waypoint on a wall's line is cut once, by one of its two
+// edges (at t 0 or 1). The gate lies on the grid line crossed (through a
+// vertex, the x one), kAirClearanceM above that terrain (the planner's
+// flight clearance); t is where along a -> b (0..1). The walk ends where
+// the flight leaves the map.
 struct WallCrossing {
 	double t;
 	WallGate gate;

@@ -138,8 +138,7 @@ static int map_grid(const hylo_map *m, hylo_real x, hylo_real y, hylo_real *u, h
 	return *u >= 0 && *u <= m->nx && *v >= 0 && *v <= m->ny;
 }
 
-/* Cell columns touching grid coordinate u in [0, n]: one, or two on a line. */
-static int map_span(hylo_real u, int32_t n, int32_t *lo, int32_t *hi)
+int hylo_cell_span(hylo_real u, int32_t n, int32_t *lo, int32_t *hi)
 {
 	hylo_real f = floor(u);
 	int32_t i = (int32_t)f;
@@ -159,8 +158,8 @@ static void map_touching(const hylo_map *m, hylo_real u, hylo_real v, cell_set *
 {
 	int32_t x0, x1, y0, y1, ix, iy;
 
-	map_span(u, m->nx, &x0, &x1);
-	map_span(v, m->ny, &y0, &y1);
+	hylo_cell_span(u, m->nx, &x0, &x1);
+	hylo_cell_span(v, m->ny, &y0, &y1);
 	s->n = 0;
 	for (iy = y0; iy <= y1; iy++)
 		for (ix = x0; ix <= x1; ix++)
@@ -174,8 +173,8 @@ hylo_real hylo_map_height(const hylo_map *m, hylo_real x, hylo_real y)
 
 	if (!map_grid(m, x, y, &u, &v))
 		return 0;
-	map_span(u, m->nx, &x0, &x1);
-	map_span(v, m->ny, &y0, &y1);
+	hylo_cell_span(u, m->nx, &x0, &x1);
+	hylo_cell_span(v, m->ny, &y0, &y1);
 	return m->height[y0 * m->nx + x0];
 }
 
@@ -247,11 +246,109 @@ int hylo_domain_contains(const hylo_map *m, hylo_mode mode, hylo_point p)
 	return 0;
 }
 
-/* State of the walk along one segment. */
+/* Cell columns (rows) a piece of the walk lies in: the one under its
+ * midpoint um, or both sides of the grid line an axis-parallel walk runs
+ * along (d = 0). */
+static void walk_span(hylo_real a, hylo_real d, hylo_real um, int32_t n, int32_t *lo, int32_t *hi)
+{
+	hylo_real f;
+
+	if (d == 0) {
+		hylo_cell_span(a, n, lo, hi);
+		return;
+	}
+	f = floor(um);
+	*lo = *hi = f < 0 ? 0 : (f > n - 1 ? n - 1 : (int32_t)f);
+}
+
+/* First crossing of an integer grid line after a (t in (0, 1)), as the line
+ * value k and step dk; returns HUGE_VAL when there is none. */
+static hylo_real first_cross(hylo_real a, hylo_real d, hylo_real *k, hylo_real *dk)
+{
+	if (d > 0) {
+		*k = floor(a) + 1;
+		*dk = 1;
+	} else if (d < 0) {
+		*k = ceil(a) - 1;
+		*dk = -1;
+	} else {
+		return HUGE_VAL;
+	}
+	return (*k - a) / d;
+}
+
+void hylo_cell_walk_start(hylo_cell_walk *w, int32_t nx, int32_t ny, hylo_real ua, hylo_real va, hylo_real ub,
+			  hylo_real vb)
+{
+	memset(w, 0, sizeof *w);
+	w->nx = nx;
+	w->ny = ny;
+	w->ua = ua;
+	w->va = va;
+	w->du = ub - ua;
+	w->dv = vb - va;
+	w->tx = first_cross(ua, w->du, &w->kx, &w->dkx);
+	w->ty = first_cross(va, w->dv, &w->ky, &w->dky);
+	w->left = nx > 0 && ny > 0 ? nx + ny + 4 : 0;
+	if (w->du == 0 && w->dv == 0)
+		w->t = 1;
+}
+
+int hylo_cell_walk_next(hylo_cell_walk *w, hylo_cell_piece *p)
+{
+	for (; w->left > 0 && w->t < 1; w->left--) {
+		hylo_real tn = w->tx < w->ty ? w->tx : w->ty, t0 = w->t, tm, um, vm, cu = -1, cv = -1;
+
+		if (tn > 1)
+			tn = 1;
+		if (tn < 1 && w->tx == tn)
+			cu = w->kx;
+		if (tn < 1 && w->ty == tn)
+			cv = w->ky;
+		if (w->tx == tn) {
+			w->kx += w->dkx;
+			w->tx = (w->kx - w->ua) / w->du;
+		}
+		if (w->ty == tn) {
+			w->ky += w->dky;
+			w->ty = (w->ky - w->va) / w->dv;
+		}
+		w->t = tn;
+		if (!(tn > t0))
+			continue;
+		tm = 0.5 * (t0 + tn);
+		um = w->ua + tm * w->du;
+		vm = w->va + tm * w->dv;
+		if (!(um >= 0 && um <= w->nx && vm >= 0 && vm <= w->ny)) {
+			w->left = 0;   /* it leaves the grid: the walk ends */
+			return 0;
+		}
+		p->t0 = t0;
+		p->t1 = tn;
+		walk_span(w->ua, w->du, um, w->nx, &p->x0, &p->x1);
+		walk_span(w->va, w->dv, vm, w->ny, &p->y0, &p->y1);
+		/* Its end is on the lines it crosses, else on its own cells' side. */
+		p->cross_u = cu < 0 ? -1 : (int32_t)cu;
+		p->cross_v = cv < 0 ? -1 : (int32_t)cv;
+		p->ex0 = p->x0;
+		p->ex1 = p->x1;
+		p->ey0 = p->y0;
+		p->ey1 = p->y1;
+		if (cu >= 0)
+			hylo_cell_span(cu, w->nx, &p->ex0, &p->ex1);
+		if (cv >= 0)
+			hylo_cell_span(cv, w->ny, &p->ey0, &p->ey1);
+		w->left--;
+		return 1;
+	}
+	return 0;
+}
+
+/* State of the check along one segment. */
 typedef struct {
 	const hylo_map *m;
 	hylo_mode mode;
-	hylo_real ua, va, du, dv, za, dz;
+	hylo_real za, dz;
 	int started;             /* ground: a previous cell set exists */
 	int prev_n;
 	float prev_h[2];
@@ -284,46 +381,35 @@ static int walk_ground(seg_walk *w, const int32_t *c, int n)
 	return 1;
 }
 
-/* Checks the piece [t0, t1] of the segment, which lies in one cell, or on a
- * grid line between two cells. */
-static int walk_piece(seg_walk *w, hylo_real t0, hylo_real t1)
+/* Checks one piece of the walk; a flight also at the vertex it ends on. */
+static int walk_piece(seg_walk *w, const hylo_cell_piece *p)
 {
 	const hylo_map *m = w->m;
-	hylo_real tm = 0.5 * (t0 + t1);
-	int32_t x0, x1, y0, y1, c[2];
+	int32_t c[2], ix, iy;
 	int n = 0, k;
 
-	/* Only an axis-parallel segment can run along a grid line. */
-	if (w->du == 0) {
-		map_span(w->ua, m->nx, &x0, &x1);
-	} else {
-		hylo_real f = floor(w->ua + tm * w->du);
-
-		x0 = x1 = f < 0 ? 0 : (f > m->nx - 1 ? m->nx - 1 : (int32_t)f);
-	}
-	if (w->dv == 0) {
-		map_span(w->va, m->ny, &y0, &y1);
-	} else {
-		hylo_real f = floor(w->va + tm * w->dv);
-
-		y0 = y1 = f < 0 ? 0 : (f > m->ny - 1 ? m->ny - 1 : (int32_t)f);
-	}
-	c[n++] = y0 * m->nx + x0;
-	if (x1 != x0)
-		c[n++] = y0 * m->nx + x1;
-	else if (y1 != y0)
-		c[n++] = y1 * m->nx + x0;
+	c[n++] = p->y0 * m->nx + p->x0;
+	if (p->x1 != p->x0)
+		c[n++] = p->y0 * m->nx + p->x1;
+	else if (p->y1 != p->y0)
+		c[n++] = p->y1 * m->nx + p->x0;
 
 	if (hylo_mode_domain(w->mode) == HYLO_DOMAIN_LAND)
 		return walk_ground(w, c, n);
 	if (hylo_mode_domain(w->mode) == HYLO_DOMAIN_AIR) {
-		hylo_real z0 = w->za + t0 * w->dz, z1 = w->za + t1 * w->dz;
+		hylo_real z0 = w->za + p->t0 * w->dz, z1 = w->za + p->t1 * w->dz;
 		hylo_real lo = z0 < z1 ? z0 : z1, hi = z0 < z1 ? z1 : z0;
 
 		/* On a line both neighbours apply (closed domain: max height). */
 		for (k = 0; k < n; k++)
 			if (!flight_ok(m, c[k], lo, hi))
 				return 0;
+		/* Passing exactly through a vertex touches two more cells. */
+		if (p->cross_u >= 0 && p->cross_v >= 0)
+			for (iy = p->ey0; iy <= p->ey1; iy++)
+				for (ix = p->ex0; ix <= p->ex1; ix++)
+					if (!flight_ok(m, iy * m->nx + ix, z1, z1))
+						return 0;
 		return 1;
 	}
 	for (k = 0; k < n; k++)
@@ -332,77 +418,30 @@ static int walk_piece(seg_walk *w, hylo_real t0, hylo_real t1)
 	return 0;
 }
 
-/* First crossing of an integer grid line after a (t in (0, 1)), as the line
- * value k and step dk; returns HUGE_VAL when there is none. */
-static hylo_real first_cross(hylo_real a, hylo_real d, hylo_real *k, hylo_real *dk)
-{
-	if (d > 0) {
-		*k = floor(a) + 1;
-		*dk = 1;
-	} else if (d < 0) {
-		*k = ceil(a) - 1;
-		*dk = -1;
-	} else {
-		return HUGE_VAL;
-	}
-	return (*k - a) / d;
-}
-
 int hylo_domain_segment(const hylo_map *m, hylo_mode mode, hylo_point a, hylo_point b)
 {
-	hylo_real ub, vb, t, tx, ty, kx = 0, ky = 0, dkx = 0, dky = 0;
+	hylo_real ua, va, ub, vb;
+	hylo_cell_walk walk;
+	hylo_cell_piece p;
 	seg_walk w;
-	int32_t iter, bound;
 
 	if (!hylo_domain_contains(m, mode, a) || !hylo_domain_contains(m, mode, b))
 		return 0;
+	if (hylo_mode_domain(mode) == HYLO_DOMAIN_AIR && b.z != b.z)
+		return 0;
 	/* Both ends in the rectangle and on the right side of x = 0: so is the
-	 * whole segment (both sets are convex). */
+	 * whole segment (both sets are convex). A point, or a vertical flight
+	 * segment, has no pieces: its ends are checked. */
 	memset(&w, 0, sizeof w);
 	w.m = m;
 	w.mode = mode;
-	map_grid(m, a.x, a.y, &w.ua, &w.va);
-	map_grid(m, b.x, b.y, &ub, &vb);
-	w.du = ub - w.ua;
-	w.dv = vb - w.va;
 	w.za = a.z;
 	w.dz = b.z - a.z;
-	if (hylo_mode_domain(mode) == HYLO_DOMAIN_AIR && b.z != b.z)
-		return 0;
-	if (w.du == 0 && w.dv == 0)
-		return 1; /* a point, or a vertical flight segment: ends checked */
-
-	tx = first_cross(w.ua, w.du, &kx, &dkx);
-	ty = first_cross(w.va, w.dv, &ky, &dky);
-	bound = m->nx + m->ny + 4;
-	t = 0;
-	for (iter = 0; iter < bound && t < 1; iter++) {
-		hylo_real tn = tx < ty ? tx : ty;
-
-		if (tn > 1)
-			tn = 1;
-		if (tn > t && !walk_piece(&w, t, tn))
+	map_grid(m, a.x, a.y, &ua, &va);
+	map_grid(m, b.x, b.y, &ub, &vb);
+	hylo_cell_walk_start(&walk, m->nx, m->ny, ua, va, ub, vb);
+	while (hylo_cell_walk_next(&walk, &p))
+		if (!walk_piece(&w, &p))
 			return 0;
-		/* Passing exactly through a vertex touches two more cells. */
-		if (hylo_mode_domain(mode) == HYLO_DOMAIN_AIR && tx == tn && ty == tn && tn < 1) {
-			hylo_real z = w.za + tn * w.dz;
-			cell_set s;
-			int k;
-
-			map_touching(m, kx, ky, &s);
-			for (k = 0; k < s.n; k++)
-				if (!flight_ok(m, s.idx[k], z, z))
-					return 0;
-		}
-		if (tx == tn) {
-			kx += dkx;
-			tx = (kx - w.ua) / w.du;
-		}
-		if (ty == tn) {
-			ky += dky;
-			ty = (ky - w.va) / w.dv;
-		}
-		t = tn;
-	}
-	return t >= 1;
+	return walk.t >= 1;
 }

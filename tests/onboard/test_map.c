@@ -3,7 +3,9 @@
  * reason naming the field, the cell capacity holds exactly at its limit, and
  * the exact segment test agrees with dense sampling of random segments on
  * random maps (it never accepts a segment with a point outside the domain,
- * and accepts those whose dense samples are all well inside).
+ * and accepts those whose dense samples are all well inside); the cell walk
+ * visits the cells of a diagonal, a segment through a vertex, one along a
+ * grid line, and stops where a segment leaves the grid.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -178,6 +180,61 @@ static void test_segments_vs_dense_sampling(void **state)
 	assert_true(accepted > 100 && rejected > 100);
 }
 
+/* Walks (ua, va) -> (ub, vb) on a 4 x 3 grid into ps; returns the pieces. */
+static int walk(hylo_real ua, hylo_real va, hylo_real ub, hylo_real vb, hylo_cell_piece *ps, int max)
+{
+	hylo_cell_walk w;
+	int n = 0;
+
+	hylo_cell_walk_start(&w, 4, 3, ua, va, ub, vb);
+	while (n < max && hylo_cell_walk_next(&w, &ps[n]))
+		n++;
+	return n;
+}
+
+static void expect_piece(const hylo_cell_piece *p, hylo_real t0, hylo_real t1, int32_t x0, int32_t x1, int32_t y0,
+			 int32_t y1, int32_t cu, int32_t cv)
+{
+	if (fabs(p->t0 - t0) > 1e-12 || fabs(p->t1 - t1) > 1e-12 || p->x0 != x0 || p->x1 != x1 || p->y0 != y0 ||
+	    p->y1 != y1 || p->cross_u != cu || p->cross_v != cv)
+		fail_msg("piece [%g, %g] cols %d..%d rows %d..%d crossing (%d, %d), want [%g, %g] %d..%d %d..%d (%d, %d)",
+			 p->t0, p->t1, (int)p->x0, (int)p->x1, (int)p->y0, (int)p->y1, (int)p->cross_u,
+			 (int)p->cross_v, t0, t1, (int)x0, (int)x1, (int)y0, (int)y1, (int)cu, (int)cv);
+}
+
+static void test_cell_walk(void **state)
+{
+	hylo_cell_piece p[16];
+	hylo_cell_walk w;
+
+	(void)state;
+	/* A shallow diagonal clips the corner of cell (1, 1). */
+	assert_int_equal(walk(0.5, 0.5, 2.5, 1.3, p, 16), 4);
+	expect_piece(&p[0], 0, 0.25, 0, 0, 0, 0, 1, -1);
+	expect_piece(&p[1], 0.25, 0.625, 1, 1, 0, 0, -1, 1);
+	expect_piece(&p[2], 0.625, 0.75, 1, 1, 1, 1, 2, -1);
+	expect_piece(&p[3], 0.75, 1, 2, 2, 1, 1, -1, -1);
+	/* Through the vertex (1, 1): the end touches its four cells. */
+	assert_int_equal(walk(0.5, 0.5, 1.5, 1.5, p, 16), 2);
+	expect_piece(&p[0], 0, 0.5, 0, 0, 0, 0, 1, 1);
+	expect_piece(&p[1], 0.5, 1, 1, 1, 1, 1, -1, -1);
+	assert_true(p[0].ex0 == 0 && p[0].ex1 == 1 && p[0].ey0 == 0 && p[0].ey1 == 1);
+	/* Along the grid line v = 1: the cells on both sides. */
+	assert_int_equal(walk(0.5, 1, 2, 1, p, 16), 2);
+	expect_piece(&p[0], 0, 1.0 / 3, 0, 0, 0, 1, 1, -1);
+	expect_piece(&p[1], 1.0 / 3, 1, 1, 1, 0, 1, -1, -1);
+	/* Leaving the grid at u = 4: the walk ends there, incomplete. */
+	hylo_cell_walk_start(&w, 4, 3, 3.5, 0.5, 5.5, 0.5);
+	assert_int_equal(hylo_cell_walk_next(&w, &p[0]), 1);
+	expect_piece(&p[0], 0, 0.25, 3, 3, 0, 0, 4, -1);
+	assert_int_equal(hylo_cell_walk_next(&w, &p[1]), 0);
+	assert_true(w.t < 1);
+	/* A point: no pieces, complete. */
+	hylo_cell_walk_start(&w, 4, 3, 1.5, 1.5, 1.5, 1.5);
+	assert_int_equal(hylo_cell_walk_next(&w, &p[0]), 0);
+	assert_true(w.t >= 1);
+}
+
 static int setup(void **state)
 {
 	(void)state;
@@ -198,6 +255,7 @@ int main(void)
 		cmocka_unit_test(test_bad_maps),
 		cmocka_unit_test(test_cell_capacity),
 		cmocka_unit_test(test_segments_vs_dense_sampling),
+		cmocka_unit_test(test_cell_walk),
 	};
 
 	return cmocka_run_group_tests_name("map", tests, setup, teardown);

@@ -28,6 +28,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -486,12 +487,18 @@ double predicted_cost(const hylo_robot &r, const hylo_plan &p)
 	return total;
 }
 
-// A smoothed trajectory's least clearance beyond the robot's body, by the
-// check hylo-smooth publishes (trainer/clearance.hpp), with the default
-// margin; -infinity when a point leaves its mode's domain.
-double least_clearance(const MultiPhaseSolution &s, const Scene &sc, const RobotParams &robot)
+// A smoothed trajectory's clearance by the check hylo-smooth publishes
+// (trainer/clearance.hpp), with the default margin: its safe rule chooses
+// among alternatives.
+ClearanceCheck least_clearance(const MultiPhaseSolution &s, const Scene &sc, const RobotParams &robot)
 {
-	const ClearanceCheck c = check_clearance(s, terrain_grid(sc), robot.body_radius_m, HYLO_DEFAULT_MARGIN_M);
+	return check_clearance(s, terrain_grid(sc), robot.body_radius_m, HYLO_DEFAULT_MARGIN_M);
+}
+
+// Its least clearance beyond the robot's body as the tables print it;
+// -infinity when a point leaves its mode's domain.
+double clearance_m(const ClearanceCheck &c)
+{
 	return c.outside_phase >= 0 ? -INFINITY : c.min_clearance_m;
 }
 
@@ -507,9 +514,13 @@ struct PlanResult {
 	std::string sequence;
 	double predicted = 0, exact = 0, smoothed = NAN, smoothed_error = NAN, length = 0, water = 0,
 	       smoothed_water = 0;
-	double clearance = NAN;   // the smoothed trajectory's least clearance beyond the body [m]
+	std::optional<ClearanceCheck> clearance;   // of the smoothed trajectory, when there is one
 	uint32_t waypoints = 0;
 	std::string path;   // JSON [[mode, x, y, v, theta], ...]
+
+	// The least clearance beyond the body [m]; NaN when not smoothed.
+	double least_clearance_m() const { return clearance ? clearance_m(*clearance) : NAN; }
+	bool safe() const { return clearance && clearance->safe; }
 };
 
 // full: also the exact graph-path cost and the smoothed trajectory (minutes).
@@ -557,7 +568,7 @@ std::string plan_json(const PlanResult &r)
 	       ", \"smoothed_j\": " + num(r.smoothed) + ", \"smoothed_replay_error\": " + num(r.smoothed_error) +
 	       ", \"length_m\": " + num(r.length) + ", \"water_m\": " + num(r.water) +
 	       ", \"smoothed_water_m\": " + num(r.smoothed_water) + ", \"smoothed_min_clearance_m\": " +
-	       num(r.clearance) + ",\n    \"path\": [" + r.path + "]}";
+	       num(r.least_clearance_m()) + ",\n    \"path\": [" + r.path + "]}";
 }
 
 // The robot with its two committed models (onboard/models/, the registry).
@@ -629,7 +640,7 @@ std::string ambot_study(const Options &opt, std::string &md)
 			char row[512];
 			std::snprintf(row, sizeof row, "| %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.1f (%.1f) | %.2f |\n",
 				      k ? "" : scenes[s], k ? "shortest" : "energy", r.sequence.c_str(), r.predicted,
-				      r.exact, r.smoothed, r.length, r.water, r.smoothed_water, r.clearance);
+				      r.exact, r.smoothed, r.length, r.water, r.smoothed_water, r.least_clearance_m());
 			md += row;
 		}
 		// The energy plan's alternatives, smoothed as hylo-smooth does.
@@ -639,7 +650,7 @@ std::string ambot_study(const Options &opt, std::string &md)
 		std::vector<AlternativeOutcome> candidates(1);
 		candidates[0].result.ok = std::isfinite(e.smoothed);
 		candidates[0].result.solution.cost = e.smoothed;
-		candidates[0].clearance.safe = e.clearance >= HYLO_DEFAULT_MARGIN_M - kCheckToleranceM;
+		candidates[0].clearance.safe = e.safe();
 		for (size_t k = 1; k < alts.size(); k++) {
 			PlanResult a = evaluate(ambot, *energy, *alts[k].plan, sc, false);
 			std::string how = "";
@@ -657,19 +668,19 @@ std::string ambot_study(const Options &opt, std::string &md)
 			AlternativeOutcome o;
 			o.result.ok = std::isfinite(a.smoothed);
 			o.result.solution.cost = a.smoothed;
-			o.clearance.safe = a.clearance >= HYLO_DEFAULT_MARGIN_M - kCheckToleranceM;
+			o.clearance.safe = a.safe();
 			candidates.push_back(std::move(o));
 			char row[512];
 			std::snprintf(row, sizeof row, "| | alternative %zu | %s | %.1f | | %.1f%s | %.1f | %.1f | %.2f |\n",
 				      k + 1, a.sequence.c_str(), a.predicted, a.smoothed, how.c_str(), a.length, a.water,
-				      a.clearance);
+				      a.least_clearance_m());
 			md += row;
 			aj += std::string(k > 1 ? ", " : "") + "{\"rank\": " + std::to_string(k + 1) +
 			      ", \"sequence\": \"" + a.sequence + "\", \"predicted_j\": " + num(a.predicted) +
 			      ", \"smoothed_j\": " + num(a.smoothed) + ", \"method\": \"" +
 			      (how.empty() ? "full" : how.substr(2, how.size() - 3)) + "\", \"length_m\": " +
 			      num(a.length) + ", \"water_m\": " + num(a.water) + ", \"min_clearance_m\": " +
-			      num(a.clearance) + "}";
+			      num(a.least_clearance_m()) + "}";
 		}
 		const int chosen = choose_alternative(candidates);
 		const size_t best = chosen > 0 ? static_cast<size_t>(chosen) : 0;   // graph rank - 1 of hylo's result
@@ -714,7 +725,7 @@ std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Wa
 		r[0] = s.cost;
 		r[1] = s.T;
 		r[2] = s.replay_error;
-		r[3] = least_clearance(s, sc, robot);
+		r[3] = clearance_m(least_clearance(s, sc, robot));
 		for (size_t k = 0; k + 1 < s.phases.size(); k++)
 			if (s.modes[k] != s.modes[k + 1]) {
 				const Trajectory &t = s.phases[k].traj;

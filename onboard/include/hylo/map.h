@@ -101,6 +101,49 @@ int hylo_domain_contains(const hylo_map *m, hylo_mode mode, hylo_point p);
  * for ground the height rule holds. 0 otherwise. Bounded: O(nx + ny). */
 int hylo_domain_segment(const hylo_map *m, hylo_mode mode, hylo_point a, hylo_point b);
 
+/*
+ * The exact walk of a straight segment over a grid's cells, in grid units
+ * (u = (x - origin_x) / resolution, v likewise: cell (ix, iy) is
+ * [ix, ix + 1] x [iy, iy + 1]): hylo_domain_segment's, and the smoother's
+ * wall crossings (trainer/map_guards.cpp) walk with it. The segment
+ * a + t (b - a), t in [0, 1], is cut at every grid line it crosses into
+ * pieces, each in one cell, or, when it runs along a grid line, on the line
+ * between two cells.
+ */
+/** The cell columns lo..hi touching grid coordinate u in [0, n] (rows: v,
+ * ny): one, or the two either side of a grid line; returns how many. */
+int hylo_cell_span(hylo_real u, int32_t n, int32_t *lo, int32_t *hi);
+
+typedef struct {
+	hylo_real t0, t1;        /* the piece: t in [t0, t1], t0 < t1 */
+	int32_t x0, x1, y0, y1;  /* its cells: columns x0..x1, rows y0..y1 */
+	/* Where it ends, unless t1 = 1: on the grid line u = cross_u, v =
+	 * cross_v, or both at a vertex (-1: not on one), a point touching the
+	 * cells of columns ex0..ex1 and rows ey0..ey1. */
+	int32_t cross_u, cross_v;
+	int32_t ex0, ex1, ey0, ey1;
+} hylo_cell_piece;
+
+typedef struct {
+	int32_t nx, ny;
+	hylo_real ua, va, du, dv;
+	hylo_real t;             /* where the walk is: 1 once it has reached b */
+	hylo_real tx, ty, kx, ky, dkx, dky;
+	int32_t left;            /* pieces it may still take */
+} hylo_cell_walk;
+
+/** Starts the walk of a -> b = (ua, va) -> (ub, vb) over nx x ny cells. A
+ * segment of zero length has no pieces (its walk is complete at once). */
+void hylo_cell_walk_start(hylo_cell_walk *w, int32_t nx, int32_t ny, hylo_real ua, hylo_real va, hylo_real ub,
+			  hylo_real vb);
+
+/** The next piece into p: 1, or 0 when the walk has reached b or the next
+ * piece lies outside [0, nx] x [0, ny] (a segment leaving the grid; one
+ * starting outside it, or an empty grid, has no pieces). Bounded: nx + ny
+ * + 4 pieces; t < 1 after the last one says the walk did not reach b.
+ * Does not allocate. */
+int hylo_cell_walk_next(hylo_cell_walk *w, hylo_cell_piece *p);
+
 #ifdef __cplusplus
 }
 #endif
