@@ -16,6 +16,7 @@
 #include "trainer/model_table.hpp"
 #include "trainer/modes.hpp"
 #include "trainer/sha256.hpp"
+#include "trainer/yaml_file.hpp"
 
 namespace hylo::trainer {
 namespace {
@@ -175,16 +176,7 @@ std::vector<std::pair<std::string, std::vector<std::string>>> list_robots()
 RobotParams load_robot(const std::string &path)
 {
 	Reader rd{path};
-	YAML::Node root;
-	try {
-		root = YAML::LoadFile(path);
-	} catch (const YAML::BadFile &) {
-		throw ParamError(path + ": cannot read the file");
-	} catch (const YAML::ParserException &e) {
-		throw ParamError(path + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-	}
-	if (!root || !root.IsMap())
-		throw ParamError(path + ":1: a robot file must be a YAML mapping");
+	YAML::Node root = load_yaml_mapping<ParamError>(path, "a robot file");
 	rd.only(root, "the robot file", {"robot", "g", "body", "modes"});
 	RobotParams rp;
 	rp.path = path;

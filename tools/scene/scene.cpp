@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "hylo/modes.h"
+#include "trainer/yaml_file.hpp"
 
 namespace hylo::scene {
 namespace {
@@ -271,16 +272,7 @@ State parse_state(const std::string &text, const std::string &what)
 Scene load(const std::string &path)
 {
 	Ctx c{path};
-	YAML::Node root;
-	try {
-		root = YAML::LoadFile(path);
-	} catch (const YAML::BadFile &) {
-		throw Error(path + ": cannot read the file");
-	} catch (const YAML::ParserException &e) {
-		throw Error(path + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-	}
-	if (!root || !root.IsMap())
-		throw Error(path + ":1: a scene must be a YAML mapping");
+	YAML::Node root = trainer::load_yaml_mapping<Error>(path, "a scene");
 	c.keys(root, "the scene", {"name", "description", "robot", "map_id", "grid", "ceiling_m",
 				   "max_step_m", "terrain", "goal", "render"});
 	Scene sc;
