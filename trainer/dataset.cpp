@@ -144,13 +144,6 @@ ResumePoint resume_point(const std::string &existing, const std::string &header)
 
 namespace {
 
-using internal::meta_differences;
-using internal::meta_text;
-using internal::resume_point;
-using internal::ResumePoint;
-using internal::same_stream;
-
-
 // Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
 // time; returns rows in index order. A sample with a straight-line result in
 // line (--relabel) gets only the other starts.
@@ -212,7 +205,7 @@ std::string straight_meta_text(const RobotParams &robot, const GenOptions &opt)
 {
 	GenOptions line_opt = opt;
 	line_opt.solve.strategy_starts = false;
-	return meta_text(robot, line_opt);
+	return internal::meta_text(robot, line_opt);
 }
 
 std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &opt)
@@ -223,7 +216,7 @@ std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &o
 		throw std::runtime_error("--relabel " + path + ": its " + path + ".meta is not that of a " +
 					 robot.robot + " " + hylo_mode_str(opt.mode) + " dataset with seed " +
 					 std::to_string(opt.seed) + " from straight-line starts alone under these " +
-					 "settings (" + meta_differences(meta, want) + ")");
+					 "settings (" + internal::meta_differences(meta, want) + ")");
 	std::ifstream f(path);
 	std::string text;
 	std::vector<std::string> names = csv_columns(opt.mode);
@@ -543,17 +536,18 @@ std::optional<uint64_t> resume(const GenOptions &opt, const std::string &path, c
 		write_file_atomically(meta_path, meta);
 		return lo;
 	}
-	ResumePoint r = resume_point(existing, header);
+	internal::ResumePoint r = internal::resume_point(existing, header);
 	std::string old_meta = read_file(meta_path);
 	if (old_meta != meta) {
-		if (r.rows >= hi - lo && same_stream(old_meta, meta)) {
+		if (r.rows >= hi - lo && internal::same_stream(old_meta, meta)) {
 			if (opt.progress)
 				std::fprintf(stderr, "%s: every row asked for is there (labelled under other "
 						     "settings, see its .meta); nothing to generate\n",
 					     path.c_str());
 			return std::nullopt;
 		}
-		throw std::runtime_error(path + " was made under other settings: " + meta_differences(old_meta, meta) +
+		throw std::runtime_error(path + " was made under other settings: " +
+					 internal::meta_differences(old_meta, meta) +
 					 "; regenerate it into another --out directory");
 	}
 	if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
@@ -645,7 +639,7 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt, RowSink *al
 	uint64_t hi = opt.samples * static_cast<uint64_t>(opt.shard) / static_cast<uint64_t>(opt.shards);
 	GenSummary sum;
 	sum.path = dataset_path(opt);
-	const std::string meta = meta_text(robot, opt);
+	const std::string meta = internal::meta_text(robot, opt);
 	const GenOptions ro = relabel_in_place(robot, opt, sum.path, meta);
 	std::vector<Solution> line;
 	if (!ro.relabel.empty()) {

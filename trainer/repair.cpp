@@ -23,12 +23,6 @@
 namespace hylo::trainer {
 namespace {
 
-using internal::meta_differences;
-using internal::meta_text;
-using internal::resume_point;
-using internal::ResumePoint;
-using internal::same_stream;
-
 // A label lowered by more than this fraction counts as lowered.
 constexpr double kLowered = 0.005;
 // A solution replaces a label only if cheaper by more than this fraction:
@@ -165,7 +159,8 @@ Stored parse_sidecar_line(hylo_mode mode, const std::string &line, uint64_t i, i
 uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint64_t n, uint64_t *held = nullptr)
 {
 	const std::string path = solutions_path(opt.gen), meta_path = path + ".meta";
-	const std::string meta = meta_text(robot, opt.gen) + "path_points: " + std::to_string(opt.path_points) + "\n";
+	const std::string meta =
+		internal::meta_text(robot, opt.gen) + "path_points: " + std::to_string(opt.path_points) + "\n";
 	const std::string header = join(sidecar_columns(opt.gen.mode, opt.path_points), ",") + "\n";
 	std::string existing = read_file(path);
 	uint64_t next = 0;
@@ -173,8 +168,8 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 		std::string old_meta = read_file(meta_path);
 		if (old_meta != meta)
 			throw std::runtime_error(path + " was made under other settings: " +
-						 meta_differences(old_meta, meta) + "; remove it (it is solved again)");
-		ResumePoint r = resume_point(existing, header);
+						 internal::meta_differences(old_meta, meta) + "; remove it (it is solved again)");
+		internal::ResumePoint r = internal::resume_point(existing, header);
 		next = r.rows;
 		if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + path);
@@ -304,7 +299,7 @@ std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
 	std::string out = "repaired_rows: " + std::to_string(opt.gen.samples) +
 			  "\nrepair_neighbours: " + std::to_string(opt.neighbours) +
 			  "\nrepair_path_points: " + std::to_string(opt.path_points) + "\n";
-	std::istringstream in(meta_text(robot, opt.gen));
+	std::istringstream in(internal::meta_text(robot, opt.gen));
 	for (std::string line; std::getline(in, line);) {
 		std::string key = line.substr(0, line.find(": "));
 		if (key == "robot" || key == "mode" || key == "seed" || key == "draws" || key == "params_sha256")
@@ -351,7 +346,8 @@ GenSummary generate_with_solutions(const RobotParams &robot, const RepairOptions
 	// Up to the row generation resumes at, solved again (none for a new
 	// dataset); then in step with it.
 	const std::string rows = read_file(dataset_path(opt.gen));
-	const uint64_t have = rows.empty() ? 0 : resume_point(rows, join(csv_columns(opt.gen.mode), ",") + "\n").rows;
+	const uint64_t have =
+		rows.empty() ? 0 : internal::resume_point(rows, join(csv_columns(opt.gen.mode), ",") + "\n").rows;
 	uint64_t held = 0;
 	extend_sidecar(robot, opt, have, &held);
 	SolutionsSink sink(robot, opt, held);
@@ -376,9 +372,9 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	const std::string input = read_file(sum.path), input_meta = read_file(meta_path);
 	if (input.empty() || input_meta.empty())
 		throw std::invalid_argument("repair: no dataset " + sum.path + " with its .meta (run --stage gen first)");
-	if (!same_stream(input_meta, meta_text(robot, opt.gen)))
+	if (!internal::same_stream(input_meta, internal::meta_text(robot, opt.gen)))
 		throw std::invalid_argument("repair: " + sum.path + " is not this stream's (" +
-					    meta_differences(input_meta, meta_text(robot, opt.gen)) + ")");
+					    internal::meta_differences(input_meta, internal::meta_text(robot, opt.gen)) + ")");
 	const std::string lines_meta = repair_lines(robot, opt);
 	if (contains_lines(input_meta, lines_meta)) {
 		sum.already = true;
@@ -434,8 +430,8 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		}
 		if (old != work_meta)
 			throw std::runtime_error(work + " is a repair under other settings or of other rows: " +
-						 meta_differences(old, work_meta) + "; remove it");
-		ResumePoint r = resume_point(existing, header + "\n");
+						 internal::meta_differences(old, work_meta) + "; remove it");
+		internal::ResumePoint r = internal::resume_point(existing, header + "\n");
 		next = std::min(r.rows, n);
 		if (truncate(work.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + work);
