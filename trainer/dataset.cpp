@@ -139,6 +139,15 @@ ResumePoint resume_point(const std::string &existing, const std::string &header)
 	return r;
 }
 
+std::vector<std::string> fork_samples(uint64_t lo, uint64_t hi, int jobs,
+				      const std::function<std::string(uint64_t)> &f, const std::string &doing)
+{
+	std::vector<std::string> rows = fork_each(hi - lo, jobs, [&](size_t k) { return f(lo + k); });
+	for (size_t k = 0; k < rows.size(); k++)
+		if (rows[k].empty())
+			throw std::runtime_error("the process " + doing + " sample " + std::to_string(lo + k) + " failed");
+	return rows;
+}
 
 }  // namespace internal
 
@@ -154,8 +163,7 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
 				     uint64_t &converged, uint64_t &errors, RowSink *also)
 {
-	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
-		uint64_t i = lo + k;
+	std::vector<std::string> rows = internal::fork_samples(lo, hi, opt.jobs, [&](uint64_t i) {
 		double a[6] = {0}, b[6] = {0};
 		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
 		Solution s;
@@ -167,10 +175,7 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 			s.status_text = kErrorStatus + std::string(e.what());
 		}
 		return csv_row(opt.mode, i, a, b, s) + (also ? kSinkSeparator + also->line(i, a, b, s) : "");
-	});
-	for (size_t k = 0; k < rows.size(); k++)
-		if (rows[k].empty())
-			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
+	}, "solving");
 	if (also) {
 		std::vector<std::string> lines;
 		for (std::string &r : rows) {

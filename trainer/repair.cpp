@@ -16,7 +16,6 @@
 
 #include "trainer/collocation.hpp"
 #include "trainer/numerics.hpp"
-#include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
 
@@ -188,14 +187,11 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 	const uint64_t first = next;
 	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
 		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
-		std::vector<std::string> rows =
-			fork_each(e - c, opt.gen.jobs, [&](size_t k) { return sidecar_line(robot, opt, c + k); });
+		std::vector<std::string> rows = internal::fork_samples(
+			c, e, opt.gen.jobs, [&](uint64_t i) { return sidecar_line(robot, opt, i); }, "solving");
 		std::string text;
-		for (size_t k = 0; k < rows.size(); k++) {
-			if (rows[k].empty())
-				throw std::runtime_error("the process solving sample " + std::to_string(c + k) + " failed");
-			text += rows[k] + "\n";
-		}
+		for (const std::string &r : rows)
+			text += r + "\n";
 		out.write(text);
 		out.sync();
 		if (opt.gen.progress)
@@ -468,8 +464,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	}
 	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
 		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
-		std::vector<std::string> rows = fork_each(e - c, opt.gen.jobs, [&](size_t k) {
-			uint64_t i = c + k;
+		std::vector<std::string> rows = internal::fork_samples(c, e, opt.gen.jobs, [&](uint64_t i) {
 			std::string text;
 			Solution inc = incumbent(i, text);
 			double x1[6] = {0}, x2[6] = {0};
@@ -494,13 +489,10 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				// keep the incumbent
 			}
 			return text;
-		});
+		}, "repairing");
 		std::string text;
-		for (size_t k = 0; k < rows.size(); k++) {
-			if (rows[k].empty())
-				throw std::runtime_error("the process repairing sample " + std::to_string(c + k) + " failed");
-			text += rows[k] + "\n";
-		}
+		for (const std::string &r : rows)
+			text += r + "\n";
 		work_file.write(text);
 		work_file.sync();
 		sum.repaired_now += e - c;
