@@ -227,31 +227,35 @@ void model_arrays(std::string &out, const Model &f, const std::string &id, const
 void model_struct(std::string &out, const SvrExport &m, const std::string &id, const std::string &name,
 		  const std::string &n_sv, const std::string &n_features, const std::string &prov)
 {
-	out += "static const hylo_svr_model " + id + " = {\n";
-	out += "\t.name = \"" + name + "\",\n";
-	out += "\t.n_sv = " + n_sv + ",\n";
-	out += "\t.n_features = " + n_features + ",\n";
-	out += "\t.gamma = " + format_double(m.gamma) + ",\n";
-	out += "\t.rho = " + format_double(m.rho) + ",\n";
-	out += "\t.sv = " + id + "_sv,\n";
-	out += "\t.coef = " + id + "_coef,\n";
-	out += "\t.feature_offset = " + id + "_feature_offset,\n";
-	out += "\t.feature_scale = " + id + "_feature_scale,\n";
-	out += "\t.label_offset = " + format_double(m.label_offset) + ",\n";
-	out += "\t.label_scale = " + format_double(m.label_scale) + ",\n";
-	out += std::string("\t.label_log = ") + (m.label_log ? "1" : "0") + ",\n";
-	out += "\t.cost_floor_per_m = " + format_double(m.cost_floor_per_m) + ",\n";
-	out += "\t.cost_floor_j = " + format_double(m.cost_floor_j) + ",\n";
-	out += "\t.max_distance_m = " + format_double(m.max_distance_m) + ",\n";
-	out += "\t.speed_min_mps = " + format_double(m.speed_min_mps) + ",\n";
-	out += "\t.speed_max_mps = " + format_double(m.speed_max_mps) + ",\n";
-	out += "\t.state_bounded = " + std::to_string(m.state_bounded) + ",\n";
-	out += "\t.state_min = " + brace_list(m.state_min) + ",\n";
-	out += "\t.state_max = " + brace_list(m.state_max) + ",\n";
-	out += "\t.provenance = " + c_string(prov) + ",\n";
 	// Every field is written, so that C++ (-Wextra: missing initializers)
 	// includes the header as cleanly as C.
-	out += "\t.envelope = " + (m.envelope ? "&" + id + "_envelope" : std::string("NULL")) + ",\n";
+	const std::pair<const char *, std::string> fields[] = {
+		{"name", "\"" + name + "\""},
+		{"n_sv", n_sv},
+		{"n_features", n_features},
+		{"gamma", format_double(m.gamma)},
+		{"rho", format_double(m.rho)},
+		{"sv", id + "_sv"},
+		{"coef", id + "_coef"},
+		{"feature_offset", id + "_feature_offset"},
+		{"feature_scale", id + "_feature_scale"},
+		{"label_offset", format_double(m.label_offset)},
+		{"label_scale", format_double(m.label_scale)},
+		{"label_log", m.label_log ? "1" : "0"},
+		{"cost_floor_per_m", format_double(m.cost_floor_per_m)},
+		{"cost_floor_j", format_double(m.cost_floor_j)},
+		{"max_distance_m", format_double(m.max_distance_m)},
+		{"speed_min_mps", format_double(m.speed_min_mps)},
+		{"speed_max_mps", format_double(m.speed_max_mps)},
+		{"state_bounded", std::to_string(m.state_bounded)},
+		{"state_min", brace_list(m.state_min)},
+		{"state_max", brace_list(m.state_max)},
+		{"provenance", c_string(prov)},
+		{"envelope", m.envelope ? "&" + id + "_envelope" : "NULL"},
+	};
+	out += "static const hylo_svr_model " + id + " = {\n";
+	for (const auto &f : fields)
+		out += std::string("\t.") + f.first + " = " + f.second + ",\n";
 	out += "};\n\n";
 }
 
