@@ -180,7 +180,12 @@ static rgba_color terrain_color(const hylo_map_t *m, int cell, float lo, float h
 	return c;
 }
 
-static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plane)
+/* Draws one cell (ix, iy) of m: its low corner (x0, y0), its terrain colour c. */
+typedef void (*cell_fn)(const void *ctx, const hylo_map_t *m, int ix, int iy, double x0, double y0,
+                        rgba_color c);
+
+/* The cells of m as GL_QUADS, each drawn by draw (the top and the 3-D view). */
+static void terrain_quads(const hylo_map_t *m, cell_fn draw, const void *ctx)
 {
 	int ix, iy;
 	float lo, hi;
@@ -189,21 +194,38 @@ static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plan
 	height_range(m, &lo, &hi);
 	glBegin(GL_QUADS);
 	for (iy = 0; iy < m->ny; iy++)
-		for (ix = 0; ix < m->nx; ix++) {
-			int k = iy * m->nx + ix;
-			double x0 = m->origin_x_m + ix * r, y0 = m->origin_y_m + iy * r;
-			rgba_color c;
-			if (phase_plane)
-				c = m->terrain[k] == 0 ? OBSTACLE : x0 + 0.5 * r < 0 ? DI_NEG_BG : DI_POS_BG;
-			else
-				c = terrain_color(m, k, lo, hi);
-			color(c);
-			glVertex2d(fx(f, x0), fy(f, y0));
-			glVertex2d(fx(f, x0 + r), fy(f, y0));
-			glVertex2d(fx(f, x0 + r), fy(f, y0 + r));
-			glVertex2d(fx(f, x0), fy(f, y0 + r));
-		}
+		for (ix = 0; ix < m->nx; ix++)
+			draw(ctx, m, ix, iy, m->origin_x_m + ix * r, m->origin_y_m + iy * r,
+			     terrain_color(m, iy * m->nx + ix, lo, hi));
 	glEnd();
+}
+
+typedef struct {
+	const frame *f;
+	int phase_plane;   /* colour by the sign of p, not by terrain */
+} top_view;
+
+static void top_cell(const void *ctx, const hylo_map_t *m, int ix, int iy, double x0, double y0,
+                     rgba_color c)
+{
+	const top_view *v = ctx;
+	const frame *f = v->f;
+	double r = m->resolution_m;
+
+	if (v->phase_plane)
+		c = m->terrain[iy * m->nx + ix] == 0 ? OBSTACLE : x0 + 0.5 * r < 0 ? DI_NEG_BG : DI_POS_BG;
+	color(c);
+	glVertex2d(fx(f, x0), fy(f, y0));
+	glVertex2d(fx(f, x0 + r), fy(f, y0));
+	glVertex2d(fx(f, x0 + r), fy(f, y0 + r));
+	glVertex2d(fx(f, x0), fy(f, y0 + r));
+}
+
+static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plane)
+{
+	top_view v = {f, phase_plane};
+
+	terrain_quads(m, top_cell, &v);
 }
 
 /* ---- graph ------------------------------------------------------------------ */
@@ -424,37 +446,35 @@ static void wall(double x0, double y0, double x1, double y1, double za, double z
 	glVertex3d(x0, y0, zb);
 }
 
+/* ctx: the height of the skirts' base (const double *). */
+static void cell_3d(const void *ctx, const hylo_map_t *m, int ix, int iy, double x0, double y0,
+                    rgba_color c)
+{
+	double base = *(const double *)ctx, r = m->resolution_m;
+	double h = cell_height(m, ix, iy);
+	double hx = ix + 1 < m->nx ? cell_height(m, ix + 1, iy) : base;
+	double hy = iy + 1 < m->ny ? cell_height(m, ix, iy + 1) : base;
+
+	color(c);
+	glNormal3d(0, 0, 1);
+	glVertex3d(x0, y0, h);
+	glVertex3d(x0 + r, y0, h);
+	glVertex3d(x0 + r, y0 + r, h);
+	glVertex3d(x0, y0 + r, h);
+	/* walls to the +x and +y neighbours, and skirts at the border */
+	if (hx != h)
+		wall(x0 + r, y0, x0 + r, y0 + r, hx, h, h > hx ? 1 : -1, 0);
+	if (hy != h)
+		wall(x0, y0 + r, x0 + r, y0 + r, hy, h, 0, h > hy ? 1 : -1);
+	if (ix == 0)
+		wall(x0, y0, x0, y0 + r, base, h, -1, 0);
+	if (iy == 0)
+		wall(x0, y0, x0 + r, y0, base, h, 0, -1);
+}
+
 static void draw_terrain_3d(const hylo_map_t *m, double base)
 {
-	int ix, iy;
-	float lo, hi;
-	double r = m->resolution_m;
-
-	height_range(m, &lo, &hi);
-	glBegin(GL_QUADS);
-	for (iy = 0; iy < m->ny; iy++)
-		for (ix = 0; ix < m->nx; ix++) {
-			double x0 = m->origin_x_m + ix * r, y0 = m->origin_y_m + iy * r;
-			double h = cell_height(m, ix, iy);
-			double hx = ix + 1 < m->nx ? cell_height(m, ix + 1, iy) : base;
-			double hy = iy + 1 < m->ny ? cell_height(m, ix, iy + 1) : base;
-			color(terrain_color(m, iy * m->nx + ix, lo, hi));
-			glNormal3d(0, 0, 1);
-			glVertex3d(x0, y0, h);
-			glVertex3d(x0 + r, y0, h);
-			glVertex3d(x0 + r, y0 + r, h);
-			glVertex3d(x0, y0 + r, h);
-			/* walls to the +x and +y neighbours, and skirts at the border */
-			if (hx != h)
-				wall(x0 + r, y0, x0 + r, y0 + r, hx, h, h > hx ? 1 : -1, 0);
-			if (hy != h)
-				wall(x0, y0 + r, x0 + r, y0 + r, hy, h, 0, h > hy ? 1 : -1);
-			if (ix == 0)
-				wall(x0, y0, x0, y0 + r, base, h, -1, 0);
-			if (iy == 0)
-				wall(x0, y0, x0 + r, y0, base, h, 0, -1);
-		}
-	glEnd();
+	terrain_quads(m, cell_3d, &base);
 }
 
 static void path_point_3d(const hylo_map_t *m, const hylo_plan_t *p, int k, double *v)
