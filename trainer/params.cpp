@@ -51,15 +51,7 @@ std::string without_body(const std::string &path)
 	return out;
 }
 
-struct Reader {
-	std::string path;
-
-	[[noreturn]] void fail(const YAML::Node &n, const std::string &what) const
-	{
-		int line = n.Mark().line >= 0 ? n.Mark().line + 1 : 0;
-		throw ParamError(path + ":" + std::to_string(line) + ": " + what);
-	}
-
+struct Reader : YamlReader<ParamError> {
 	void only(const YAML::Node &n, const std::string &where, const std::set<std::string> &keys) const
 	{
 		if (!n.IsMap())
@@ -69,26 +61,6 @@ struct Reader {
 			if (!keys.count(k))
 				fail(kv.first, "unknown key '" + k + "' in " + where);
 		}
-	}
-
-	YAML::Node need(const YAML::Node &n, const std::string &key, const std::string &where) const
-	{
-		if (!n[key])
-			fail(n, "missing key '" + key + "' in " + where);
-		return n[key];
-	}
-
-	double number(const YAML::Node &n, const std::string &what) const
-	{
-		double v = 0;
-		try {
-			v = n.as<double>();
-		} catch (const YAML::Exception &) {
-			fail(n, what + " must be a number");
-		}
-		if (!std::isfinite(v))
-			fail(n, what + " must be finite");
-		return v;
 	}
 };
 
@@ -175,7 +147,7 @@ std::vector<std::pair<std::string, std::vector<std::string>>> list_robots()
 
 RobotParams load_robot(const std::string &path)
 {
-	Reader rd{path};
+	Reader rd{{path}};
 	YAML::Node root = load_yaml_mapping<ParamError>(path, "a robot file");
 	rd.only(root, "the robot file", {"robot", "g", "body", "modes"});
 	RobotParams rp;

@@ -1,9 +1,10 @@
-// Reading a YAML file whose top level is a mapping, with the errors the
-// robot files (trainer/params.cpp) and scenes (tools/scene/scene.cpp) give.
-// Header-only: each caller throws its own exception type.
+// Reading a YAML file, with the errors the robot files (trainer/params.cpp)
+// and scenes (tools/scene/scene.cpp) give. Header-only: each caller throws
+// its own exception type.
 #ifndef HYLO_TRAINER_YAML_FILE_HPP
 #define HYLO_TRAINER_YAML_FILE_HPP
 
+#include <cmath>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -28,6 +29,40 @@ YAML::Node load_yaml_mapping(const std::string &path, const std::string &what)
 		throw Error(path + ":1: " + what + " must be a YAML mapping");
 	return root;
 }
+
+// The nodes of the YAML file path, read with errors Error "PATH:LINE: what"
+// (LINE: the node's).
+template <class Error>
+struct YamlReader {
+	std::string path;
+
+	[[noreturn]] void fail(const YAML::Node &n, const std::string &what) const
+	{
+		int line = n.Mark().line >= 0 ? n.Mark().line + 1 : 0;
+		throw Error(path + ":" + std::to_string(line) + ": " + what);
+	}
+
+	YAML::Node need(const YAML::Node &n, const std::string &key, const std::string &where) const
+	{
+		YAML::Node v = n[key];
+		if (!v)
+			fail(n, "missing key '" + key + "' in " + where);
+		return v;
+	}
+
+	double number(const YAML::Node &n, const std::string &what) const
+	{
+		double v = 0;
+		try {
+			v = n.as<double>();
+		} catch (const YAML::Exception &) {
+			fail(n, what + " must be a number");
+		}
+		if (!std::isfinite(v))
+			fail(n, what + " must be finite");
+		return v;
+	}
+};
 
 }  // namespace hylo::trainer
 
