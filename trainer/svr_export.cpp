@@ -512,6 +512,20 @@ const std::string &field(const std::map<std::string, std::string> &f, const std:
 	return it->second;
 }
 
+// What model_struct and model_arrays wrote of model id (Model: SvrExport or
+// ClassifierExport): its gamma, rho and four arrays.
+template <class Model>
+void read_model(const HeaderParts &h, const std::string &id, Model &m)
+{
+	const auto &f = fields(h, id);
+	m.gamma = number(field(f, "gamma"));
+	m.rho = number(field(f, "rho"));
+	m.sv = numbers(h, id + "_sv");
+	m.coef = numbers(h, id + "_coef");
+	m.feature_offset = numbers(h, id + "_feature_offset");
+	m.feature_scale = numbers(h, id + "_feature_scale");
+}
+
 }  // namespace
 
 SvrExport parse_svr_header(const std::string &text)
@@ -549,12 +563,7 @@ SvrExport parse_svr_header(const std::string &text)
 	m.robot = name.substr(0, name.size() - mode.size() - 1);
 	m.mode = mode_id;
 	m.n_features = static_cast<int>(hylo_feature_count(mode_id));
-	m.gamma = number(field(f, "gamma"));
-	m.rho = number(field(f, "rho"));
-	m.sv = numbers(h, id + "_sv");
-	m.coef = numbers(h, id + "_coef");
-	m.feature_offset = numbers(h, id + "_feature_offset");
-	m.feature_scale = numbers(h, id + "_feature_scale");
+	read_model(h, id, m);
 	m.label_offset = number(field(f, "label_offset"));
 	m.label_scale = number(field(f, "label_scale"));
 	m.label_log = field(f, "label_log") == "1";
@@ -581,14 +590,8 @@ SvrExport parse_svr_header(const std::string &text)
 				       d.second.substr(c + 5, d.second.size() - c - 8)});
 	}
 	if (h.structs.count(id + "_feasibility")) {
-		const auto &ff = fields(h, id + "_feasibility");
 		ClassifierExport c;
-		c.gamma = number(field(ff, "gamma"));
-		c.rho = number(field(ff, "rho"));
-		c.sv = numbers(h, id + "_feasibility_sv");
-		c.coef = numbers(h, id + "_feasibility_coef");
-		c.feature_offset = numbers(h, id + "_feasibility_feature_offset");
-		c.feature_scale = numbers(h, id + "_feasibility_feature_scale");
+		read_model(h, id + "_feasibility", c);
 		m.feasibility = c;
 	}
 	if (h.structs.count(id + "_envelope")) {
