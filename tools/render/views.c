@@ -230,7 +230,12 @@ static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plan
 
 /* ---- graph ------------------------------------------------------------------ */
 
-static void draw_edges_2d(const frame *f, const hylo_roadmap *rm)
+/* Emits position p as a GL vertex in a view's coordinates. */
+typedef void (*position_fn)(const void *ctx, const hylo_position *p);
+
+/* Each roadmap edge once, as GL_LINES in its first end's mode colour at
+ * alpha (the top and the 3-D view). */
+static void roadmap_edges(const hylo_roadmap *rm, float alpha, position_fn vertex, const void *ctx)
 {
 	uint32_t i, a;
 
@@ -238,16 +243,34 @@ static void draw_edges_2d(const frame *f, const hylo_roadmap *rm)
 	glBegin(GL_LINES);
 	for (i = 0; i < rm->n_positions; i++) {
 		const hylo_position *p = &rm->pos[i];
-		color(with_alpha(mode_color(p->mode), 0.22f));
-		for (a = p->adj_begin; a < p->adj_end; a++) {
-			const hylo_position *q = &rm->pos[rm->adjacency[a]];
-			if (rm->adjacency[a] <= i)
-				continue;
-			glVertex2d(fx(f, p->p.x), fy(f, p->p.y));
-			glVertex2d(fx(f, q->p.x), fy(f, q->p.y));
-		}
+		color(with_alpha(mode_color(p->mode), alpha));
+		for (a = p->adj_begin; a < p->adj_end; a++)
+			if (rm->adjacency[a] > i) {
+				vertex(ctx, p);
+				vertex(ctx, &rm->pos[rm->adjacency[a]]);
+			}
 	}
 	glEnd();
+}
+
+/* ctx: the frame (const frame *). */
+static void position_2d(const void *ctx, const hylo_position *p)
+{
+	const frame *f = ctx;
+
+	glVertex2d(fx(f, p->p.x), fy(f, p->p.y));
+}
+
+/* Raised 0.1 m off the surface. */
+static void position_3d(const void *ctx, const hylo_position *p)
+{
+	(void)ctx;
+	glVertex3d(p->p.x, p->p.y, p->p.z + 0.1);
+}
+
+static void draw_edges_2d(const frame *f, const hylo_roadmap *rm)
+{
+	roadmap_edges(rm, 0.22f, position_2d, f);
 }
 
 static void draw_nodes_2d(const frame *f, const hylo_roadmap *rm)
@@ -779,29 +802,15 @@ static int render_3d(canvas *c, const input_set *in, const hylo_roadmap *rm, con
 	glDisable(GL_LIGHTING);
 
 	if (rm && (o->nodes || o->edges)) {
-		uint32_t i, a;
-		if (o->edges) {
-			glLineWidth(1);
-			glBegin(GL_LINES);
-			for (i = 0; i < rm->n_positions; i++) {
-				const hylo_position *p = &rm->pos[i];
-				color(with_alpha(mode_color(p->mode), 0.18f));
-				for (a = p->adj_begin; a < p->adj_end; a++) {
-					const hylo_position *q = &rm->pos[rm->adjacency[a]];
-					if (rm->adjacency[a] > i) {
-						glVertex3d(p->p.x, p->p.y, p->p.z + 0.1);
-						glVertex3d(q->p.x, q->p.y, q->p.z + 0.1);
-					}
-				}
-			}
-			glEnd();
-		}
+		uint32_t i;
+		if (o->edges)
+			roadmap_edges(rm, 0.18f, position_3d, NULL);
 		if (o->nodes) {
 			glPointSize(3);
 			glBegin(GL_POINTS);
 			for (i = 0; i < rm->n_positions; i++) {
 				color(with_alpha(mode_color(rm->pos[i].mode), 0.8f));
-				glVertex3d(rm->pos[i].p.x, rm->pos[i].p.y, rm->pos[i].p.z + 0.1);
+				position_3d(NULL, &rm->pos[i]);
 			}
 			glEnd();
 		}
