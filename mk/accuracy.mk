@@ -22,7 +22,7 @@ TESTS += $(SCENE_TESTS)
 # (tools/bench/bench_accuracy.cpp; tools/accuracy/plot_accuracy.py draws
 # docs/accuracy/).
 BENCH_ACCURACY := $(BUILD)/bench/bin/bench_accuracy
-$(BENCH_ACCURACY): tools/bench/bench_accuracy.cpp tools/bench/results.hpp tools/scene/planner_view.hpp tools/scene/committed.hpp $(BUILD)/obj/tools/scene/scene.o \
+$(BENCH_ACCURACY): tools/bench/bench_accuracy.cpp trainer/cli.hpp tools/bench/results.hpp tools/scene/planner_view.hpp tools/scene/committed.hpp $(BUILD)/obj/tools/scene/scene.o \
 		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@

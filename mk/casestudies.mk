@@ -11,7 +11,7 @@ $(CHASM_OBJ): tools/casestudies/chasm.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) -c $< -o $@
 
-$(HYLO_CASESTUDIES): tools/casestudies/casestudies.cpp $(CHASM_OBJ) tools/scene/planner_view.hpp $(BUILD)/obj/tools/scene/scene.o \
+$(HYLO_CASESTUDIES): tools/casestudies/casestudies.cpp trainer/cli.hpp $(CHASM_OBJ) tools/scene/planner_view.hpp $(BUILD)/obj/tools/scene/scene.o \
 		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@

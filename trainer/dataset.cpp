@@ -139,17 +139,19 @@ ResumePoint resume_point(const std::string &existing, const std::string &header)
 	return r;
 }
 
+std::vector<std::string> fork_samples(uint64_t lo, uint64_t hi, int jobs,
+				      const std::function<std::string(uint64_t)> &f, const std::string &doing)
+{
+	std::vector<std::string> rows = fork_each(hi - lo, jobs, [&](size_t k) { return f(lo + k); });
+	for (size_t k = 0; k < rows.size(); k++)
+		if (rows[k].empty())
+			throw std::runtime_error("the process " + doing + " sample " + std::to_string(lo + k) + " failed");
+	return rows;
+}
 
 }  // namespace internal
 
 namespace {
-
-using internal::meta_differences;
-using internal::meta_text;
-using internal::resume_point;
-using internal::ResumePoint;
-using internal::same_stream;
-
 
 // Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
 // time; returns rows in index order. A sample with a straight-line result in
@@ -161,8 +163,7 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
 				     uint64_t &converged, uint64_t &errors, RowSink *also)
 {
-	std::vector<std::string> rows = fork_each(hi - lo, opt.jobs, [&](size_t k) {
-		uint64_t i = lo + k;
+	std::vector<std::string> rows = internal::fork_samples(lo, hi, opt.jobs, [&](uint64_t i) {
 		double a[6] = {0}, b[6] = {0};
 		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
 		Solution s;
@@ -174,10 +175,7 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 			s.status_text = kErrorStatus + std::string(e.what());
 		}
 		return csv_row(opt.mode, i, a, b, s) + (also ? kSinkSeparator + also->line(i, a, b, s) : "");
-	});
-	for (size_t k = 0; k < rows.size(); k++)
-		if (rows[k].empty())
-			throw std::runtime_error("the process solving sample " + std::to_string(lo + k) + " failed");
+	}, "solving");
 	if (also) {
 		std::vector<std::string> lines;
 		for (std::string &r : rows) {
@@ -212,7 +210,7 @@ std::string straight_meta_text(const RobotParams &robot, const GenOptions &opt)
 {
 	GenOptions line_opt = opt;
 	line_opt.solve.strategy_starts = false;
-	return meta_text(robot, line_opt);
+	return internal::meta_text(robot, line_opt);
 }
 
 std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &opt)
@@ -223,7 +221,7 @@ std::vector<Solution> line_results(const RobotParams &robot, const GenOptions &o
 		throw std::runtime_error("--relabel " + path + ": its " + path + ".meta is not that of a " +
 					 robot.robot + " " + hylo_mode_str(opt.mode) + " dataset with seed " +
 					 std::to_string(opt.seed) + " from straight-line starts alone under these " +
-					 "settings (" + meta_differences(meta, want) + ")");
+					 "settings (" + internal::meta_differences(meta, want) + ")");
 	std::ifstream f(path);
 	std::string text;
 	std::vector<std::string> names = csv_columns(opt.mode);
@@ -543,17 +541,18 @@ std::optional<uint64_t> resume(const GenOptions &opt, const std::string &path, c
 		write_file_atomically(meta_path, meta);
 		return lo;
 	}
-	ResumePoint r = resume_point(existing, header);
+	internal::ResumePoint r = internal::resume_point(existing, header);
 	std::string old_meta = read_file(meta_path);
 	if (old_meta != meta) {
-		if (r.rows >= hi - lo && same_stream(old_meta, meta)) {
+		if (r.rows >= hi - lo && internal::same_stream(old_meta, meta)) {
 			if (opt.progress)
 				std::fprintf(stderr, "%s: every row asked for is there (labelled under other "
 						     "settings, see its .meta); nothing to generate\n",
 					     path.c_str());
 			return std::nullopt;
 		}
-		throw std::runtime_error(path + " was made under other settings: " + meta_differences(old_meta, meta) +
+		throw std::runtime_error(path + " was made under other settings: " +
+					 internal::meta_differences(old_meta, meta) +
 					 "; regenerate it into another --out directory");
 	}
 	if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
@@ -645,7 +644,7 @@ GenSummary generate(const RobotParams &robot, const GenOptions &opt, RowSink *al
 	uint64_t hi = opt.samples * static_cast<uint64_t>(opt.shard) / static_cast<uint64_t>(opt.shards);
 	GenSummary sum;
 	sum.path = dataset_path(opt);
-	const std::string meta = meta_text(robot, opt);
+	const std::string meta = internal::meta_text(robot, opt);
 	const GenOptions ro = relabel_in_place(robot, opt, sum.path, meta);
 	std::vector<Solution> line;
 	if (!ro.relabel.empty()) {

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -167,6 +168,11 @@ struct ResumePoint {
 	uint64_t rows = 0;
 };
 ResumePoint resume_point(const std::string &existing, const std::string &header);
+// f(lo) ... f(hi - 1), the rows of samples lo to hi - 1, each solved in its
+// own process (fork_each, jobs at a time), in index order. Throws "the
+// process <doing> sample I failed" for one that died.
+std::vector<std::string> fork_samples(uint64_t lo, uint64_t hi, int jobs,
+				      const std::function<std::string(uint64_t)> &f, const std::string &doing);
 
 }  // namespace internal
 

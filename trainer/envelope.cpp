@@ -99,16 +99,7 @@ double seconds_since(Clock::time_point t0)
 // The onboard model over m's arrays (m must outlive it).
 hylo_svr_model model_view(const SvrExport &m)
 {
-	hylo_svr_model v{};
-	v.name = "envelope";
-	v.n_sv = static_cast<uint32_t>(m.coef.size());
-	v.n_features = static_cast<uint32_t>(m.n_features);
-	v.gamma = m.gamma;
-	v.rho = m.rho;
-	v.sv = m.sv.data();
-	v.coef = m.coef.data();
-	v.feature_offset = m.feature_offset.data();
-	v.feature_scale = m.feature_scale.data();
+	hylo_svr_model v = svr_view(m, m.n_features, "envelope");
 	v.label_offset = m.label_offset;
 	v.label_scale = m.label_scale;
 	v.label_log = m.label_log ? 1 : 0;

@@ -6,8 +6,6 @@
 namespace hylo::trainer {
 namespace {
 
-using internal::meta_differences;
-using internal::meta_text;
 
 std::string header_line(hylo_mode mode)
 {
@@ -39,10 +37,10 @@ ShardCheck check_shard(const RobotParams &robot, GenOptions o, int k, std::strin
 		return set(ShardCheck::missing, "no " + c.path);
 	if (!exists(meta_path))
 		return set(ShardCheck::foreign, "no " + meta_path + " beside it");
-	const std::string meta = read_file(meta_path), want_meta = meta_text(robot, o);
+	const std::string meta = read_file(meta_path), want_meta = internal::meta_text(robot, o);
 	if (meta != want_meta)
 		return set(ShardCheck::foreign, "made under other settings (its .meta vs these options): " +
-							meta_differences(meta, want_meta));
+							internal::meta_differences(meta, want_meta));
 	text = read_file(c.path);
 	// The trainer writes the .meta first, then the header (shard 1) and rows.
 	const std::string header = k == 1 ? header_line(o.mode) : "";
@@ -100,7 +98,7 @@ GatherReport gather(const RobotParams &robot, const GenOptions &opt)
 	// The unsharded dataset may be there already (as generation would, one of
 	// other settings with every row asked for is taken as it is), and one that
 	// the merge could not replace is reported before any shard is generated.
-	const std::string meta_path = r.path + ".meta", meta = meta_text(robot, u);
+	const std::string meta_path = r.path + ".meta", meta = internal::meta_text(robot, u);
 	const std::string old_meta = read_file(meta_path), existing = read_file(r.path);
 	if (exists(r.path) || exists(meta_path)) {
 		const uint64_t rows = internal::resume_point(existing, header_line(opt.mode)).rows;
@@ -111,7 +109,7 @@ GatherReport gather(const RobotParams &robot, const GenOptions &opt)
 		}
 		if (old_meta != meta)
 			throw std::invalid_argument(r.path + " exists and was made under other settings (" +
-						    meta_differences(old_meta, meta) + "); move it away to gather");
+						    internal::meta_differences(old_meta, meta) + "); move it away to gather");
 	}
 	std::string merged;
 	for (int k = 1; k <= opt.shards; k++) {

@@ -53,6 +53,20 @@ struct PhaseSetup {
 	bool guess_by_arc_length = false;
 };
 
+// A sparsity structure written entry by entry, as Ipopt's triplet arrays
+// take it: put(r, c) makes the next entry (row0 + r, col0 + c).
+struct Triplets {
+	Index *iRow, *jCol;
+	int row0, col0;
+	int e = 0;
+	void operator()(int r, int c)
+	{
+		iRow[e] = row0 + r;
+		jCol[e] = col0 + c;
+		e++;
+	}
+};
+
 // The interface StackedNlp sees. Pointers passed in are already offset to
 // the phase's own variables, constraints and multipliers; structure calls get
 // the offsets to add to indices.
@@ -246,12 +260,7 @@ public:
 
 	void jac_structure(Index *iRow, Index *jCol, int vo, int co) const override
 	{
-		int e = 0;
-		auto put = [&](int r, int c) {
-			iRow[e] = co + r;
-			jCol[e] = vo + c;
-			e++;
-		};
+		Triplets put{iRow, jCol, co, vo};
 		for (int k = 0; k < N_; k++) {
 			int a = knot(k), b = knot(k + 1), c = mid(k);
 			for (int r = 0; r < NX; r++) {
@@ -319,12 +328,7 @@ public:
 
 	void hess_structure(Index *iRow, Index *jCol, int vo) const override
 	{
-		int e = 0;
-		auto put = [&](int r, int c) {
-			iRow[e] = vo + r;
-			jCol[e] = vo + c;
-			e++;
-		};
+		Triplets put{iRow, jCol, vo, vo};
 		for (int p = 0; p < npts_; p++) {
 			for (int i = 0; i < NZ; i++)
 				for (int j = 0; j <= i; j++)

@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "trainer/cli.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
 #include "trainer/numerics.hpp"
@@ -273,11 +274,7 @@ int run(int argc, char **argv)
 	long long samples = -1;
 	for (int i = 1; i < argc; i++) {
 		std::string a = argv[i];
-		auto val = [&]() -> std::string {
-			if (i + 1 >= argc)
-				throw Usage(a + " needs a value");
-			return argv[++i];
-		};
+		auto val = [&] { return option_value(argc, argv, i); };
 		auto integer = [&](long long lo) -> long long {
 			std::string v = val();
 			char *e = nullptr;
@@ -417,16 +414,5 @@ int main(int argc, char **argv)
 	// at every factorization (10% faster, same labels; docs/decisions.md).
 	mallopt(M_MMAP_THRESHOLD, 256 << 20);
 	mallopt(M_TRIM_THRESHOLD, 512 << 20);
-	try {
-		return run(argc, argv);
-	} catch (const Usage &e) {
-		std::fprintf(stderr, "trainer: %s\n", e.what());
-		return 2;
-	} catch (const std::invalid_argument &e) {
-		std::fprintf(stderr, "trainer: %s\n", e.what());
-		return 2;
-	} catch (const std::exception &e) {
-		std::fprintf(stderr, "trainer: %s\n", e.what());
-		return 1;
-	}
+	return run_main("trainer", run, argc, argv);
 }

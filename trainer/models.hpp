@@ -119,12 +119,62 @@ struct DiModel {
 	double typical_speed() const { return 0.5; }
 };
 
-// ---- skid-steer ground mode (docs/models.md section 3) ------------------------
-struct GroundModel {
+// ---- what the ground and marine modes share -----------------------------------
+// Two inputs (left, right) in [-1, 1], four sampled coordinates (px, py, vx,
+// theta), a planar position that corridor boxes bound, no path constraint;
+// stable open loop; standing still as the input guess.
+struct PlanarModel {
 	double relax = 1.0;   // smoothing multiplier (see positive_power)
-	static constexpr int NX = 6, NU = 2, NP = 0, NS = 4;
+	static constexpr int NU = 2, NP = 0, NS = 4;
 	static constexpr bool kSmoothed = true;
 	static constexpr bool kReplayFromKnots = false;
+	static constexpr uint64_t kDefaultSamples = 11520;
+
+	static SolverHints solver_hints()
+	{
+		SolverHints h;
+		h.position_dims = 2;
+		return h;
+	}
+	std::array<double, NU> input_guess() const { return {0.0, 0.0}; }
+	double position_distance(const double *a, const double *b) const
+	{
+		return std::hypot(b[0] - a[0], b[1] - a[1]);
+	}
+	// f[0..5], the rates of the planar rigid body x = (px, py, vx, vy, theta,
+	// omega) (body-frame velocities) under the body-frame forces Fx, Fy and
+	// the moment Mz; mass m, inertia Iz.
+	template <class S>
+	static void body_rates(const S *x, const S &Fx, const S &Fy, const S &Mz, double m, double Iz, S *f)
+	{
+		using ad::cos;
+		using ad::sin;
+		const S &vx = x[2], &vy = x[3], &th = x[4], &om = x[5];
+		f[0] = vx * cos(th) - vy * sin(th);
+		f[1] = vx * sin(th) + vy * cos(th);
+		f[2] = Fx / m + om * vy;
+		f[3] = Fy / m - om * vx;
+		f[4] = om;
+		f[5] = Mz / Iz;
+	}
+	// The mode's state bounds and longest duration, with the inputs in
+	// [-1, 1] and T >= 0.1 s.
+	static Bounds bounds_with(std::vector<double> x_lo, std::vector<double> x_hi, double T_max)
+	{
+		Bounds b;
+		b.x_lo = std::move(x_lo);
+		b.x_hi = std::move(x_hi);
+		b.u_lo = {-1, -1};
+		b.u_hi = {1, 1};
+		b.T_min = 0.1;
+		b.T_max = T_max;
+		return b;
+	}
+};
+
+// ---- skid-steer ground mode (docs/models.md section 3) ------------------------
+struct GroundModel : PlanarModel {
+	static constexpr int NX = 6;
 	double m, Iz, B, Lc, r, G, kt, R, Vcc, crr, mut, Cy, Pd, vmax, g;
 
 	GroundModel(const ModeParams &p, double grav)
@@ -138,13 +188,6 @@ struct GroundModel {
 	{
 		return {"m", "Iz", "B", "Lc", "r", "G", "kt", "R", "Vcc", "crr", "mut", "Cy", "Pd", "vmax"};
 	}
-	static SolverHints solver_hints()
-	{
-		SolverHints h;
-		h.position_dims = 2;
-		return h;
-	}
-	static constexpr uint64_t kDefaultSamples = 11520;
 	double floor_power() const { return Pd; }   // every second drains Pd
 	double top_speed() const { return vmax; }
 
@@ -152,10 +195,8 @@ struct GroundModel {
 	template <class S>
 	void eval(const S *x, const S *u, S *f, S &L, S *) const
 	{
-		using ad::cos;
-		using ad::sin;
 		using ad::tanh;
-		const S &vx = x[2], &vy = x[3], &th = x[4], &om = x[5];
+		const S &vx = x[2], &vy = x[3], &om = x[5];
 		S phiL = G * (vx - om * (B / 2)) / r, phiR = G * (vx + om * (B / 2)) / r;
 		S VL = Vcc * u[0], VR = Vcc * u[1];
 		S iL = (VL - kt * phiL) / R, iR = (VR - kt * phiR) / R;
@@ -163,25 +204,13 @@ struct GroundModel {
 		S Fx = FL + FR - crr * m * g * tanh(vx / (0.05 * relax));
 		S Fy = -Cy * vy;
 		S Mz = (FR - FL) * (B / 2) - mut * m * g * Lc / 4 * tanh(om / (0.1 * relax));
-		f[0] = vx * cos(th) - vy * sin(th);
-		f[1] = vx * sin(th) + vy * cos(th);
-		f[2] = Fx / m + om * vy;
-		f[3] = Fy / m - om * vx;
-		f[4] = om;
-		f[5] = Mz / Iz;
+		body_rates(x, Fx, Fy, Mz, m, Iz, f);
 		L = positive_power(S(VL * iL), relax) + positive_power(S(VR * iR), relax) + Pd;
 	}
 	Bounds bounds() const
 	{
 		const double inf = 1e20;
-		Bounds b;
-		b.x_lo = {-inf, -inf, -vmax, -1, -inf, -3};
-		b.x_hi = {inf, inf, vmax, 1, inf, 3};
-		b.u_lo = {-1, -1};
-		b.u_hi = {1, 1};
-		b.T_min = 0.1;
-		b.T_max = 60;
-		return b;
+		return bounds_with({-inf, -inf, -vmax, -1, -inf, -3}, {inf, inf, vmax, 1, inf, 3}, 60);
 	}
 	// Sampled (px, py, vx, theta) -> full state with vy = 0, omega = 0.
 	std::array<double, NX> full_state(const double *xs) const
@@ -189,20 +218,12 @@ struct GroundModel {
 		return {xs[0], xs[1], xs[2], 0.0, xs[3], 0.0};
 	}
 	std::array<double, NX> scale() const { return {1, 1, 1, 1, 1, 1}; }
-	std::array<double, NU> input_guess() const { return {0.0, 0.0}; }
-	double position_distance(const double *a, const double *b) const
-	{
-		return std::hypot(b[0] - a[0], b[1] - a[1]);
-	}
 	double typical_speed() const { return 0.5 * vmax; }
 };
 
 // ---- marine mode (docs/models.md section 4) ----------------------------------
-struct MarineModel {
-	double relax = 1.0;   // smoothing multiplier (see positive_power)
-	static constexpr int NX = 8, NU = 2, NP = 0, NS = 4;
-	static constexpr bool kSmoothed = true;
-	static constexpr bool kReplayFromKnots = false;
+struct MarineModel : PlanarModel {
+	static constexpr int NX = 8;
 	double m, Iz, B, Jm, kt, R, Vcc, kT, kq, dx, dy, Cy_w, dw, Pd, vmax_w;
 
 	MarineModel(const ModeParams &p, double)
@@ -217,13 +238,6 @@ struct MarineModel {
 	{
 		return {"m", "Iz", "B", "Jm", "kt", "R", "Vcc", "kT", "kq", "dx", "dy", "Cy_w", "dw", "Pd", "vmax_w"};
 	}
-	static SolverHints solver_hints()
-	{
-		SolverHints h;
-		h.position_dims = 2;
-		return h;
-	}
-	static constexpr uint64_t kDefaultSamples = 11520;
 	double floor_power() const { return Pd; }
 	double top_speed() const { return vmax_w; }
 
@@ -233,21 +247,14 @@ struct MarineModel {
 	template <class S>
 	void eval(const S *x, const S *u, S *f, S &L, S *) const
 	{
-		using ad::cos;
-		using ad::sin;
-		const S &vx = x[2], &vy = x[3], &th = x[4], &om = x[5], &pL = x[6], &pR = x[7];
+		const S &vx = x[2], &vy = x[3], &om = x[5], &pL = x[6], &pR = x[7];
 		S VL = Vcc * u[0], VR = Vcc * u[1];
 		S iL = (VL - kt * pL) / R, iR = (VR - kt * pR) / R;
 		S TL = kT * signed_square(pL, relax), TR = kT * signed_square(pR, relax);
 		S Fx = TL + TR - dx * signed_square(vx, relax);
 		S Fy = -dy * signed_square(vy, relax) - Cy_w * vy;
 		S Mz = (TR - TL) * (B / 2) - dw * signed_square(om, relax);
-		f[0] = vx * cos(th) - vy * sin(th);
-		f[1] = vx * sin(th) + vy * cos(th);
-		f[2] = Fx / m + om * vy;
-		f[3] = Fy / m - om * vx;
-		f[4] = om;
-		f[5] = Mz / Iz;
+		body_rates(x, Fx, Fy, Mz, m, Iz, f);
 		f[6] = (kt * iL - kq * signed_square(pL, relax)) / Jm;
 		f[7] = (kt * iR - kq * signed_square(pR, relax)) / Jm;
 		L = positive_power(S(VL * iL), relax) + positive_power(S(VR * iR), relax) + Pd;
@@ -255,14 +262,8 @@ struct MarineModel {
 	Bounds bounds() const
 	{
 		const double inf = 1e20;
-		Bounds b;
-		b.x_lo = {-inf, -inf, -vmax_w, -1, -inf, -2, -inf, -inf};
-		b.x_hi = {inf, inf, vmax_w, 1, inf, 2, inf, inf};
-		b.u_lo = {-1, -1};
-		b.u_hi = {1, 1};
-		b.T_min = 0.1;
-		b.T_max = 90;
-		return b;
+		return bounds_with({-inf, -inf, -vmax_w, -1, -inf, -2, -inf, -inf}, {inf, inf, vmax_w, 1, inf, 2, inf, inf},
+				   90);
 	}
 	std::array<double, NX> full_state(const double *xs) const
 	{
@@ -273,11 +274,6 @@ struct MarineModel {
 	{
 		double ps = std::max(1.0, phi_n(vmax_w));
 		return {1, 1, 1, 1, 1, 1, ps, ps};
-	}
-	std::array<double, NU> input_guess() const { return {0.0, 0.0}; }
-	double position_distance(const double *a, const double *b) const
-	{
-		return std::hypot(b[0] - a[0], b[1] - a[1]);
 	}
 	double typical_speed() const { return 0.5 * vmax_w; }
 };

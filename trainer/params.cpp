@@ -16,6 +16,7 @@
 #include "trainer/model_table.hpp"
 #include "trainer/modes.hpp"
 #include "trainer/sha256.hpp"
+#include "trainer/yaml_file.hpp"
 
 namespace hylo::trainer {
 namespace {
@@ -50,15 +51,7 @@ std::string without_body(const std::string &path)
 	return out;
 }
 
-struct Reader {
-	std::string path;
-
-	[[noreturn]] void fail(const YAML::Node &n, const std::string &what) const
-	{
-		int line = n.Mark().line >= 0 ? n.Mark().line + 1 : 0;
-		throw ParamError(path + ":" + std::to_string(line) + ": " + what);
-	}
-
+struct Reader : YamlReader<ParamError> {
 	void only(const YAML::Node &n, const std::string &where, const std::set<std::string> &keys) const
 	{
 		if (!n.IsMap())
@@ -68,26 +61,6 @@ struct Reader {
 			if (!keys.count(k))
 				fail(kv.first, "unknown key '" + k + "' in " + where);
 		}
-	}
-
-	YAML::Node need(const YAML::Node &n, const std::string &key, const std::string &where) const
-	{
-		if (!n[key])
-			fail(n, "missing key '" + key + "' in " + where);
-		return n[key];
-	}
-
-	double number(const YAML::Node &n, const std::string &what) const
-	{
-		double v = 0;
-		try {
-			v = n.as<double>();
-		} catch (const YAML::Exception &) {
-			fail(n, what + " must be a number");
-		}
-		if (!std::isfinite(v))
-			fail(n, what + " must be finite");
-		return v;
 	}
 };
 
@@ -174,17 +147,8 @@ std::vector<std::pair<std::string, std::vector<std::string>>> list_robots()
 
 RobotParams load_robot(const std::string &path)
 {
-	Reader rd{path};
-	YAML::Node root;
-	try {
-		root = YAML::LoadFile(path);
-	} catch (const YAML::BadFile &) {
-		throw ParamError(path + ": cannot read the file");
-	} catch (const YAML::ParserException &e) {
-		throw ParamError(path + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-	}
-	if (!root || !root.IsMap())
-		throw ParamError(path + ":1: a robot file must be a YAML mapping");
+	Reader rd{{path}};
+	YAML::Node root = load_yaml_mapping<ParamError>(path, "a robot file");
 	rd.only(root, "the robot file", {"robot", "g", "body", "modes"});
 	RobotParams rp;
 	rp.path = path;

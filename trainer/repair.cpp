@@ -16,18 +16,11 @@
 
 #include "trainer/collocation.hpp"
 #include "trainer/numerics.hpp"
-#include "trainer/processes.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
 
 namespace hylo::trainer {
 namespace {
-
-using internal::meta_differences;
-using internal::meta_text;
-using internal::resume_point;
-using internal::ResumePoint;
-using internal::same_stream;
 
 // A label lowered by more than this fraction counts as lowered.
 constexpr double kLowered = 0.005;
@@ -165,7 +158,8 @@ Stored parse_sidecar_line(hylo_mode mode, const std::string &line, uint64_t i, i
 uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint64_t n, uint64_t *held = nullptr)
 {
 	const std::string path = solutions_path(opt.gen), meta_path = path + ".meta";
-	const std::string meta = meta_text(robot, opt.gen) + "path_points: " + std::to_string(opt.path_points) + "\n";
+	const std::string meta =
+		internal::meta_text(robot, opt.gen) + "path_points: " + std::to_string(opt.path_points) + "\n";
 	const std::string header = join(sidecar_columns(opt.gen.mode, opt.path_points), ",") + "\n";
 	std::string existing = read_file(path);
 	uint64_t next = 0;
@@ -173,8 +167,8 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 		std::string old_meta = read_file(meta_path);
 		if (old_meta != meta)
 			throw std::runtime_error(path + " was made under other settings: " +
-						 meta_differences(old_meta, meta) + "; remove it (it is solved again)");
-		ResumePoint r = resume_point(existing, header);
+						 internal::meta_differences(old_meta, meta) + "; remove it (it is solved again)");
+		internal::ResumePoint r = internal::resume_point(existing, header);
 		next = r.rows;
 		if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + path);
@@ -193,14 +187,11 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 	const uint64_t first = next;
 	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
 		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
-		std::vector<std::string> rows =
-			fork_each(e - c, opt.gen.jobs, [&](size_t k) { return sidecar_line(robot, opt, c + k); });
+		std::vector<std::string> rows = internal::fork_samples(
+			c, e, opt.gen.jobs, [&](uint64_t i) { return sidecar_line(robot, opt, i); }, "solving");
 		std::string text;
-		for (size_t k = 0; k < rows.size(); k++) {
-			if (rows[k].empty())
-				throw std::runtime_error("the process solving sample " + std::to_string(c + k) + " failed");
-			text += rows[k] + "\n";
-		}
+		for (const std::string &r : rows)
+			text += r + "\n";
 		out.write(text);
 		out.sync();
 		if (opt.gen.progress)
@@ -304,7 +295,7 @@ std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
 	std::string out = "repaired_rows: " + std::to_string(opt.gen.samples) +
 			  "\nrepair_neighbours: " + std::to_string(opt.neighbours) +
 			  "\nrepair_path_points: " + std::to_string(opt.path_points) + "\n";
-	std::istringstream in(meta_text(robot, opt.gen));
+	std::istringstream in(internal::meta_text(robot, opt.gen));
 	for (std::string line; std::getline(in, line);) {
 		std::string key = line.substr(0, line.find(": "));
 		if (key == "robot" || key == "mode" || key == "seed" || key == "draws" || key == "params_sha256")
@@ -351,7 +342,8 @@ GenSummary generate_with_solutions(const RobotParams &robot, const RepairOptions
 	// Up to the row generation resumes at, solved again (none for a new
 	// dataset); then in step with it.
 	const std::string rows = read_file(dataset_path(opt.gen));
-	const uint64_t have = rows.empty() ? 0 : resume_point(rows, join(csv_columns(opt.gen.mode), ",") + "\n").rows;
+	const uint64_t have =
+		rows.empty() ? 0 : internal::resume_point(rows, join(csv_columns(opt.gen.mode), ",") + "\n").rows;
 	uint64_t held = 0;
 	extend_sidecar(robot, opt, have, &held);
 	SolutionsSink sink(robot, opt, held);
@@ -376,9 +368,9 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	const std::string input = read_file(sum.path), input_meta = read_file(meta_path);
 	if (input.empty() || input_meta.empty())
 		throw std::invalid_argument("repair: no dataset " + sum.path + " with its .meta (run --stage gen first)");
-	if (!same_stream(input_meta, meta_text(robot, opt.gen)))
+	if (!internal::same_stream(input_meta, internal::meta_text(robot, opt.gen)))
 		throw std::invalid_argument("repair: " + sum.path + " is not this stream's (" +
-					    meta_differences(input_meta, meta_text(robot, opt.gen)) + ")");
+					    internal::meta_differences(input_meta, internal::meta_text(robot, opt.gen)) + ")");
 	const std::string lines_meta = repair_lines(robot, opt);
 	if (contains_lines(input_meta, lines_meta)) {
 		sum.already = true;
@@ -434,8 +426,8 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		}
 		if (old != work_meta)
 			throw std::runtime_error(work + " is a repair under other settings or of other rows: " +
-						 meta_differences(old, work_meta) + "; remove it");
-		ResumePoint r = resume_point(existing, header + "\n");
+						 internal::meta_differences(old, work_meta) + "; remove it");
+		internal::ResumePoint r = internal::resume_point(existing, header + "\n");
 		next = std::min(r.rows, n);
 		if (truncate(work.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)
 			throw std::runtime_error("cannot truncate " + work);
@@ -472,8 +464,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	}
 	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
 		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
-		std::vector<std::string> rows = fork_each(e - c, opt.gen.jobs, [&](size_t k) {
-			uint64_t i = c + k;
+		std::vector<std::string> rows = internal::fork_samples(c, e, opt.gen.jobs, [&](uint64_t i) {
 			std::string text;
 			Solution inc = incumbent(i, text);
 			double x1[6] = {0}, x2[6] = {0};
@@ -498,13 +489,10 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				// keep the incumbent
 			}
 			return text;
-		});
+		}, "repairing");
 		std::string text;
-		for (size_t k = 0; k < rows.size(); k++) {
-			if (rows[k].empty())
-				throw std::runtime_error("the process repairing sample " + std::to_string(c + k) + " failed");
-			text += rows[k] + "\n";
-		}
+		for (const std::string &r : rows)
+			text += r + "\n";
 		work_file.write(text);
 		work_file.sync();
 		sum.repaired_now += e - c;

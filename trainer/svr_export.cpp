@@ -209,6 +209,56 @@ void array(std::string &out, const std::string &type_name, const std::string &si
 	out += "};\n\n";
 }
 
+// The four arrays of one model (Model: SvrExport or ClassifierExport),
+// named id + "_sv", "_coef", "_feature_offset", "_feature_scale"; n_sv and
+// n_features are the macros sizing them, n the features per row.
+template <class Model>
+void model_arrays(std::string &out, const Model &f, const std::string &id, const std::string &n_sv,
+		  const std::string &n_features, size_t n)
+{
+	array(out, id + "_sv", n_sv + " * " + n_features, f.sv, n);
+	array(out, id + "_coef", n_sv, f.coef, 4);
+	array(out, id + "_feature_offset", n_features, f.feature_offset, n);
+	array(out, id + "_feature_scale", n_features, f.feature_scale, n);
+}
+
+// The hylo_svr_model initializer of m's scalars and the arrays
+// model_arrays(out, ..., id, ...) wrote, named name.
+void model_struct(std::string &out, const SvrExport &m, const std::string &id, const std::string &name,
+		  const std::string &n_sv, const std::string &n_features, const std::string &prov)
+{
+	// Every field is written, so that C++ (-Wextra: missing initializers)
+	// includes the header as cleanly as C.
+	const std::pair<const char *, std::string> fields[] = {
+		{"name", "\"" + name + "\""},
+		{"n_sv", n_sv},
+		{"n_features", n_features},
+		{"gamma", format_double(m.gamma)},
+		{"rho", format_double(m.rho)},
+		{"sv", id + "_sv"},
+		{"coef", id + "_coef"},
+		{"feature_offset", id + "_feature_offset"},
+		{"feature_scale", id + "_feature_scale"},
+		{"label_offset", format_double(m.label_offset)},
+		{"label_scale", format_double(m.label_scale)},
+		{"label_log", m.label_log ? "1" : "0"},
+		{"cost_floor_per_m", format_double(m.cost_floor_per_m)},
+		{"cost_floor_j", format_double(m.cost_floor_j)},
+		{"max_distance_m", format_double(m.max_distance_m)},
+		{"speed_min_mps", format_double(m.speed_min_mps)},
+		{"speed_max_mps", format_double(m.speed_max_mps)},
+		{"state_bounded", std::to_string(m.state_bounded)},
+		{"state_min", brace_list(m.state_min)},
+		{"state_max", brace_list(m.state_max)},
+		{"provenance", c_string(prov)},
+		{"envelope", m.envelope ? "&" + id + "_envelope" : "NULL"},
+	};
+	out += "static const hylo_svr_model " + id + " = {\n";
+	for (const auto &f : fields)
+		out += std::string("\t.") + f.first + " = " + f.second + ",\n";
+	out += "};\n\n";
+}
+
 // The float's "%.9g", which a C compiler reads back as the same float (the
 // double nearest the text is far closer to the float than to the middle
 // between it and a neighbour); checked here.
@@ -302,72 +352,23 @@ std::string svr_header_text(const SvrExport &m)
 		out += "#define " + mac + "_" + c.key + " " + format_double(c.value) + "  /* " +
 		       comment_safe(c.comment) + " */\n";
 	out += "\n";
-	array(out, id + "_sv", mac + "_N_SV * " + mac + "_N_FEATURES", m.sv,
-	      static_cast<size_t>(m.n_features));
-	array(out, id + "_coef", mac + "_N_SV", m.coef, 4);
-	array(out, id + "_feature_offset", mac + "_N_FEATURES", m.feature_offset,
-	      static_cast<size_t>(m.n_features));
-	array(out, id + "_feature_scale", mac + "_N_FEATURES", m.feature_scale,
-	      static_cast<size_t>(m.n_features));
+	model_arrays(out, m, id, mac + "_N_SV", mac + "_N_FEATURES", static_cast<size_t>(m.n_features));
 	if (m.envelope)
 		envelope_block(out, *m.envelope, id, mac);
-	out += "static const hylo_svr_model " + id + " = {\n";
-	out += "\t.name = \"" + name + "\",\n";
-	out += "\t.n_sv = " + mac + "_N_SV,\n";
-	out += "\t.n_features = " + mac + "_N_FEATURES,\n";
-	out += "\t.gamma = " + format_double(m.gamma) + ",\n";
-	out += "\t.rho = " + format_double(m.rho) + ",\n";
-	out += "\t.sv = " + id + "_sv,\n";
-	out += "\t.coef = " + id + "_coef,\n";
-	out += "\t.feature_offset = " + id + "_feature_offset,\n";
-	out += "\t.feature_scale = " + id + "_feature_scale,\n";
-	out += "\t.label_offset = " + format_double(m.label_offset) + ",\n";
-	out += "\t.label_scale = " + format_double(m.label_scale) + ",\n";
-	out += std::string("\t.label_log = ") + (m.label_log ? "1" : "0") + ",\n";
-	out += "\t.cost_floor_per_m = " + format_double(m.cost_floor_per_m) + ",\n";
-	out += "\t.cost_floor_j = " + format_double(m.cost_floor_j) + ",\n";
-	out += "\t.max_distance_m = " + format_double(m.max_distance_m) + ",\n";
-	out += "\t.speed_min_mps = " + format_double(m.speed_min_mps) + ",\n";
-	out += "\t.speed_max_mps = " + format_double(m.speed_max_mps) + ",\n";
-	out += "\t.state_bounded = " + std::to_string(m.state_bounded) + ",\n";
-	out += "\t.state_min = " + brace_list(m.state_min) + ",\n";
-	out += "\t.state_max = " + brace_list(m.state_max) + ",\n";
-	out += "\t.provenance = " + c_string(prov) + ",\n";
-	// Every field is written, so that C++ (-Wextra: missing initializers)
-	// includes the header as cleanly as C.
-	out += "\t.envelope = " + (m.envelope ? "&" + id + "_envelope" : std::string("NULL")) + ",\n";
-	out += "};\n\n";
+	model_struct(out, m, id, name, mac + "_N_SV", mac + "_N_FEATURES", prov);
 	if (m.feasibility) {
 		const ClassifierExport &f = *m.feasibility;
 		const std::string fid = id + "_feasibility", fmac = mac + "_FEASIBILITY";
 		out += "/* Feasibility classifier: decision >= 0 predicts that the trajectory\n"
 		       " * optimization has a solution; the planner drops other edges. */\n";
 		out += "#define " + fmac + "_N_SV " + std::to_string(f.coef.size()) + "\n\n";
-		array(out, fid + "_sv", fmac + "_N_SV * " + mac + "_N_FEATURES", f.sv,
-		      static_cast<size_t>(m.n_features));
-		array(out, fid + "_coef", fmac + "_N_SV", f.coef, 4);
-		array(out, fid + "_feature_offset", mac + "_N_FEATURES", f.feature_offset,
-		      static_cast<size_t>(m.n_features));
-		array(out, fid + "_feature_scale", mac + "_N_FEATURES", f.feature_scale,
-		      static_cast<size_t>(m.n_features));
-		out += "static const hylo_svr_model " + fid + " = {\n";
-		out += "\t.name = \"" + name + "_feasibility\",\n";
-		out += "\t.n_sv = " + fmac + "_N_SV,\n";
-		out += "\t.n_features = " + mac + "_N_FEATURES,\n";
-		out += "\t.gamma = " + format_double(f.gamma) + ",\n";
-		out += "\t.rho = " + format_double(f.rho) + ",\n";
-		out += "\t.sv = " + fid + "_sv,\n";
-		out += "\t.coef = " + fid + "_coef,\n";
-		out += "\t.feature_offset = " + fid + "_feature_offset,\n";
-		out += "\t.feature_scale = " + fid + "_feature_scale,\n";
-		out += "\t.label_offset = 0,\n\t.label_scale = 1,\n\t.label_log = 0,\n";
-		out += "\t.cost_floor_per_m = 0,\n\t.cost_floor_j = 0,\n\t.max_distance_m = 0,\n";
-		out += "\t.speed_min_mps = 0,\n\t.speed_max_mps = 0,\n";
-		out += "\t.state_bounded = 0,\n\t.state_min = " + brace_list({}) + ",\n\t.state_max = " +
-		       brace_list({}) + ",\n";
-		out += "\t.provenance = " + c_string(prov) + ",\n";
-		out += "\t.envelope = NULL,\n";
-		out += "};\n\n";
+		model_arrays(out, f, fid, fmac + "_N_SV", mac + "_N_FEATURES", static_cast<size_t>(m.n_features));
+		// The classifier's struct: the cost model's fields at their defaults
+		// (no label transform, cost floor, trained region or envelope).
+		SvrExport fm;
+		fm.gamma = f.gamma;
+		fm.rho = f.rho;
+		model_struct(out, fm, fid, name + "_feasibility", fmac + "_N_SV", mac + "_N_FEATURES", prov);
 	}
 	out += "#endif\n";
 	return out;
@@ -511,6 +512,20 @@ const std::string &field(const std::map<std::string, std::string> &f, const std:
 	return it->second;
 }
 
+// What model_struct and model_arrays wrote of model id (Model: SvrExport or
+// ClassifierExport): its gamma, rho and four arrays.
+template <class Model>
+void read_model(const HeaderParts &h, const std::string &id, Model &m)
+{
+	const auto &f = fields(h, id);
+	m.gamma = number(field(f, "gamma"));
+	m.rho = number(field(f, "rho"));
+	m.sv = numbers(h, id + "_sv");
+	m.coef = numbers(h, id + "_coef");
+	m.feature_offset = numbers(h, id + "_feature_offset");
+	m.feature_scale = numbers(h, id + "_feature_scale");
+}
+
 }  // namespace
 
 SvrExport parse_svr_header(const std::string &text)
@@ -548,12 +563,7 @@ SvrExport parse_svr_header(const std::string &text)
 	m.robot = name.substr(0, name.size() - mode.size() - 1);
 	m.mode = mode_id;
 	m.n_features = static_cast<int>(hylo_feature_count(mode_id));
-	m.gamma = number(field(f, "gamma"));
-	m.rho = number(field(f, "rho"));
-	m.sv = numbers(h, id + "_sv");
-	m.coef = numbers(h, id + "_coef");
-	m.feature_offset = numbers(h, id + "_feature_offset");
-	m.feature_scale = numbers(h, id + "_feature_scale");
+	read_model(h, id, m);
 	m.label_offset = number(field(f, "label_offset"));
 	m.label_scale = number(field(f, "label_scale"));
 	m.label_log = field(f, "label_log") == "1";
@@ -580,14 +590,8 @@ SvrExport parse_svr_header(const std::string &text)
 				       d.second.substr(c + 5, d.second.size() - c - 8)});
 	}
 	if (h.structs.count(id + "_feasibility")) {
-		const auto &ff = fields(h, id + "_feasibility");
 		ClassifierExport c;
-		c.gamma = number(field(ff, "gamma"));
-		c.rho = number(field(ff, "rho"));
-		c.sv = numbers(h, id + "_feasibility_sv");
-		c.coef = numbers(h, id + "_feasibility_coef");
-		c.feature_offset = numbers(h, id + "_feasibility_feature_offset");
-		c.feature_scale = numbers(h, id + "_feasibility_feature_scale");
+		read_model(h, id + "_feasibility", c);
 		m.feasibility = c;
 	}
 	if (h.structs.count(id + "_envelope")) {

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "hylo/svr.h"
 #include "hylo/types.h"
 
 namespace hylo::trainer {
@@ -90,6 +91,26 @@ std::string header_with_region(const std::string &text, uint32_t bounded, const 
 // nothing is written when the model is invalid. Throws std::runtime_error
 // on I/O errors.
 void write_svr_header(const SvrExport &m, const std::string &path);
+
+// The onboard model over m's arrays (Model: SvrExport or ClassifierExport;
+// m must outlive it), named name, with n_features features; the other
+// fields zero but label_scale 1 (a classifier's decision value, unscaled).
+template <class Model>
+hylo_svr_model svr_view(const Model &m, int n_features, const char *name)
+{
+	hylo_svr_model v{};
+	v.name = name;
+	v.n_sv = static_cast<uint32_t>(m.coef.size());
+	v.n_features = static_cast<uint32_t>(n_features);
+	v.gamma = m.gamma;
+	v.rho = m.rho;
+	v.sv = m.sv.data();
+	v.coef = m.coef.data();
+	v.feature_offset = m.feature_offset.data();
+	v.feature_scale = m.feature_scale.data();
+	v.label_scale = 1;
+	return v;
+}
 
 // Shortest round-trip-exact text of v with 17 significant digits, "%.17g"
 // in the C locale.

@@ -52,28 +52,9 @@ hylo::trainer::FitOptions small_grid()
 	return o;
 }
 
-// The onboard view of a fitted regressor or classifier (a classifier's
-// decision value is unscaled: label offset 0, scale 1).
-template <class Export>
-hylo_svr_model view_of(const Export &a, int nf)
-{
-	hylo_svr_model m{};
-	m.name = "fitbot_ground";
-	m.n_sv = static_cast<uint32_t>(a.coef.size());
-	m.n_features = static_cast<uint32_t>(nf);
-	m.gamma = a.gamma;
-	m.rho = a.rho;
-	m.sv = a.sv.data();
-	m.coef = a.coef.data();
-	m.feature_offset = a.feature_offset.data();
-	m.feature_scale = a.feature_scale.data();
-	m.label_scale = 1;
-	return m;
-}
-
 hylo_svr_model view(const hylo::trainer::SvrExport &a, int nf)
 {
-	hylo_svr_model m = view_of(a, nf);
+	hylo_svr_model m = hylo::trainer::svr_view(a, nf, "fitbot_ground");
 	m.label_offset = a.label_offset;
 	m.label_scale = a.label_scale;
 	m.label_log = a.label_log;
@@ -178,7 +159,7 @@ int main()
 	ClassifierExport f;
 	ClassifierReport rf = fit_feasibility(5, d.x, d.feasible, o, f);
 	check(rf.accuracy > 0.9, "feasibility classifier held-out accuracy > 90%", std::to_string(rf.accuracy));
-	hylo_svr_model fm = view_of(f, 5);
+	hylo_svr_model fm = hylo::trainer::svr_view(f, 5, "fitbot_ground");
 	size_t agree = 0;
 	for (size_t i = 0; i < fresh.cost.size(); i++)
 		agree += (hylo_svr_predict(&fm, &fresh.x[5 * i]) >= 0) == fresh.feasible[i];

@@ -26,14 +26,6 @@ namespace {
 using namespace hylo::trainer;
 namespace fs = std::filesystem;
 
-std::string slurp(const std::string &path)
-{
-	std::ifstream f(path, std::ios::binary);
-	std::ostringstream ss;
-	ss << f.rdbuf();
-	return ss.str();
-}
-
 // Column c of every data row.
 std::vector<std::string> column(const std::string &csv, size_t c)
 {
@@ -90,19 +82,19 @@ int main(int argc, char **argv)
 	generate(ambot, full);
 	GenSummary rs = generate(ambot, re);
 
-	std::string a = slurp(full.out_dir + "/ground.csv"), b = slurp(re.out_dir + "/ground.csv");
+	std::string a = read_file(full.out_dir + "/ground.csv"), b = read_file(re.out_dir + "/ground.csv");
 	check(rs.done == 8 && !a.empty() && a == b &&
-		      slurp(full.out_dir + "/ground.csv.meta") == slurp(re.out_dir + "/ground.csv.meta"),
+		      read_file(full.out_dir + "/ground.csv.meta") == read_file(re.out_dir + "/ground.csv.meta"),
 	      "relabelled straight-line dataset == a fresh dataset with every start, byte for byte",
 	      std::to_string(a.size()) + " vs " + std::to_string(b.size()) + " bytes");
-	check(slurp(re.out_dir + "/ground.csv.meta").find("starts: 3\n") != std::string::npos &&
-		      slurp(line.out_dir + "/ground.csv.meta").find("starts:") == std::string::npos,
+	check(read_file(re.out_dir + "/ground.csv.meta").find("starts: 3\n") != std::string::npos &&
+		      read_file(line.out_dir + "/ground.csv.meta").find("starts:") == std::string::npos,
 	      "the meta tells the two labelers apart (starts: 3)");
 
 	std::vector<std::string> names = csv_columns(HYLO_MODE_GROUND);
 	size_t cost = static_cast<size_t>(std::find(names.begin(), names.end(), "cost_j") - names.begin());
 	size_t conv = static_cast<size_t>(std::find(names.begin(), names.end(), "converged") - names.begin());
-	std::string la = slurp(line.out_dir + "/ground.csv");
+	std::string la = read_file(line.out_dir + "/ground.csv");
 	std::vector<std::string> lc = column(la, cost), fc = column(a, cost), lv = column(la, conv), fv = column(a, conv);
 	int cheaper = 0, dearer = 0;
 	for (size_t k = 0; k < lc.size() && k < fc.size(); k++) {
@@ -136,7 +128,7 @@ int main(int argc, char **argv)
 	inplace.out_dir = (dir / "inplace").string();
 	inplace.progress = false;
 	generate(ambot, inplace);
-	check(slurp(inplace.out_dir + "/ground.csv") == a && !fs::exists(dir / "inplace" / "ground.csv.straight") &&
+	check(read_file(inplace.out_dir + "/ground.csv") == a && !fs::exists(dir / "inplace" / "ground.csv.straight") &&
 		      !fs::exists(dir / "inplace" / "ground.csv.straight.meta"),
 	      "a run over a straight-line dataset relabels it in place, the same bytes as a fresh run");
 

@@ -34,14 +34,6 @@ namespace {
 using namespace hylo::trainer;
 namespace fs = std::filesystem;
 
-std::string slurp(const std::string &path)
-{
-	std::ifstream f(path, std::ios::binary);
-	std::ostringstream ss;
-	ss << f.rdbuf();
-	return ss.str();
-}
-
 void spit(const std::string &path, const std::string &text)
 {
 	std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
@@ -77,7 +69,7 @@ std::string with_field(const std::string &row, size_t k, const std::string &valu
 
 size_t count_lines(const std::string &path)
 {
-	std::string t = slurp(path);
+	std::string t = read_file(path);
 	return static_cast<size_t>(std::count(t.begin(), t.end(), '\n'));
 }
 
@@ -161,7 +153,7 @@ int main(int argc, char **argv)
 	g.progress = false;
 	g.out_dir = (dir / "gen").string();
 	generate(di, g);
-	const std::string csv = slurp(g.out_dir + "/di_neg.csv"), meta = slurp(g.out_dir + "/di_neg.csv.meta");
+	const std::string csv = read_file(g.out_dir + "/di_neg.csv"), meta = read_file(g.out_dir + "/di_neg.csv.meta");
 	std::vector<std::string> rows = lines_of(csv);   // rows[i + 1] is sample i
 	const size_t ic = csv_column(HYLO_MODE_DI_NEG, "cost_j"), iv = csv_column(HYLO_MODE_DI_NEG, "converged");
 	// Three converged rows among the first 12: one made dearer, one cheaper
@@ -196,7 +188,7 @@ int main(int argc, char **argv)
 	RepairOptions r1 = setup("one");
 	r1.gen.jobs = 1;
 	RepairSummary s1 = repair(di, r1);
-	const std::string out1 = slurp(r1.gen.out_dir + "/di_neg.csv");
+	const std::string out1 = read_file(r1.gen.out_dir + "/di_neg.csv");
 	std::vector<std::string> got = lines_of(out1);
 	bool never_raised = got.size() == edited.size();
 	for (size_t i = 0; never_raised && i < 12; i++) {
@@ -220,7 +212,7 @@ int main(int argc, char **argv)
 	check(s1.lowered == 1 && s1.newly_converged == 1 && s1.rows == 12 && s1.solved_again == 12,
 	      "the summary counts one label lowered by more than 0.5% and one newly converged",
 	      std::to_string(s1.lowered) + " lowered, " + std::to_string(s1.newly_converged) + " newly converged");
-	const std::string meta1 = slurp(r1.gen.out_dir + "/di_neg.csv.meta");
+	const std::string meta1 = read_file(r1.gen.out_dir + "/di_neg.csv.meta");
 	check(meta1.rfind(meta, 0) == 0 && meta1.find("repaired_rows: 12\nrepair_neighbours: 4\n") != std::string::npos &&
 		      meta1.find("repair_blas: ") != std::string::npos &&
 		      !fs::exists(r1.gen.out_dir + "/di_neg.csv.repair") &&
@@ -230,8 +222,8 @@ int main(int argc, char **argv)
 	RepairOptions r2 = setup("two");
 	r2.gen.jobs = 2;
 	repair(di, r2);
-	check(slurp(r2.gen.out_dir + "/di_neg.csv") == out1 &&
-		      slurp(r2.gen.out_dir + "/di_neg.csv.meta") == meta1,
+	check(read_file(r2.gen.out_dir + "/di_neg.csv") == out1 &&
+		      read_file(r2.gen.out_dir + "/di_neg.csv.meta") == meta1,
 	      "--jobs 1 and 2: the same bytes");
 
 	// Killed part-way (a child process running the repair, SIGKILL once the
@@ -246,8 +238,8 @@ int main(int argc, char **argv)
 	if (fs::exists(work))
 		std::ofstream(work, std::ios::app) << "3,-0.2";
 	RepairSummary s3 = repair(di, r3);
-	check(partial && slurp(r3.gen.out_dir + "/di_neg.csv") == out1 &&
-		      slurp(r3.gen.out_dir + "/di_neg.csv.meta") == meta1,
+	check(partial && read_file(r3.gen.out_dir + "/di_neg.csv") == out1 &&
+		      read_file(r3.gen.out_dir + "/di_neg.csv.meta") == meta1,
 	      "a repair killed part-way and resumed (torn rows appended) gives the same bytes",
 	      "killed with " + std::to_string(side_rows) + " sidecar and " + std::to_string(work_rows) +
 		      " repair lines; resumed " + std::to_string(s3.solved_again) + " solves");
@@ -264,9 +256,9 @@ int main(int argc, char **argv)
 		w.gen.samples = 12;
 		w.gen.chunk = 2;
 		generate_with_solutions(di, w);
-		const std::string side_with = slurp(solutions_path(w.gen)), data_with = slurp(dataset_path(w.gen));
-		check(side_with == slurp(solutions_path(r1.gen)) &&
-			      slurp(solutions_path(w.gen) + ".meta") == slurp(solutions_path(r1.gen) + ".meta"),
+		const std::string side_with = read_file(solutions_path(w.gen)), data_with = read_file(dataset_path(w.gen));
+		check(side_with == read_file(solutions_path(r1.gen)) &&
+			      read_file(solutions_path(w.gen) + ".meta") == read_file(solutions_path(r1.gen) + ".meta"),
 		      "gen --solutions writes the sidecar the repair solves again, byte for byte");
 		RepairSummary sw = repair(di, w);
 		check(sw.solved_again == 0 && sw.rows == 12, "then the repair solves no row again",
@@ -280,7 +272,7 @@ int main(int argc, char **argv)
 		std::ofstream(kside, std::ios::app) << "9,0.3";   // torn
 		std::ofstream(kdata, std::ios::app) << "8,-0.4";
 		generate_with_solutions(di, k);
-		check(got_rows < 13 && slurp(kside) == side_with && slurp(kdata) == data_with,
+		check(got_rows < 13 && read_file(kside) == side_with && read_file(kdata) == data_with,
 		      "gen --solutions killed part-way (torn rows in both files) and resumed: the same bytes",
 		      "killed at " + std::to_string(got_rows) + " lines");
 		// A dataset made without solutions, extended with them: the
@@ -291,12 +283,12 @@ int main(int argc, char **argv)
 		generate(di, late.gen);
 		late.gen.samples = 12;
 		generate_with_solutions(di, late);
-		check(slurp(solutions_path(late.gen)) == side_with,
+		check(read_file(solutions_path(late.gen)) == side_with,
 		      "gen --solutions over a dataset made without: the sidecar solved up to it, then kept in step");
 	}
 
 	RepairSummary again = repair(di, r1);
-	check(again.already && slurp(r1.gen.out_dir + "/di_neg.csv") == out1,
+	check(again.already && read_file(r1.gen.out_dir + "/di_neg.csv") == out1,
 	      "a second repair with the same settings does nothing");
 	GenOptions more = g;
 	more.out_dir = r1.gen.out_dir;

@@ -39,6 +39,7 @@
 #include "tools/bench/results.hpp"
 #include "tools/scene/committed.hpp"
 #include "tools/scene/planner_view.hpp"
+#include "trainer/cli.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
 #include "trainer/params.hpp"
@@ -263,11 +264,7 @@ int run(int argc, char **argv)
 	std::vector<std::string> scenes;
 	for (int i = 2; i < argc; i++) {
 		std::string a = argv[i];
-		auto val = [&]() -> std::string {
-			if (i + 1 >= argc)
-				throw std::invalid_argument(a + " needs a value");
-			return argv[++i];
-		};
+		auto val = [&] { return option_value(argc, argv, i); };
 		if (a == "--edges")
 			per_source = std::stoul(val());
 		else if (a == "--seed")
@@ -372,10 +369,5 @@ int run(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-	try {
-		return run(argc, argv);
-	} catch (const std::exception &e) {
-		std::fprintf(stderr, "bench_accuracy: %s\n", e.what());
-		return 1;
-	}
+	return run_main("bench_accuracy", run, argc, argv, 1);
 }

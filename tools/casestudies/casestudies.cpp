@@ -44,6 +44,7 @@
 #include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
 #include "trainer/clearance.hpp"
+#include "trainer/cli.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/files.hpp"
 #include "trainer/numerics.hpp"
@@ -1281,11 +1282,7 @@ int run(int argc, char **argv)
 	Options opt;
 	for (int i = 1; i < argc; i++) {
 		std::string a = argv[i];
-		auto value = [&]() -> std::string {
-			if (i + 1 >= argc)
-				throw std::invalid_argument(a + " needs a value");
-			return argv[++i];
-		};
+		auto value = [&] { return option_value(argc, argv, i); };
 		if (a == "--help" || a == "-h") {
 			std::fputs(kUsage, stdout);
 			return 0;
@@ -1388,13 +1385,5 @@ int main(int argc, char **argv)
 {
 	if (!pin_numerics(argc, argv))
 		return 1;
-	try {
-		return run(argc, argv);
-	} catch (const std::invalid_argument &e) {
-		std::fprintf(stderr, "hylo-casestudies: %s\n%s", e.what(), kUsage);
-		return 2;
-	} catch (const std::exception &e) {
-		std::fprintf(stderr, "hylo-casestudies: %s\n", e.what());
-		return 1;
-	}
+	return run_main("hylo-casestudies", run, argc, argv, 2, kUsage);
 }

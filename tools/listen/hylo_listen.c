@@ -249,12 +249,8 @@ static void print_traj(const hylo_traj_t *t)
 static long received;
 
 /* An alternative of a plan (goal_t.alternatives >= 2), after its plan. */
-static void on_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
-			   const hylo_plan_alternative_t *a, void *u)
+static void print_alternative(const hylo_plan_alternative_t *a)
 {
-	(void)rbuf;
-	(void)ch;
-	(void)u;
 	if (json) {
 		printf("{\"type\":\"alternative\",\"request_id\":%lld,\"index\":%d,\"count\":%d,"
 		       "\"mode_changes\":%d,\"plan\":",
@@ -268,17 +264,11 @@ static void on_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 		print_modes(a->plan.mode_sequence, a->plan.n_modes, 0);
 		putchar('\n');
 	}
-	fflush(stdout);
-	received++;
 }
 
 /* What the smoother made of an alternative (traj_alternative_t), after the traj_t. */
-static void on_traj_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
-				const hylo_traj_alternative_t *a, void *u)
+static void print_traj_alternative(const hylo_traj_alternative_t *a)
 {
-	(void)rbuf;
-	(void)ch;
-	(void)u;
 	if (json) {
 		printf("{\"type\":\"traj_alternative\",\"request_id\":%lld,\"map_id\":%lld,\"index\":%d,"
 		       "\"count\":%d,\"planned\":%d,\"mode_changes\":%d,\"mode_sequence\":[",
@@ -304,42 +294,21 @@ static void on_traj_alternative(const lcm_recv_buf_t *rbuf, const char *ch,
 			printf("%s: %s", status_str(a->status), a->reason);
 		printf("%s\n", a->chosen ? ", chosen" : "");
 	}
-	fflush(stdout);
-	received++;
 }
 
-static void on_plan(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_plan_t *msg, void *u)
+static void print_plan(const hylo_plan_t *p)
 {
-	(void)rbuf;
-	(void)ch;
-	(void)u;
 	if (json)
-		print_plan_json(msg);
+		print_plan_json(p);
 	else
-		print_plan_text(msg);
-	fflush(stdout);
-	received++;
-}
-
-static void on_traj(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_traj_t *msg, void *u)
-{
-	(void)rbuf;
-	(void)ch;
-	(void)u;
-	print_traj(msg);
-	fflush(stdout);
-	received++;
+		print_plan_text(p);
 }
 
 /* --stats: the node's counters and map reports (<prefix>HYLO_STATUS). */
-static void on_status(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_node_status_t *s,
-		      void *u)
+static void print_status(const hylo_node_status_t *s)
 {
 	const char *ev = s->event >= 0 && s->event < 3 ? event_names[s->event] : "unknown";
 
-	(void)rbuf;
-	(void)ch;
-	(void)u;
 	if (json) {
 		printf("{\"type\":\"status\",\"event\":");
 		jstr(ev);
@@ -367,9 +336,25 @@ static void on_status(const lcm_recv_buf_t *rbuf, const char *ch, const hylo_nod
 		       s->queue_capacity, (long long)s->maps_received, (long long)s->maps_taken,
 		       (long long)s->maps_refused, (long long)s->current_map_id);
 	}
-	fflush(stdout);
-	received++;
 }
+
+/* on_WHAT, the LCM handler of message type T: prints the message with
+ * print_WHAT, then flushes and counts it. */
+#define HANDLER(what, T)                                                                         \
+	static void on_##what(const lcm_recv_buf_t *rbuf, const char *ch, const T *msg, void *u) \
+	{                                                                                        \
+		(void)rbuf;                                                                      \
+		(void)ch;                                                                        \
+		(void)u;                                                                         \
+		print_##what(msg);                                                               \
+		fflush(stdout);                                                                  \
+		received++;                                                                      \
+	}
+HANDLER(plan, hylo_plan_t)
+HANDLER(alternative, hylo_plan_alternative_t)
+HANDLER(traj, hylo_traj_t)
+HANDLER(traj_alternative, hylo_traj_alternative_t)
+HANDLER(status, hylo_node_status_t)
 
 static void usage(FILE *f)
 {

@@ -180,7 +180,12 @@ static rgba_color terrain_color(const hylo_map_t *m, int cell, float lo, float h
 	return c;
 }
 
-static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plane)
+/* Draws one cell (ix, iy) of m: its low corner (x0, y0), its terrain colour c. */
+typedef void (*cell_fn)(const void *ctx, const hylo_map_t *m, int ix, int iy, double x0, double y0,
+                        rgba_color c);
+
+/* The cells of m as GL_QUADS, each drawn by draw (the top and the 3-D view). */
+static void terrain_quads(const hylo_map_t *m, cell_fn draw, const void *ctx)
 {
 	int ix, iy;
 	float lo, hi;
@@ -189,26 +194,48 @@ static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plan
 	height_range(m, &lo, &hi);
 	glBegin(GL_QUADS);
 	for (iy = 0; iy < m->ny; iy++)
-		for (ix = 0; ix < m->nx; ix++) {
-			int k = iy * m->nx + ix;
-			double x0 = m->origin_x_m + ix * r, y0 = m->origin_y_m + iy * r;
-			rgba_color c;
-			if (phase_plane)
-				c = m->terrain[k] == 0 ? OBSTACLE : x0 + 0.5 * r < 0 ? DI_NEG_BG : DI_POS_BG;
-			else
-				c = terrain_color(m, k, lo, hi);
-			color(c);
-			glVertex2d(fx(f, x0), fy(f, y0));
-			glVertex2d(fx(f, x0 + r), fy(f, y0));
-			glVertex2d(fx(f, x0 + r), fy(f, y0 + r));
-			glVertex2d(fx(f, x0), fy(f, y0 + r));
-		}
+		for (ix = 0; ix < m->nx; ix++)
+			draw(ctx, m, ix, iy, m->origin_x_m + ix * r, m->origin_y_m + iy * r,
+			     terrain_color(m, iy * m->nx + ix, lo, hi));
 	glEnd();
+}
+
+typedef struct {
+	const frame *f;
+	int phase_plane;   /* colour by the sign of p, not by terrain */
+} top_view;
+
+static void top_cell(const void *ctx, const hylo_map_t *m, int ix, int iy, double x0, double y0,
+                     rgba_color c)
+{
+	const top_view *v = ctx;
+	const frame *f = v->f;
+	double r = m->resolution_m;
+
+	if (v->phase_plane)
+		c = m->terrain[iy * m->nx + ix] == 0 ? OBSTACLE : x0 + 0.5 * r < 0 ? DI_NEG_BG : DI_POS_BG;
+	color(c);
+	glVertex2d(fx(f, x0), fy(f, y0));
+	glVertex2d(fx(f, x0 + r), fy(f, y0));
+	glVertex2d(fx(f, x0 + r), fy(f, y0 + r));
+	glVertex2d(fx(f, x0), fy(f, y0 + r));
+}
+
+static void draw_terrain_top(const frame *f, const hylo_map_t *m, int phase_plane)
+{
+	top_view v = {f, phase_plane};
+
+	terrain_quads(m, top_cell, &v);
 }
 
 /* ---- graph ------------------------------------------------------------------ */
 
-static void draw_edges_2d(const frame *f, const hylo_roadmap *rm)
+/* Emits position p as a GL vertex in a view's coordinates. */
+typedef void (*position_fn)(const void *ctx, const hylo_position *p);
+
+/* Each roadmap edge once, as GL_LINES in its first end's mode colour at
+ * alpha (the top and the 3-D view). */
+static void roadmap_edges(const hylo_roadmap *rm, float alpha, position_fn vertex, const void *ctx)
 {
 	uint32_t i, a;
 
@@ -216,16 +243,34 @@ static void draw_edges_2d(const frame *f, const hylo_roadmap *rm)
 	glBegin(GL_LINES);
 	for (i = 0; i < rm->n_positions; i++) {
 		const hylo_position *p = &rm->pos[i];
-		color(with_alpha(mode_color(p->mode), 0.22f));
-		for (a = p->adj_begin; a < p->adj_end; a++) {
-			const hylo_position *q = &rm->pos[rm->adjacency[a]];
-			if (rm->adjacency[a] <= i)
-				continue;
-			glVertex2d(fx(f, p->p.x), fy(f, p->p.y));
-			glVertex2d(fx(f, q->p.x), fy(f, q->p.y));
-		}
+		color(with_alpha(mode_color(p->mode), alpha));
+		for (a = p->adj_begin; a < p->adj_end; a++)
+			if (rm->adjacency[a] > i) {
+				vertex(ctx, p);
+				vertex(ctx, &rm->pos[rm->adjacency[a]]);
+			}
 	}
 	glEnd();
+}
+
+/* ctx: the frame (const frame *). */
+static void position_2d(const void *ctx, const hylo_position *p)
+{
+	const frame *f = ctx;
+
+	glVertex2d(fx(f, p->p.x), fy(f, p->p.y));
+}
+
+/* Raised 0.1 m off the surface. */
+static void position_3d(const void *ctx, const hylo_position *p)
+{
+	(void)ctx;
+	glVertex3d(p->p.x, p->p.y, p->p.z + 0.1);
+}
+
+static void draw_edges_2d(const frame *f, const hylo_roadmap *rm)
+{
+	roadmap_edges(rm, 0.22f, position_2d, f);
 }
 
 static void draw_nodes_2d(const frame *f, const hylo_roadmap *rm)
@@ -424,37 +469,35 @@ static void wall(double x0, double y0, double x1, double y1, double za, double z
 	glVertex3d(x0, y0, zb);
 }
 
+/* ctx: the height of the skirts' base (const double *). */
+static void cell_3d(const void *ctx, const hylo_map_t *m, int ix, int iy, double x0, double y0,
+                    rgba_color c)
+{
+	double base = *(const double *)ctx, r = m->resolution_m;
+	double h = cell_height(m, ix, iy);
+	double hx = ix + 1 < m->nx ? cell_height(m, ix + 1, iy) : base;
+	double hy = iy + 1 < m->ny ? cell_height(m, ix, iy + 1) : base;
+
+	color(c);
+	glNormal3d(0, 0, 1);
+	glVertex3d(x0, y0, h);
+	glVertex3d(x0 + r, y0, h);
+	glVertex3d(x0 + r, y0 + r, h);
+	glVertex3d(x0, y0 + r, h);
+	/* walls to the +x and +y neighbours, and skirts at the border */
+	if (hx != h)
+		wall(x0 + r, y0, x0 + r, y0 + r, hx, h, h > hx ? 1 : -1, 0);
+	if (hy != h)
+		wall(x0, y0 + r, x0 + r, y0 + r, hy, h, 0, h > hy ? 1 : -1);
+	if (ix == 0)
+		wall(x0, y0, x0, y0 + r, base, h, -1, 0);
+	if (iy == 0)
+		wall(x0, y0, x0 + r, y0, base, h, 0, -1);
+}
+
 static void draw_terrain_3d(const hylo_map_t *m, double base)
 {
-	int ix, iy;
-	float lo, hi;
-	double r = m->resolution_m;
-
-	height_range(m, &lo, &hi);
-	glBegin(GL_QUADS);
-	for (iy = 0; iy < m->ny; iy++)
-		for (ix = 0; ix < m->nx; ix++) {
-			double x0 = m->origin_x_m + ix * r, y0 = m->origin_y_m + iy * r;
-			double h = cell_height(m, ix, iy);
-			double hx = ix + 1 < m->nx ? cell_height(m, ix + 1, iy) : base;
-			double hy = iy + 1 < m->ny ? cell_height(m, ix, iy + 1) : base;
-			color(terrain_color(m, iy * m->nx + ix, lo, hi));
-			glNormal3d(0, 0, 1);
-			glVertex3d(x0, y0, h);
-			glVertex3d(x0 + r, y0, h);
-			glVertex3d(x0 + r, y0 + r, h);
-			glVertex3d(x0, y0 + r, h);
-			/* walls to the +x and +y neighbours, and skirts at the border */
-			if (hx != h)
-				wall(x0 + r, y0, x0 + r, y0 + r, hx, h, h > hx ? 1 : -1, 0);
-			if (hy != h)
-				wall(x0, y0 + r, x0 + r, y0 + r, hy, h, 0, h > hy ? 1 : -1);
-			if (ix == 0)
-				wall(x0, y0, x0, y0 + r, base, h, -1, 0);
-			if (iy == 0)
-				wall(x0, y0, x0 + r, y0, base, h, 0, -1);
-		}
-	glEnd();
+	terrain_quads(m, cell_3d, &base);
 }
 
 static void path_point_3d(const hylo_map_t *m, const hylo_plan_t *p, int k, double *v)
@@ -759,29 +802,15 @@ static int render_3d(canvas *c, const input_set *in, const hylo_roadmap *rm, con
 	glDisable(GL_LIGHTING);
 
 	if (rm && (o->nodes || o->edges)) {
-		uint32_t i, a;
-		if (o->edges) {
-			glLineWidth(1);
-			glBegin(GL_LINES);
-			for (i = 0; i < rm->n_positions; i++) {
-				const hylo_position *p = &rm->pos[i];
-				color(with_alpha(mode_color(p->mode), 0.18f));
-				for (a = p->adj_begin; a < p->adj_end; a++) {
-					const hylo_position *q = &rm->pos[rm->adjacency[a]];
-					if (rm->adjacency[a] > i) {
-						glVertex3d(p->p.x, p->p.y, p->p.z + 0.1);
-						glVertex3d(q->p.x, q->p.y, q->p.z + 0.1);
-					}
-				}
-			}
-			glEnd();
-		}
+		uint32_t i;
+		if (o->edges)
+			roadmap_edges(rm, 0.18f, position_3d, NULL);
 		if (o->nodes) {
 			glPointSize(3);
 			glBegin(GL_POINTS);
 			for (i = 0; i < rm->n_positions; i++) {
 				color(with_alpha(mode_color(rm->pos[i].mode), 0.8f));
-				glVertex3d(rm->pos[i].p.x, rm->pos[i].p.y, rm->pos[i].p.z + 0.1);
+				position_3d(NULL, &rm->pos[i]);
 			}
 			glEnd();
 		}

@@ -13,6 +13,7 @@
 #include "hylo_msg.h"
 #include "tools/scene/planner_view.hpp"
 #include "tools/scene/scene.hpp"
+#include "trainer/cli.hpp"
 
 namespace {
 
@@ -79,11 +80,7 @@ int run(int argc, char **argv)
 	int alternatives = -1;
 	for (int i = 1; i < argc; i++) {
 		std::string a = argv[i];
-		auto value = [&](const char *name) -> std::string {
-			if (i + 1 >= argc)
-				throw std::invalid_argument(std::string(name) + " needs a value");
-			return argv[++i];
-		};
+		auto value = [&] { return hylo::trainer::option_value(argc, argv, i); };
 		if (a == "--help" || a == "-h") {
 			usage(stdout);
 			return 0;
@@ -94,20 +91,20 @@ int run(int argc, char **argv)
 		} else if (a == "--print-camera") {
 			print_camera = true;
 		} else if (a == "--start") {
-			start = value("--start");
+			start = value();
 		} else if (a == "--goal-state") {
-			goal_state = value("--goal-state");
+			goal_state = value();
 		} else if (a == "--lcm-url") {
-			url = value("--lcm-url");
+			url = value();
 		} else if (a == "--channel-prefix") {
-			prefix = value("--channel-prefix");
+			prefix = value();
 		} else if (a == "--alternatives") {
-			std::string v = value("--alternatives");
+			std::string v = value();
 			if (v.size() != 1 || v[0] < '0' || v[0] > '8')
 				throw std::invalid_argument("--alternatives needs a number from 0 to 8, not '" + v + "'");
 			alternatives = v[0] - '0';
 		} else if (a == "--request-id" || a == "--seed") {
-			std::string v = value(a.c_str());
+			std::string v = value();
 			size_t used = 0;
 			long long n = 0;
 			try {
@@ -189,13 +186,5 @@ int run(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
-	try {
-		return run(argc, argv);
-	} catch (const std::invalid_argument &e) {
-		std::fprintf(stderr, "hylo-scene: %s\n", e.what());
-		return 2;
-	} catch (const std::exception &e) {
-		std::fprintf(stderr, "hylo-scene: %s\n", e.what());
-		return 1;
-	}
+	return hylo::trainer::run_main("hylo-scene", run, argc, argv);
 }

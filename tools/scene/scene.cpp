@@ -7,21 +7,14 @@
 #include <yaml-cpp/yaml.h>
 
 #include "hylo/modes.h"
+#include "trainer/yaml_file.hpp"
 
 namespace hylo::scene {
 namespace {
 
 constexpr int8_t kObstacle = 0, kGround = 1, kWater = 2;
 
-struct Ctx {
-	std::string path;
-
-	[[noreturn]] void fail(const YAML::Node &n, const std::string &what) const
-	{
-		int line = n.Mark().line >= 0 ? n.Mark().line + 1 : 0;
-		throw Error(path + ":" + std::to_string(line) + ": " + what);
-	}
-
+struct Ctx : trainer::YamlReader<Error> {
 	// Every key of map node n must be one of allowed.
 	void keys(const YAML::Node &n, const std::string &where, std::set<std::string> allowed) const
 	{
@@ -36,27 +29,6 @@ struct Ctx {
 				fail(kv.first, "unknown key '" + k + "' in " + where + " (allowed: " + list + ")");
 			}
 		}
-	}
-
-	YAML::Node need(const YAML::Node &n, const std::string &key, const std::string &where) const
-	{
-		YAML::Node v = n[key];
-		if (!v)
-			fail(n, "missing key '" + key + "' in " + where);
-		return v;
-	}
-
-	double number(const YAML::Node &n, const std::string &what) const
-	{
-		double v;
-		try {
-			v = n.as<double>();
-		} catch (const YAML::Exception &) {
-			fail(n, what + " must be a number");
-		}
-		if (!std::isfinite(v))
-			fail(n, what + " must be finite");
-		return v;
 	}
 
 	double positive(const YAML::Node &n, const std::string &what) const
@@ -270,17 +242,8 @@ State parse_state(const std::string &text, const std::string &what)
 
 Scene load(const std::string &path)
 {
-	Ctx c{path};
-	YAML::Node root;
-	try {
-		root = YAML::LoadFile(path);
-	} catch (const YAML::BadFile &) {
-		throw Error(path + ": cannot read the file");
-	} catch (const YAML::ParserException &e) {
-		throw Error(path + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-	}
-	if (!root || !root.IsMap())
-		throw Error(path + ":1: a scene must be a YAML mapping");
+	Ctx c{{path}};
+	YAML::Node root = trainer::load_yaml_mapping<Error>(path, "a scene");
 	c.keys(root, "the scene", {"name", "description", "robot", "map_id", "grid", "ceiling_m",
 				   "max_step_m", "terrain", "goal", "render"});
 	Scene sc;
