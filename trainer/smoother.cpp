@@ -184,7 +184,7 @@ constexpr double kInsetM = 1e-3;
 void keep_inside(const RobotParams &robot, const TerrainGrid &map, const SmoothOptions &opt,
 		 MultiPhaseProblem &prob, MultiPhaseSolution &s)
 {
-	const double body = opt.body_radius_m >= 0 ? opt.body_radius_m : robot.body_radius_m;
+	const double body = robot.body_radius_m;
 	const ClearanceCheck before = check_clearance(s, map, body, opt.margin_m);
 	if (before.safe || !opt.corridors)
 		return;

@@ -26,9 +26,8 @@ std::unique_ptr<CorridorMaps> corridor_maps(const RobotParams &robot, const Terr
 					    " m must be finite and >= 0");
 	if (!opt.corridors || map.nx <= 0 || map.ny <= 0)
 		return nullptr;
-	const double body = opt.body_radius_m >= 0 ? opt.body_radius_m : robot.body_radius_m;
 	try {
-		return std::make_unique<CorridorMaps>(map, body + opt.margin_m, opt.corridor_pad_m);
+		return std::make_unique<CorridorMaps>(map, robot.body_radius_m + opt.margin_m, opt.corridor_pad_m);
 	} catch (const std::invalid_argument &e) {
 		notes.push_back(std::string("no corridors: ") + e.what());
 		return nullptr;

@@ -58,7 +58,6 @@ struct SmoothOptions {
 	// marine and flight modes kept in a corridor of boxes whose cells keep
 	// the body plus margin_m clear of the mode's hazards (trainer/corridor.hpp).
 	bool corridors = true;
-	double body_radius_m = -1;      // < 0: the robot's (RobotParams::body_radius_m)
 	double margin_m = HYLO_DEFAULT_MARGIN_M;
 	double corridor_pad_m = 0.02;   // added to the cells' clearance: the cubic between knots may bulge
 };
