@@ -81,6 +81,10 @@ constexpr double kTurnSlack = 1e-9;           // a turn cell also holds turns th
 constexpr int kDirections = 12;               // flight grid: psi = -pi + l pi / 6
 constexpr double kStartTolerance = 0.01;      // refine grid minima within 1% of the best
 constexpr size_t kMaxStarts = 3;
+// The turn table's cells have more local minima (the band cuts basins):
+// more starts, from further up.
+constexpr double kTurnStartTolerance = 0.05;
+constexpr size_t kTurnStarts = 4;
 constexpr size_t kEdgesPerChunk = 4096;
 
 // mode when its models may carry an envelope (their feature layout's,
@@ -150,6 +154,15 @@ private:
 	std::vector<double> mem_;   // the cache's memory (hylo_svr_cache_size)
 	std::vector<double> x_, cost_;
 };
+
+// One evaluator per thread.
+std::vector<std::unique_ptr<Evaluator>> evaluators(const hylo_svr_model &m, hylo_mode mode, int jobs)
+{
+	std::vector<std::unique_ptr<Evaluator>> evs(static_cast<size_t>(std::max(1, jobs)));
+	for (auto &e : evs)
+		e = std::make_unique<Evaluator>(m, mode);
+	return evs;
+}
 
 // Runs f(i, worker) for i in [0, n) on up to jobs threads, handing out
 // indices in order; f writes its results to per-index slots, so they do not
@@ -510,9 +523,7 @@ std::vector<double> coincident_minimum(const Geometry &g, Evaluator &ev, std::at
 Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, int jobs)
 {
 	const uint32_t n_d = g.t.n_d, n_z = g.t.n_z, np = g.pairs();
-	std::vector<std::unique_ptr<Evaluator>> evs(static_cast<size_t>(std::max(1, jobs)));
-	for (auto &e : evs)
-		e = std::make_unique<Evaluator>(m, mode);
+	std::vector<std::unique_ptr<Evaluator>> evs = evaluators(m, mode, jobs);
 	std::vector<PlanarStarts> ends(n_d + 1);
 	auto t0 = Clock::now();
 	parallel(n_d + 1, jobs, [&](size_t q, size_t w) {
@@ -739,68 +750,65 @@ struct FlightPoint {
 	double x[4];   // dh, dz, psi1, psi2
 };
 
-// Minimizes g over the free coordinates of x, the displacement kept in
-// [lo, hi] (coordinates with lo == hi are fixed; a zero speed's direction
-// too): Newton steps on the free set (a bound whose gradient points out of
-// the box is held), Levenberg-damped when the Hessian is not positive
-// definite, within a trust region (radians; the displacement in cells).
-FlightPoint newton(const FlightKernel &K, double s1, double s2, FlightPoint p, const double *lo,
-		   const double *hi, double cell, double tolerance)
+// Minimizes a smooth g over y (four coordinates, scaled by unit) by Newton
+// steps on the free set (a coordinate whose bounds (*bounds)(y, lo, hi) are
+// equal is fixed; one at a bound whose gradient points out is held),
+// Levenberg-damped when the Hessian is not positive definite, within a
+// trust region; project puts a trial point back into the domain. eval(y,
+// grad, hess) returns g. Returns g at the y it leaves.
+template <class Eval, class Bounds, class Project>
+double damped_newton(double *y, const double *unit, Eval eval, Bounds bounds, Project project,
+		     double tolerance)
 {
-	bool free[4] = {lo[0] < hi[0], lo[1] < hi[1], s1 > 0, s2 > 0};
-	const double unit[4] = {cell, cell, 1, 1};
-	const bool displacement = free[0] || free[1];
 	double grad[4], hess[4][4];
-	p.g = K.eval(p.x, s1, s2, displacement, grad, hess);
+	double g = eval(y, grad, hess);
 	double radius = 0.5;
 	for (int it = 0; it < 60; it++) {
+		double lo[4], hi[4];
+		bounds(y, lo, hi);
 		int idx[4], n = 0;
 		for (int a = 0; a < 4; a++) {
-			bool held = a < 2 && ((p.x[a] <= lo[a] && grad[a] > 0) || (p.x[a] >= hi[a] && grad[a] < 0));
-			if (free[a] && !held)
+			bool held = (y[a] <= lo[a] && grad[a] > 0) || (y[a] >= hi[a] && grad[a] < 0);
+			if (lo[a] < hi[a] && !held)
 				idx[n++] = a;
 		}
 		if (n == 0)
 			break;
-		// Scaled variables y_a = x_a / unit_a: H_y = U H U, g_y = U g.
+		// Scaled variables z_a = y_a / unit_a: H_z = U H U, g_z = U g.
 		Eigen::MatrixXd H(n, n);
-		Eigen::VectorXd gy(n);
+		Eigen::VectorXd gz(n);
 		double diag = 0;
 		for (int a = 0; a < n; a++) {
-			gy(a) = grad[idx[a]] * unit[idx[a]];
+			gz(a) = grad[idx[a]] * unit[idx[a]];
 			for (int b = 0; b < n; b++)
 				H(a, b) = hess[idx[a]][idx[b]] * unit[idx[a]] * unit[idx[b]];
 			diag = std::max(diag, std::fabs(H(a, a)));
 		}
 		Eigen::VectorXd step;
-		for (double lambda = 0;; lambda = lambda == 0 ? 1e-8 * (diag + gy.norm()) + 1e-300 : lambda * 10) {
+		for (double lambda = 0;; lambda = lambda == 0 ? 1e-8 * (diag + gz.norm()) + 1e-300 : lambda * 10) {
 			Eigen::MatrixXd Hl = H;
 			Hl.diagonal().array() += lambda;
 			Eigen::LLT<Eigen::MatrixXd> llt(Hl);
 			if (llt.info() == Eigen::Success) {
-				step = -llt.solve(gy);
+				step = -llt.solve(gz);
 				if (step.allFinite())
 					break;
 			}
 			if (lambda > 1e300)
-				return p;
+				return g;
 		}
 		double len = step.cwiseAbs().maxCoeff();
 		if (len > radius)
 			step *= radius / len;
-		FlightPoint q = p;
-		for (int a = 0; a < n; a++) {
-			int c = idx[a];
-			q.x[c] += step(a) * unit[c];
-			if (c < 2)
-				q.x[c] = std::min(hi[c], std::max(lo[c], q.x[c]));
-			else
-				q.x[c] = wrap(q.x[c]);
-		}
+		double q[4] = {y[0], y[1], y[2], y[3]};
+		for (int a = 0; a < n; a++)
+			q[idx[a]] += step(a) * unit[idx[a]];
+		project(q);
 		double qgrad[4], qhess[4][4];
-		q.g = K.eval(q.x, s1, s2, displacement, qgrad, qhess);
-		if (q.g < p.g) {
-			p = q;
+		double qg = eval(q, qgrad, qhess);
+		if (qg < g) {
+			g = qg;
+			std::copy(q, q + 4, y);
 			std::copy(qgrad, qgrad + 4, grad);
 			for (int a = 0; a < 4; a++)
 				std::copy(qhess[a], qhess[a] + 4, hess[a]);
@@ -813,6 +821,37 @@ FlightPoint newton(const FlightKernel &K, double s1, double s2, FlightPoint p, c
 				break;
 		}
 	}
+	return g;
+}
+
+// Minimizes g over the free coordinates of x, the displacement kept in
+// [lo, hi] (coordinates with lo == hi are fixed; a zero speed's direction
+// too) and the directions wrapped (damped_newton; the trust region in
+// radians, the displacement in cells).
+FlightPoint newton(const FlightKernel &K, double s1, double s2, FlightPoint p, const double *lo,
+		   const double *hi, double cell, double tolerance)
+{
+	const bool free_angle[2] = {s1 > 0, s2 > 0};
+	const double unit[4] = {cell, cell, 1, 1};
+	const bool displacement = lo[0] < hi[0] || lo[1] < hi[1];
+	auto eval = [&](const double *x, double *grad, double (*hess)[4]) {
+		return K.eval(x, s1, s2, displacement, grad, hess);
+	};
+	auto bounds = [&](const double *x, double *l, double *h) {
+		for (int a = 0; a < 2; a++) {
+			l[a] = lo[a];
+			h[a] = hi[a];
+			l[a + 2] = free_angle[a] ? -INFINITY : x[a + 2];
+			h[a + 2] = free_angle[a] ? INFINITY : x[a + 2];
+		}
+	};
+	auto project = [&](double *x) {
+		for (int a = 0; a < 2; a++) {
+			x[a] = std::min(hi[a], std::max(lo[a], x[a]));
+			x[a + 2] = wrap(x[a + 2]);
+		}
+	};
+	p.g = damped_newton(p.x, unit, eval, bounds, project, tolerance);
 	return p;
 }
 
@@ -823,17 +862,32 @@ struct DirectionGrid {
 	int rows = 0;
 };
 
-DirectionGrid direction_grid(const Geometry &g)
+// n directions 2 pi / n apart per nonzero speed node (psi = -pi + (l + 1)
+// 2 pi / n), and the kernel's velocity factors of every row: A the tail's,
+// B the head's (FlightKernel::velocity_row).
+DirectionGrid direction_grid(const Geometry &g, const FlightKernel &K, int n, Eigen::MatrixXd &A,
+			     Eigen::MatrixXd &B)
 {
 	DirectionGrid d;
 	for (uint32_t i = 0; i < g.t.n_v; i++) {
-		int c = g.speed(i) == 0 ? 1 : kDirections;
+		int c = g.speed(i) == 0 ? 1 : n;
 		d.first.push_back(d.rows);
 		d.count.push_back(c);
 		for (int l = 0; l < c; l++)
-			d.psi.push_back(c == 1 ? 0 : -kPi + (l + 1) * 2 * kPi / kDirections);
+			d.psi.push_back(c == 1 ? 0 : -kPi + (l + 1) * 2 * kPi / n);
 		d.rows += c;
 	}
+	const Eigen::Index nsv = static_cast<Eigen::Index>(K.n_sv());
+	A.resize(d.rows, nsv);
+	B.resize(d.rows, nsv);
+	std::vector<double> row(K.n_sv());
+	for (uint32_t i = 0, r = 0; i < g.t.n_v; i++)
+		for (int l = 0; l < d.count[i]; l++, r++) {
+			K.velocity_row(3, g.speed(i), d.psi[r], row.data());
+			A.row(r) = Eigen::Map<const Eigen::RowVectorXd>(row.data(), nsv);
+			K.velocity_row(6, g.speed(i), d.psi[r], row.data());
+			B.row(r) = Eigen::Map<const Eigen::RowVectorXd>(row.data(), nsv);
+		}
 	return d;
 }
 
@@ -902,19 +956,8 @@ void flight_edge(const double *x, double s1, double s2, double *tail, double *he
 Estimate flight_estimate(const Geometry &g, const hylo_svr_model &m, int jobs)
 {
 	const FlightKernel K(m);
-	const DirectionGrid dg = direction_grid(g);
-	const Eigen::Index nsv = static_cast<Eigen::Index>(K.n_sv());
-	Eigen::MatrixXd A(dg.rows, nsv), B(dg.rows, nsv);
-	{
-		std::vector<double> row(K.n_sv());
-		for (uint32_t i = 0, r = 0; i < g.t.n_v; i++)
-			for (int l = 0; l < dg.count[i]; l++, r++) {
-				K.velocity_row(3, g.speed(i), dg.psi[r], row.data());
-				A.row(r) = Eigen::Map<const Eigen::RowVectorXd>(row.data(), nsv);
-				K.velocity_row(6, g.speed(i), dg.psi[r], row.data());
-				B.row(r) = Eigen::Map<const Eigen::RowVectorXd>(row.data(), nsv);
-			}
-	}
+	Eigen::MatrixXd A, B;
+	const DirectionGrid dg = direction_grid(g, K, kDirections, A, B);
 	const uint32_t n_d = g.t.n_d, n_z = g.t.n_z, np = g.pairs();
 	auto corner_needed = [&](uint32_t q, uint32_t r) {
 		for (uint32_t k = q > 0 ? q - 1 : 0; k <= q && k < n_d; k++)
@@ -935,9 +978,7 @@ Estimate flight_estimate(const Geometry &g, const hylo_svr_model &m, int jobs)
 	if (std::getenv("HYLO_TRAINER_DEBUG"))
 		std::fprintf(stderr, "envelope: %zu cell corners in %.1f s\n", nc, seconds_since(t0));
 	t0 = Clock::now();
-	std::vector<std::unique_ptr<Evaluator>> evs(static_cast<size_t>(std::max(1, jobs)));
-	for (auto &e : evs)
-		e = std::make_unique<Evaluator>(m, HYLO_MODE_FLIGHT);
+	std::vector<std::unique_ptr<Evaluator>> evs = evaluators(m, HYLO_MODE_FLIGHT, jobs);
 	Estimate est;
 	est.cost.assign(static_cast<size_t>(n_d) * n_z * np, 0.0);
 	parallel(static_cast<size_t>(n_d) * n_z, jobs, [&](size_t cell, size_t w) {
@@ -983,6 +1024,249 @@ Estimate flight_estimate(const Geometry &g, const hylo_svr_model &m, int jobs)
 	});
 	if (std::getenv("HYLO_TRAINER_DEBUG"))
 		std::fprintf(stderr, "envelope: %u cells in %.1f s\n", n_d * n_z, seconds_since(t0));
+	return est;
+}
+
+// ---------------------------------------------------------------- flight turn table
+
+// The turn table's layout: the climb table's distance cells and speed
+// nodes, kTurnCells turn cells over [0, 2 pi] (as a planar table's).
+Geometry turn_geometry(const Geometry &g)
+{
+	Geometry t = g;
+	t.t.n_z = kTurnCells;
+	t.t.z_min = 0;
+	t.t.z_step = 2 * kPi / kTurnCells;
+	return t;
+}
+
+// The largest climb of distance cell k's edges within the training ball.
+double climb_reach(const Geometry &g, uint32_t k)
+{
+	const double d = k == 0 ? 0 : g.d_end(k);
+	return d >= g.max_d ? 0 : std::sqrt(g.max_d * g.max_d - d * d);
+}
+
+// The turn hylo_envelope_flight_turn gives the edge flight_edge(x, s1, s2).
+double flight_turn(const double *x, double s1, double s2)
+{
+	return (s1 > 0 ? std::fabs(wrap(x[2])) : 0) + (s2 > 0 ? std::fabs(wrap(x[3])) : 0);
+}
+
+// Minimizes g over y = (dh, dz, T, u) from start: the displacement in [lo, hi], the
+// turn T in [t_lo, t_hi] and the velocity directions psi1 = sigma1 u, psi2
+// = sigma2 (T - u) with u in [max(0, T - pi), min(T, pi)], so both lie in
+// [-pi, pi] and their turn is T (one speed zero: the other's direction is
+// sigma T and u is not used; both zero: T = 0). The map to (dh, dz, psi1,
+// psi2) is linear, so Newton's method on y has the exact gradient and
+// Hessian; bounds, damping and trust region as newton()'s (u's bounds move
+// with T: u is put back into them after each step). +inf when the band
+// holds no turn of these speeds.
+FlightPoint newton_on_turn(const FlightKernel &K, double s1, double s2, double sigma1, double sigma2,
+			   const FlightPoint &start, const double *lo, const double *hi, double t_lo,
+			   double t_hi, double tolerance)
+{
+	const bool m1 = s1 > 0, m2 = s2 > 0;
+	const double top = (m1 ? kPi : 0) + (m2 ? kPi : 0);
+	FlightPoint p;
+	p.g = INFINITY;
+	const double t_min = std::max(0.0, t_lo), t_max = std::min(top, t_hi);
+	if (t_min > t_max)
+		return p;
+	// J: d(dh, dz, psi1, psi2) / d(dh, dz, T, u).
+	double J[4][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+	if (m1 && m2) {
+		J[2][3] = sigma1;
+		J[3][2] = sigma2;
+		J[3][3] = -sigma2;
+	} else if (m1) {
+		J[2][2] = sigma1;
+	} else if (m2) {
+		J[3][2] = sigma2;
+	}
+	auto to_x = [&](const double *y, double *x) {
+		for (int i = 0; i < 4; i++) {
+			x[i] = 0;
+			for (int a = 0; a < 4; a++)
+				x[i] += J[i][a] * y[a];
+		}
+	};
+	auto eval = [&](const double *y, double *gy, double (*hy)[4]) {
+		double x[4], gx[4], hx[4][4];
+		to_x(y, x);
+		const double v = K.eval(x, s1, s2, true, gx, hx);
+		for (int a = 0; a < 4; a++) {
+			gy[a] = 0;
+			for (int i = 0; i < 4; i++)
+				gy[a] += J[i][a] * gx[i];
+			for (int b = 0; b < 4; b++) {
+				hy[a][b] = 0;
+				for (int i = 0; i < 4; i++)
+					for (int k = 0; k < 4; k++)
+						hy[a][b] += J[i][a] * hx[i][k] * J[k][b];
+			}
+		}
+		return v;
+	};
+	// u's bounds move with T.
+	auto bounds = [&](const double *y, double *l, double *h) {
+		l[0] = lo[0], h[0] = hi[0], l[1] = lo[1], h[1] = hi[1], l[2] = t_min, h[2] = t_max;
+		l[3] = m1 && m2 ? std::max(0.0, y[2] - kPi) : 0;
+		h[3] = m1 && m2 ? std::min(y[2], kPi) : 0;
+	};
+	auto project = [&](double *y) {
+		double l[4], h[4];
+		for (int a = 0; a < 3; a++) {
+			bounds(y, l, h);
+			y[a] = std::min(h[a], std::max(l[a], y[a]));
+		}
+		bounds(y, l, h);
+		y[3] = std::min(h[3], std::max(l[3], y[3]));
+	};
+	const double unit[4] = {kFlightStep, kFlightStep, 1, 1};
+	double y[4] = {start.x[0], start.x[1], flight_turn(start.x, s1, s2), std::fabs(wrap(start.x[2]))};
+	project(y);
+	p.g = damped_newton(y, unit, eval, bounds, project, tolerance);
+	to_x(y, p.x);
+	return p;
+}
+
+// M(k, turn cell j, s1, s2): the least predicted cost over distance cell k,
+// every climb within the training ball and every pair of level velocity
+// directions whose turn lies in cell j. The same 24 x 24 direction grid at
+// every distance end and climb 0.5 m apart gives each cell's grid minima;
+// from the best distinct ones (within 5%, at most 4) and from the two
+// neighbouring turn cells' minima, newton_on_turn, with each velocity
+// turned to either side, finds the cell's least cost. Cells no edge of the speeds reaches (a turn
+// beyond pi with one speed zero, any turn but 0 with both) get the least
+// value of their distance cell and speeds, a bound of every such edge.
+Estimate flight_turn_estimate(const Geometry &g, const Geometry &gt, const hylo_svr_model &m, int jobs)
+{
+	constexpr int kTurnDirections = 24;
+	constexpr double kClimbStep = 0.5;
+	const FlightKernel K(m);
+	Eigen::MatrixXd A, B;
+	const DirectionGrid dg = direction_grid(g, K, kTurnDirections, A, B);
+	const Eigen::Index nsv = static_cast<Eigen::Index>(K.n_sv());
+	const uint32_t n_d = g.t.n_d, n_t = gt.t.n_z, np = g.pairs();
+	const int n_climbs = 2 * static_cast<int>(std::ceil(g.max_d / kClimbStep - 1e-9)) + 1;
+	auto climb = [&](int r) { return (r - (n_climbs - 1) / 2) * kClimbStep; };
+	// Per grid point (distance end q, climb r): the best grid point of each
+	// speed pair and turn cell, [p * n_t + j].
+	const size_t n_points = static_cast<size_t>(n_d + 1) * n_climbs;
+	std::vector<std::vector<FlightPoint>> grid(n_points);
+	auto t0 = Clock::now();
+	parallel(n_points, jobs, [&](size_t c, size_t) {
+		const uint32_t q = static_cast<uint32_t>(c / n_climbs);
+		const double dh = g.d_end(q), dz = climb(static_cast<int>(c % n_climbs));
+		if (std::fabs(dz) > climb_reach(g, q > 0 ? q - 1 : 0) + kClimbStep)
+			return;
+		Eigen::VectorXd w(nsv);
+		K.weights(dh, dz, w.data());
+		const Eigen::MatrixXd G = (A * w.asDiagonal()) * B.transpose();
+		std::vector<FlightPoint> &out = grid[c];
+		out.assign(static_cast<size_t>(np) * n_t, FlightPoint{INFINITY, {0, 0, 0, 0}});
+		for (uint32_t p = 0; p < np; p++) {
+			const uint32_t i1 = p / g.t.n_v, i2 = p % g.t.n_v;
+			const double s1 = g.speed(i1), s2 = g.speed(i2);
+			for (int a = 0; a < dg.count[i1]; a++)
+				for (int b = 0; b < dg.count[i2]; b++) {
+					const FlightPoint x{G(dg.first[i1] + a, dg.first[i2] + b),
+							    {dh, dz, dg.psi[dg.first[i1] + a], dg.psi[dg.first[i2] + b]}};
+					uint32_t first, last;
+					turn_cells(gt, flight_turn(x.x, s1, s2), &first, &last);
+					for (uint32_t j = first; j <= last; j++)
+						if (x.g < out[p * n_t + j].g)
+							out[p * n_t + j] = x;
+				}
+		}
+	});
+	if (std::getenv("HYLO_TRAINER_DEBUG"))
+		std::fprintf(stderr, "envelope: turn table grid, %zu points in %.1f s\n", n_points, seconds_since(t0));
+	t0 = Clock::now();
+	std::vector<std::unique_ptr<Evaluator>> evs = evaluators(m, HYLO_MODE_FLIGHT, jobs);
+	Estimate est;
+	est.cost.assign(static_cast<size_t>(n_d) * n_t * np, 0.0);
+	parallel(static_cast<size_t>(n_d) * np, jobs, [&](size_t cell, size_t w) {
+		const uint32_t k = static_cast<uint32_t>(cell / np), p = static_cast<uint32_t>(cell % np);
+		if (!g.needed(k, (g.t.n_z - 1) / 2))   // the climb-0 cell: within the ball
+			return;
+		const double s1 = g.speed(p / g.t.n_v), s2 = g.speed(p % g.t.n_v);
+		const double reach = climb_reach(g, k);
+		const double lo[2] = {g.d_end(k), -reach}, hi[2] = {g.d_end(k + 1), reach};
+		Evaluator &ev = *evs[w];
+		ev.clear();
+		std::vector<uint32_t> found;
+		double tail[6], head[6];
+		// Every side each velocity may turn to (a C or an S): the band's edge
+		// cuts the start's basin, so its signs need not be the best.
+		auto search = [&](const FlightPoint &s, uint32_t j, FlightPoint &best) {
+			for (double sigma1 : {1.0, -1.0})
+				for (double sigma2 : {1.0, -1.0}) {
+					if ((sigma1 < 0 && s1 == 0) || (sigma2 < 0 && s2 == 0))
+						continue;
+					FlightPoint r = newton_on_turn(K, s1, s2, sigma1, sigma2, s, lo, hi, turn_lo(gt, j),
+								       turn_hi(gt, j), 1e-8);
+					if (r.g < best.g)
+						best = r;
+				}
+		};
+		std::vector<FlightPoint> best(n_t);
+		for (uint32_t j = 0; j < n_t; j++) {
+			std::vector<FlightPoint> starts;
+			for (uint32_t q = k; q <= k + 1; q++)
+				for (int r = 0; r < n_climbs; r++) {
+					const auto &pt = grid[static_cast<size_t>(q) * n_climbs + r];
+					if (!pt.empty() && std::isfinite(pt[p * n_t + j].g) &&
+					    std::fabs(pt[p * n_t + j].x[1]) <= reach + kClimbStep)
+						starts.push_back(pt[p * n_t + j]);
+				}
+			std::stable_sort(starts.begin(), starts.end(),
+					 [](const FlightPoint &a, const FlightPoint &b) { return a.g < b.g; });
+			std::vector<FlightPoint> distinct;
+			for (const FlightPoint &s : starts) {
+				bool seen = false;
+				for (const FlightPoint &o : distinct)
+					seen |= angle_apart(s.x[2], o.x[2]) < 0.05 && angle_apart(s.x[3], o.x[3]) < 0.05 &&
+						std::fabs(s.x[1] - o.x[1]) < 1;
+				if (!seen && distinct.size() < kTurnStarts &&
+				    K.cost(s.g) <= K.cost(starts[0].g) * (1 + kTurnStartTolerance))
+					distinct.push_back(s);
+			}
+			best[j].g = INFINITY;
+			for (const FlightPoint &s : distinct)
+				search(s, j, best[j]);
+		}
+		// The neighbouring turn cells' minima as starts too (a basin the
+		// grid saw only in the next cell).
+		for (uint32_t j = 0; j < n_t; j++) {
+			FlightPoint b = best[j];
+			for (uint32_t nb : {j - 1, j + 1})
+				if (nb < n_t && std::isfinite(best[nb].g))
+					search(best[nb], j, b);
+			best[j] = b;
+		}
+		for (uint32_t j = 0; j < n_t; j++) {
+			if (!std::isfinite(best[j].g))
+				continue;
+			flight_edge(best[j].x, s1, s2, tail, head);
+			ev.add(tail, head);
+			found.push_back(j);
+		}
+		if (found.empty())
+			return;
+		const std::vector<double> &cost = ev.run();
+		double least = INFINITY;
+		for (size_t f = 0; f < found.size(); f++) {
+			est.cost[gt.index(k, found[f], p)] = cost[f];
+			least = std::min(least, cost[f]);
+		}
+		for (uint32_t j = 0; j < n_t; j++)
+			if (std::find(found.begin(), found.end(), j) == found.end())
+				est.cost[gt.index(k, j, p)] = least;
+	});
+	if (std::getenv("HYLO_TRAINER_DEBUG"))
+		std::fprintf(stderr, "envelope: turn table, %u cells in %.1f s\n", n_d * n_t, seconds_since(t0));
 	return est;
 }
 
@@ -1052,20 +1336,33 @@ struct Comparison {
 	double closest = INFINITY;  // least (cost - table) / cost
 };
 
-// n random edges of stream seed against the table (through the onboard
-// lookup, hylo_envelope_of_edge, on a copy of m carrying it).
+// The bound table gives an edge through the onboard lookup: the envelope's
+// (hylo_envelope_of_edge) or the turn table's (hylo_svr_turn_envelope_bound
+// at hylo_envelope_flight_turn), on a copy of m carrying only that table.
+double table_bound(const hylo_svr_model &with, hylo_mode mode, bool turn_table, const double *tail,
+		   const double *head)
+{
+	if (!turn_table)
+		return hylo_envelope_of_edge(&with, mode, tail, head);
+	double a[4], turn;
+	if (!hylo_envelope_args(mode, tail, head, a) || !hylo_envelope_flight_turn(tail, head, &turn))
+		return 0;
+	return hylo_svr_turn_envelope_bound(&with, a[0], a[1], turn, a[2], a[3]);
+}
+
+// n random edges of stream seed against the table (g's layout; turn_table:
+// the flight turn table).
 Comparison compare(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, const std::vector<float> &table,
-		   uint64_t seed, size_t n, int jobs)
+		   bool turn_table, uint64_t seed, size_t n, int jobs)
 {
 	EnvelopeExport t = g.t;
 	hylo_svr_envelope env{t.n_d, t.n_z, t.n_v, t.d_step, t.z_min, t.z_step, t.v_min, t.v_step, table.data()};
 	hylo_svr_model with = m;
-	with.envelope = &env;
+	with.envelope = turn_table ? nullptr : &env;
+	with.turn_envelope = turn_table ? &env : nullptr;
 	const size_t chunks = (n + kEdgesPerChunk - 1) / kEdgesPerChunk;
 	std::vector<Comparison> part(chunks);
-	std::vector<std::unique_ptr<Evaluator>> evs(static_cast<size_t>(std::max(1, jobs)));
-	for (auto &e : evs)
-		e = std::make_unique<Evaluator>(m, mode);
+	std::vector<std::unique_ptr<Evaluator>> evs = evaluators(m, mode, jobs);
 	parallel(chunks, jobs, [&](size_t c, size_t w) {
 		Evaluator &ev = *evs[w];
 		ev.clear();
@@ -1075,7 +1372,7 @@ Comparison compare(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, c
 		for (size_t e = begin; e < end; e++) {
 			random_edge(g, mode, seed, e, tail, head);
 			ev.add(tail, head);
-			bound.push_back(hylo_envelope_of_edge(&with, mode, tail, head));
+			bound.push_back(table_bound(with, mode, turn_table, tail, head));
 		}
 		const std::vector<double> &cost = ev.run();
 		Comparison &r = part[c];
@@ -1158,34 +1455,42 @@ double envelope_speed_step(double lo, double hi)
 				    format_double(lo) + ", " + format_double(hi) + "] m/s into at most 12 steps");
 }
 
-EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt)
+namespace {
+
+// The model compute_envelope and compute_turn_table work on: m without its
+// tables, checked.
+hylo_svr_model bare_view(const SvrExport &m, SvrExport &bare)
 {
 	if (!envelope_applies(m))
 		throw std::invalid_argument("envelope: the " + m.robot + " " + hylo_mode_str(m.mode) +
 					    " model gets none (ground, marine and flight models with a "
 					    "training distance and speed range only)");
-	const hylo_mode mode = envelope_mode(m.mode);
-	SvrExport bare = m;
+	bare = m;
 	bare.envelope.reset();
+	bare.turn_envelope.reset();
 	const hylo_svr_model view = model_view(bare);
 	hylo_reason why;
 	if (hylo_svr_check(&view, &why) != HYLO_OK)
 		throw std::invalid_argument(std::string("envelope: ") + why.text);
-	const Geometry g = geometry(bare);
-	EnvelopeReport rep;
-	rep.sampled = opt.check_edges;
-	auto t0 = Clock::now();
-	const Estimate est = g.flight ? flight_estimate(g, view, opt.jobs) : planar_estimate(g, view, mode, opt.jobs);
-	rep.table_seconds = seconds_since(t0);
-	if (opt.progress)
-		std::printf("envelope %s %s: %u x %u x %u cells x %u speed pairs in %.1f s\n", m.robot.c_str(),
-			    hylo_mode_str(m.mode), g.t.n_d, g.t.n_z, g.t.n_v, g.pairs(), rep.table_seconds);
+	return view;
+}
 
-	t0 = Clock::now();
+// The margin measured on opt.check_edges random edges, the table with it,
+// and its check on as many fresh ones, into rep (what: the table's name in
+// messages).
+void finish_table(const Geometry &g, const hylo_svr_model &view, const SvrExport &m, const Estimate &est,
+		  bool turn_table, const EnvelopeOptions &opt, const char *what, EnvelopeReport &rep)
+{
+	const hylo_mode mode = envelope_mode(m.mode);
+	rep.sampled = opt.check_edges;
+	if (opt.progress)
+		std::printf("%s %s %s: %u x %u x %u cells x %u speed pairs in %.1f s\n", what, m.robot.c_str(),
+			    hylo_mode_str(m.mode), g.t.n_d, g.t.n_z, g.t.n_v, g.pairs(), rep.table_seconds);
+	auto t0 = Clock::now();
 	std::vector<float> before(est.cost.size());
 	for (size_t i = 0; i < before.size(); i++)
 		before[i] = round_down(est.cost[i]);
-	const Comparison measured = compare(g, view, mode, before, opt.margin_seed, opt.check_edges, opt.jobs);
+	const Comparison measured = compare(g, view, mode, before, turn_table, opt.margin_seed, opt.check_edges, opt.jobs);
 	rep.worst_shortfall = measured.worst_excess;
 	rep.shortfall_edges = measured.below;
 	rep.margin = two_digits_up(std::max(opt.min_margin, 2 * measured.worst_excess));
@@ -1196,21 +1501,59 @@ EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt)
 	rep.table.value.resize(est.cost.size());
 	for (size_t i = 0; i < est.cost.size(); i++)
 		rep.table.value[i] = round_down(est.cost[i] * (1 - rep.margin));
-	const Comparison check = compare(g, view, mode, rep.table.value, opt.check_seed, opt.check_edges, opt.jobs);
+	const Comparison check = compare(g, view, mode, rep.table.value, turn_table, opt.check_seed, opt.check_edges, opt.jobs);
 	rep.check_violations = check.below;
 	rep.check_closest = check.closest;
 	rep.check_seconds = seconds_since(t0);
 	if (opt.progress)
-		std::printf("envelope %s %s: worst shortfall %.3g (%zu of %zu edges) -> margin %s (%.1f s); "
+		std::printf("%s %s %s: worst shortfall %.3g (%zu of %zu edges) -> margin %s (%.1f s); "
 			    "check: %zu of %zu fresh edges below the table, closest %.3g (%.1f s)\n",
-			    m.robot.c_str(), hylo_mode_str(m.mode), rep.worst_shortfall, rep.shortfall_edges,
+			    what, m.robot.c_str(), hylo_mode_str(m.mode), rep.worst_shortfall, rep.shortfall_edges,
 			    opt.check_edges, short_number(rep.margin).c_str(), rep.margin_seconds,
 			    rep.check_violations, opt.check_edges, rep.check_closest, rep.check_seconds);
 	if (rep.check_violations > 0)
-		throw std::runtime_error("envelope: " + std::to_string(rep.check_violations) + " of " +
+		throw std::runtime_error(std::string(what) + ": " + std::to_string(rep.check_violations) + " of " +
 					 std::to_string(opt.check_edges) + " fresh random edges cost less than the " +
 					 m.robot + " " + hylo_mode_str(m.mode) + " table with margin " + short_number(rep.margin) +
 					 " (by up to " + short_number(check.worst_excess) + " relative)");
+}
+
+}  // namespace
+
+EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt)
+{
+	SvrExport bare;
+	const hylo_svr_model view = bare_view(m, bare);
+	const Geometry g = geometry(bare);
+	EnvelopeReport rep;
+	auto t0 = Clock::now();
+	const Estimate est = g.flight ? flight_estimate(g, view, opt.jobs)
+				      : planar_estimate(g, view, envelope_mode(m.mode), opt.jobs);
+	rep.table_seconds = seconds_since(t0);
+	finish_table(g, view, bare, est, false, opt, "envelope", rep);
+	return rep;
+}
+
+bool turn_table_applies(const SvrExport &m)
+{
+	const hylo_feature_layout *layout = hylo_mode_layout(m.mode);
+	return envelope_applies(m) && layout && layout->kind == HYLO_LAYOUT_SPATIAL;
+}
+
+EnvelopeReport compute_turn_table(const SvrExport &m, const EnvelopeOptions &opt)
+{
+	if (!turn_table_applies(m))
+		throw std::invalid_argument("turn table: the " + m.robot + " " + hylo_mode_str(m.mode) +
+					    " model gets none (flight models with a training distance and "
+					    "speed range only)");
+	SvrExport bare;
+	const hylo_svr_model view = bare_view(m, bare);
+	const Geometry g = geometry(bare), gt = turn_geometry(g);
+	EnvelopeReport rep;
+	auto t0 = Clock::now();
+	const Estimate est = flight_turn_estimate(g, gt, view, opt.jobs);
+	rep.table_seconds = seconds_since(t0);
+	finish_table(gt, view, bare, est, true, opt, "turn table", rep);
 	return rep;
 }
 

@@ -59,6 +59,18 @@ double envelope_speed_step(double lo, double hi);
 // than its cell's exported value.
 EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt);
 
+// Whether m gets a turn table (hylo_svr_model.turn_envelope): flight models
+// that get an envelope.
+bool turn_table_applies(const SvrExport &m);
+
+// Computes m's flight turn table: per distance cell of the envelope, turn
+// cell (16 over [0, 2 pi], hylo_envelope_flight_turn) and pair of the
+// envelope's speed nodes, the least predicted cost over every climb within
+// the training distance and every pair of level velocity directions of
+// that turn; margin and check as compute_envelope's. Throws as it does
+// (std::invalid_argument when turn_table_applies is false).
+EnvelopeReport compute_turn_table(const SvrExport &m, const EnvelopeOptions &opt);
+
 }  // namespace hylo::trainer
 
 #endif

@@ -256,25 +256,36 @@ int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 	}
 	if (m.robot != robot.robot || m.mode != opt.gen.mode)
 		throw std::invalid_argument(path + " holds the " + m.robot + " " + hylo_mode_str(m.mode) + " model");
-	auto line = std::find_if(m.provenance.begin(), m.provenance.end(),
-				 [](const auto &p) { return p.first == "envelope"; });
-	if (line != m.provenance.end())
-		m.provenance.erase(line);
+	for (const char *key : {"envelope", "turn table"}) {
+		auto line = std::find_if(m.provenance.begin(), m.provenance.end(),
+					 [&](const auto &p) { return p.first == key; });
+		if (line != m.provenance.end())
+			m.provenance.erase(line);
+	}
 	m.envelope.reset();
-	if (envelope_applies(m)) {
-		EnvelopeOptions eo;
-		eo.jobs = opt.gen.jobs;
-		eo.progress = opt.gen.progress;
-		EnvelopeReport rep = compute_envelope(m, eo);
-		m.envelope = rep.table;
+	m.turn_envelope.reset();
+	EnvelopeOptions eo;
+	eo.jobs = opt.gen.jobs;
+	eo.progress = opt.gen.progress;
+	auto add = [&](const char *key, const EnvelopeReport &rep) {
 		// Before the version line, which stays last.
 		auto at = !m.provenance.empty() && m.provenance.back().first == "hylo version"
 				  ? m.provenance.end() - 1 : m.provenance.end();
-		m.provenance.insert(at, {"envelope", rep.provenance()});
-		std::printf("envelope %s %s: %s; %.1f s (table %.1f s, margin %.1f s, check %.1f s)\n",
+		m.provenance.insert(at, {key, rep.provenance()});
+		std::printf("%s %s %s: %s; %.1f s (table %.1f s, margin %.1f s, check %.1f s)\n", key,
 			    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), rep.provenance().c_str(),
 			    rep.table_seconds + rep.margin_seconds + rep.check_seconds, rep.table_seconds,
 			    rep.margin_seconds, rep.check_seconds);
+	};
+	if (envelope_applies(m)) {
+		EnvelopeReport rep = compute_envelope(m, eo);
+		m.envelope = rep.table;
+		add("envelope", rep);
+	}
+	if (turn_table_applies(m)) {
+		EnvelopeReport rep = compute_turn_table(m, eo);
+		m.turn_envelope = rep.table;
+		add("turn table", rep);
 	}
 	write_svr_header(m, opt.models_dir + "/" + name);
 	std::printf("exported %s/%s\n", opt.models_dir.c_str(), name.c_str());

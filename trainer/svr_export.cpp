@@ -116,6 +116,30 @@ void check_arrays(int n_features, const std::vector<double> &sv, const std::vect
 		throw std::invalid_argument("svr export: " + what + " gamma must be > 0");
 }
 
+// A table's sizes, steps and values (hylo_svr_check's rules); turn: its
+// z cells are turns (one cell, or cells covering [0, 2 pi]).
+void check_envelope(const EnvelopeExport &e, bool turn, const std::string &what)
+{
+	if (e.n_d == 0 || e.n_z == 0 || e.n_v == 0)
+		throw std::invalid_argument("svr export: envelope cell counts must be >= 1");
+	const uint64_t n = static_cast<uint64_t>(e.n_d) * e.n_z * e.n_v * e.n_v;
+	if (n >= (uint64_t{1} << 32) || e.value.size() != n)
+		throw std::invalid_argument("svr export: envelope has " + std::to_string(e.value.size()) +
+					    " values, expected n_d * n_z * n_v * n_v = " + std::to_string(n));
+	for (double v : {e.d_step, e.z_min, e.z_step, e.v_min, e.v_step})
+		require_finite(v, "an envelope step or origin");
+	if (!(e.d_step > 0) || !(e.v_step > 0) || (e.n_z > 1 && !(e.z_step > 0)))
+		throw std::invalid_argument("svr export: envelope steps must be > 0");
+	const double two_pi = 6.283185307179586476925286766559;
+	if (turn && e.n_z > 1 && !(e.z_min == 0 && std::fabs(e.n_z * e.z_step - two_pi) <= 1e-12 * two_pi))
+		throw std::invalid_argument("svr export: " + what + " has one climb cell or turn cells "
+					    "covering [0, 2 pi] (z_min 0, n_z * z_step = 2 pi)");
+	for (size_t i = 0; i < e.value.size(); i++)
+		if (!std::isfinite(e.value[i]) || !(e.value[i] >= 0))
+			throw std::invalid_argument("svr export: envelope value " + std::to_string(i) +
+						    " is not finite and >= 0");
+}
+
 void check(const SvrExport &m)
 {
 	if (!is_identifier(m.robot, false))
@@ -152,32 +176,22 @@ void check(const SvrExport &m)
 		throw std::invalid_argument("svr export: gamma and label_scale must be > 0, "
 					    "cost floors and max_distance_m >= 0, "
 					    "speed_min_mps <= speed_max_mps");
-	if (m.envelope) {
+	if (m.turn_envelope) {
+		const hylo_feature_layout *layout = hylo_mode_layout(m.mode);
+		const EnvelopeExport &t = *m.turn_envelope;
+		if (!layout || layout->kind != HYLO_LAYOUT_SPATIAL || !m.envelope)
+			throw std::invalid_argument("svr export: only a flight model with an envelope has a turn table");
 		const EnvelopeExport &e = *m.envelope;
+		if (t.n_d != e.n_d || t.d_step != e.d_step || t.n_v != e.n_v || t.v_min != e.v_min || t.v_step != e.v_step)
+			throw std::invalid_argument("svr export: the turn table's distance cells and speed nodes "
+						    "must be the envelope's");
+		check_envelope(t, true, "a turn table");
+	}
+	if (m.envelope) {
 		const hylo_feature_layout *layout = hylo_mode_layout(m.mode);
 		if (!layout || !layout->envelope)
 			throw std::invalid_argument(std::string("svr export: mode ") + hylo_mode_str(m.mode) + " has no envelope");
-		if (e.n_d == 0 || e.n_z == 0 || e.n_v == 0)
-			throw std::invalid_argument("svr export: envelope cell counts must be >= 1");
-		const uint64_t n = static_cast<uint64_t>(e.n_d) * e.n_z * e.n_v * e.n_v;
-		if (n >= (uint64_t{1} << 32) || e.value.size() != n)
-			throw std::invalid_argument("svr export: envelope has " + std::to_string(e.value.size()) +
-						    " values, expected n_d * n_z * n_v * n_v = " + std::to_string(n));
-		for (double v : {e.d_step, e.z_min, e.z_step, e.v_min, e.v_step})
-			require_finite(v, "an envelope step or origin");
-		if (!(e.d_step > 0) || !(e.v_step > 0) || (e.n_z > 1 && !(e.z_step > 0)))
-			throw std::invalid_argument("svr export: envelope steps must be > 0");
-		// hylo_svr_check's rule: ground and water tables have one climb cell
-		// or turn cells covering [0, 2 pi].
-		const double two_pi = 6.283185307179586476925286766559;
-		if (layout->envelope_turn && e.n_z > 1 &&
-		    !(e.z_min == 0 && std::fabs(e.n_z * e.z_step - two_pi) <= 1e-12 * two_pi))
-			throw std::invalid_argument("svr export: a ground or water envelope has one climb cell "
-						    "or turn cells covering [0, 2 pi] (z_min 0, n_z * z_step = 2 pi)");
-		for (size_t i = 0; i < e.value.size(); i++)
-			if (!std::isfinite(e.value[i]) || !(e.value[i] >= 0))
-				throw std::invalid_argument("svr export: envelope value " + std::to_string(i) +
-							    " is not finite and >= 0");
+		check_envelope(*m.envelope, layout->envelope_turn, "a ground or water envelope");
 	}
 	for (const auto &c : m.constants) {
 		if (!is_identifier(c.key, true))
@@ -252,6 +266,7 @@ void model_struct(std::string &out, const SvrExport &m, const std::string &id, c
 		{"state_max", brace_list(m.state_max)},
 		{"provenance", c_string(prov)},
 		{"envelope", m.envelope ? "&" + id + "_envelope" : "NULL"},
+		{"turn_envelope", m.turn_envelope ? "&" + id + "_turn_envelope" : "NULL"},
 	};
 	out += "static const hylo_svr_model " + id + " = {\n";
 	for (const auto &f : fields)
@@ -275,16 +290,21 @@ std::string format_float(float v)
 	return std::string(buf, r.ptr);
 }
 
+// The table `name` (envelope, turn_envelope) of model id.
 void envelope_block(std::string &out, const EnvelopeExport &e, const std::string &id,
-		    const std::string &mac)
+		    const std::string &mac, const std::string &name)
 {
-	const std::string emac = mac + "_ENVELOPE";
-	out += "/* Envelope: per distance (and climb) cell and pair of speed nodes, a lower\n"
-	       " * bound of the predicted cost over every heading (onboard/models/README.md). */\n";
+	const std::string emac = mac + "_" + upper(name);
+	if (name == "envelope")
+		out += "/* Envelope: per distance (and climb) cell and pair of speed nodes, a lower\n"
+		       " * bound of the predicted cost over every heading (onboard/models/README.md). */\n";
+	else
+		out += "/* Turn table: per distance and turn cell and pair of speed nodes, a lower\n"
+		       " * bound of the predicted cost over every climb (onboard/models/README.md). */\n";
 	out += "#define " + emac + "_N_D " + std::to_string(e.n_d) + "\n";
 	out += "#define " + emac + "_N_Z " + std::to_string(e.n_z) + "\n";
 	out += "#define " + emac + "_N_V " + std::to_string(e.n_v) + "\n\n";
-	out += "static const float " + id + "_envelope_value[" + emac + "_N_D * " + emac + "_N_Z * " +
+	out += "static const float " + id + "_" + name + "_value[" + emac + "_N_D * " + emac + "_N_Z * " +
 	       emac + "_N_V * " + emac + "_N_V] = {\n";
 	for (size_t i = 0; i < e.value.size(); i++) {
 		out += (i % e.n_v == 0) ? "\t" : " ";
@@ -293,7 +313,7 @@ void envelope_block(std::string &out, const EnvelopeExport &e, const std::string
 			out += "\n";
 	}
 	out += "};\n\n";
-	out += "static const hylo_svr_envelope " + id + "_envelope = {\n";
+	out += "static const hylo_svr_envelope " + id + "_" + name + " = {\n";
 	out += "\t.n_d = " + emac + "_N_D,\n";
 	out += "\t.n_z = " + emac + "_N_Z,\n";
 	out += "\t.n_v = " + emac + "_N_V,\n";
@@ -302,7 +322,7 @@ void envelope_block(std::string &out, const EnvelopeExport &e, const std::string
 	out += "\t.z_step = " + format_double(e.z_step) + ",\n";
 	out += "\t.v_min = " + format_double(e.v_min) + ",\n";
 	out += "\t.v_step = " + format_double(e.v_step) + ",\n";
-	out += "\t.value = " + id + "_envelope_value,\n";
+	out += "\t.value = " + id + "_" + name + "_value,\n";
 	out += "};\n\n";
 }
 
@@ -354,7 +374,9 @@ std::string svr_header_text(const SvrExport &m)
 	out += "\n";
 	model_arrays(out, m, id, mac + "_N_SV", mac + "_N_FEATURES", static_cast<size_t>(m.n_features));
 	if (m.envelope)
-		envelope_block(out, *m.envelope, id, mac);
+		envelope_block(out, *m.envelope, id, mac, "envelope");
+	if (m.turn_envelope)
+		envelope_block(out, *m.turn_envelope, id, mac, "turn_envelope");
 	model_struct(out, m, id, name, mac + "_N_SV", mac + "_N_FEATURES", prov);
 	if (m.feasibility) {
 		const ClassifierExport &f = *m.feasibility;
@@ -594,10 +616,12 @@ SvrExport parse_svr_header(const std::string &text)
 		read_model(h, id + "_feasibility", c);
 		m.feasibility = c;
 	}
-	if (h.structs.count(id + "_envelope")) {
-		const auto &ef = fields(h, id + "_envelope");
+	for (const std::string table : {"envelope", "turn_envelope"}) {
+		if (!h.structs.count(id + "_" + table))
+			continue;
+		const auto &ef = fields(h, id + "_" + table);
 		EnvelopeExport e;
-		const std::string emac = mac + "ENVELOPE_";
+		const std::string emac = mac + upper(table) + "_";
 		auto count = [&](const std::string &key) {
 			for (const auto &d : h.defines)
 				if (d.first == emac + key)
@@ -612,9 +636,9 @@ SvrExport parse_svr_header(const std::string &text)
 		e.z_step = number(field(ef, "z_step"));
 		e.v_min = number(field(ef, "v_min"));
 		e.v_step = number(field(ef, "v_step"));
-		for (double v : numbers(h, id + "_envelope_value"))
+		for (double v : numbers(h, id + "_" + table + "_value"))
 			e.value.push_back(static_cast<float>(v));
-		m.envelope = e;
+		(table == "envelope" ? m.envelope : m.turn_envelope) = e;
 	}
 	std::string again;
 	try {

@@ -66,6 +66,9 @@ struct SvrExport {
 	std::vector<HeaderConstant> constants;
 	std::optional<ClassifierExport> feasibility;
 	std::optional<EnvelopeExport> envelope;   // ground, marine and flight only
+	// Flight only: the turn table (hylo_svr_model.turn_envelope): distance
+	// and turn cells over [0, 2 pi], the envelope's distances and speeds.
+	std::optional<EnvelopeExport> turn_envelope;
 };
 
 // The header text. Throws std::invalid_argument naming the problem (bad

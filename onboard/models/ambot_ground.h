@@ -15146,6 +15146,7 @@ static const hylo_svr_model hylo_model_ambot_ground = {
 	.state_max = {0, 0, 1.2, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: 22a8e5204a2ace60ab121f2a2cd71d49b8a4e41bf44b6d89a0878c673744e6d8\nsamples: 11520 (11245 converged)\nseed: 1\nheld-out errors: median 0.0057, p95 0.0713, max 0.4027 relative; MAE 1.447 J\nsvr: C 3, gamma 0.10000000000000001, epsilon 0.02, 4394 support vectors\nfeasibility accuracy: 0.97178819444444442\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_ambot_ground_envelope,
+	.turn_envelope = NULL,
 };
 
 /* Feasibility classifier: decision >= 0 predicts that the trajectory
@@ -15937,6 +15938,7 @@ static const hylo_svr_model hylo_model_ambot_ground_feasibility = {
 	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: 22a8e5204a2ace60ab121f2a2cd71d49b8a4e41bf44b6d89a0878c673744e6d8\nsamples: 11520 (11245 converged)\nseed: 1\nheld-out errors: median 0.0057, p95 0.0713, max 0.4027 relative; MAE 1.447 J\nsvr: C 3, gamma 0.10000000000000001, epsilon 0.02, 4394 support vectors\nfeasibility accuracy: 0.97178819444444442\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
+	.turn_envelope = NULL,
 };
 
 #endif

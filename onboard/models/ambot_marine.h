@@ -12609,6 +12609,7 @@ static const hylo_svr_model hylo_model_ambot_marine = {
 	.state_max = {0, 0, 1, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: e46cecd0f909f8576d739ad215f86974254d43f33a8fa2010d1b4afdf41ddc88\nsamples: 11520 (10971 converged)\nseed: 1\nheld-out errors: median 0.0071, p95 0.0533, max 0.4017 relative; MAE 7.08 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3542 support vectors\nfeasibility accuracy: 0.96180555555555558\nenvelope: 46 x 16 x 11 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_ambot_marine_envelope,
+	.turn_envelope = NULL,
 };
 
 /* Feasibility classifier: decision >= 0 predicts that the trajectory
@@ -13769,6 +13770,7 @@ static const hylo_svr_model hylo_model_ambot_marine_feasibility = {
 	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/ambot.yaml\nrobot file sha256: f8c13b55ce14760442a3fe1c87b3ba883480aaa760e9b3e2e135584e081d39e5\ndataset sha256: e46cecd0f909f8576d739ad215f86974254d43f33a8fa2010d1b4afdf41ddc88\nsamples: 11520 (10971 converged)\nseed: 1\nheld-out errors: median 0.0071, p95 0.0533, max 0.4017 relative; MAE 7.08 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3542 support vectors\nfeasibility accuracy: 0.96180555555555558\nenvelope: 46 x 16 x 11 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
+	.turn_envelope = NULL,
 };
 
 #endif

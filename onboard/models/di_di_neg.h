@@ -1098,6 +1098,7 @@ static const hylo_svr_model hylo_model_di_di_neg = {
 	.state_max = {0, 1, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
 	.envelope = NULL,
+	.turn_envelope = NULL,
 };
 
 /* Feasibility classifier: decision >= 0 predicts that the trajectory
@@ -1705,6 +1706,7 @@ static const hylo_svr_model hylo_model_di_di_neg_feasibility = {
 	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: bb337e76fbe61eb10fca12366b357093c4c9495ee4094fcc41c46dd08c79a457\nsamples: 2000 (1120 converged)\nseed: 1\nheld-out errors: median 0.0321, p95 0.3227, max 3.5219 relative; MAE 0.02853 J\nsvr: C 3, gamma 1, epsilon 0.0050000000000000001, 828 support vectors\nfeasibility accuracy: 0.94499999999999995\nhylo version: 0.1.0\n",
 	.envelope = NULL,
+	.turn_envelope = NULL,
 };
 
 #endif

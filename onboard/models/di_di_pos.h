@@ -948,6 +948,7 @@ static const hylo_svr_model hylo_model_di_di_pos = {
 	.state_max = {1, 1, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
 	.envelope = NULL,
+	.turn_envelope = NULL,
 };
 
 /* Feasibility classifier: decision >= 0 predicts that the trajectory
@@ -1329,6 +1330,7 @@ static const hylo_svr_model hylo_model_di_di_pos_feasibility = {
 	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/di.yaml\nrobot file sha256: ac99deee67f1ebf8c9c925377f88a084a63867cb874eca8dd015caaff12c668a\ndataset sha256: 69d612dcbfe1a32422b64302539c0068f48b2e9a7ed5dd47650e9df1a670719c\nsamples: 2000 (921 converged)\nseed: 1\nheld-out errors: median 0.0590, p95 0.6203, max 3.0461 relative; MAE 0.06732 J\nsvr: C 30, gamma 1, epsilon 0.0050000000000000001, 708 support vectors\nfeasibility accuracy: 0.93500000000000005\nhylo version: 0.1.0\n",
 	.envelope = NULL,
+	.turn_envelope = NULL,
 };
 
 #endif

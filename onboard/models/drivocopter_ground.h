@@ -14006,6 +14006,7 @@ static const hylo_svr_model hylo_model_drivocopter_ground = {
 	.state_max = {0, 0, 3, 0, 0, 0},
 	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = &hylo_model_drivocopter_ground_envelope,
+	.turn_envelope = NULL,
 };
 
 /* Feasibility classifier: decision >= 0 predicts that the trajectory
@@ -14823,6 +14824,7 @@ static const hylo_svr_model hylo_model_drivocopter_ground_feasibility = {
 	.state_max = {0, 0, 0, 0, 0, 0},
 	.provenance = "robot file: trainer/params/drivocopter.yaml\nrobot file sha256: a56d9d312fd3e7f1719851b0ca1908e1e4d42a2ca12b07d290165cc3da77784a\ndataset sha256: 471a731d1dc3972776c1092f31c976c7a1b2f5e8fc48a4803901d2e590d721fc\nsamples: 11520 (11223 converged)\nseed: 1\nheld-out errors: median 0.0046, p95 0.0427, max 0.4676 relative; MAE 0.8373 J\nsvr: C 30, gamma 0.10000000000000001, epsilon 0.02, 3482 support vectors\nfeasibility accuracy: 0.98307291666666663\nenvelope: 46 x 16 x 13 cells, margin 0.001, worst sampled shortfall 0 (0 of 1000000 random edges; 0 of 1000000 fresh ones below the table)\nhylo version: 0.1.0\n",
 	.envelope = NULL,
+	.turn_envelope = NULL,
 };
 
 #endif

@@ -16,6 +16,33 @@ hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2)
 	return hylo_envelope_turn_of(hylo_wrap_angle(phi - theta1), hylo_wrap_angle(theta2 - theta1));
 }
 
+hylo_real hylo_envelope_flight_turn_of(hylo_real phi, hylo_real psi1, int moving1, hylo_real psi2,
+				       int moving2)
+{
+	hylo_real a1 = moving1 ? fabs(hylo_wrap_angle(psi1 - phi)) : 0;
+	hylo_real a2 = moving2 ? fabs(hylo_wrap_angle(psi2 - phi)) : 0;
+
+	return a1 + a2;
+}
+
+int hylo_envelope_flight_turn(const hylo_real *tail, const hylo_real *head, hylo_real *turn)
+{
+	hylo_real dx, dy;
+	int moving1, moving2;
+
+	if (!tail || !head || !turn || tail[5] != 0 || head[5] != 0)
+		return 0;
+	dx = head[0] - tail[0];
+	dy = head[1] - tail[1];
+	if (dx == 0 && dy == 0)
+		return 0;
+	moving1 = tail[3] != 0 || tail[4] != 0;
+	moving2 = head[3] != 0 || head[4] != 0;
+	*turn = hylo_envelope_flight_turn_of(atan2(dy, dx), moving1 ? atan2(tail[4], tail[3]) : 0, moving1,
+					     moving2 ? atan2(head[4], head[3]) : 0, moving2);
+	return isfinite(*turn);
+}
+
 int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
 		       hylo_real *args)
 {
@@ -54,8 +81,15 @@ hylo_real hylo_envelope_of_edge(const hylo_svr_model *m, hylo_mode mode, const h
 {
 	hylo_real a[4];
 
+	hylo_real e, turn, t;
+
 	if (!m || !m->envelope || m->n_features != hylo_feature_count(mode) ||
 	    !hylo_envelope_args(mode, tail_xs, head_xs, a))
 		return 0;
-	return hylo_svr_envelope_bound(m, a[0], a[1], a[2], a[3]);
+	e = hylo_svr_envelope_bound(m, a[0], a[1], a[2], a[3]);
+	if (m->turn_envelope && hylo_mode_layout(mode)->kind == HYLO_LAYOUT_SPATIAL &&
+	    hylo_envelope_flight_turn(tail_xs, head_xs, &turn) &&
+	    (t = hylo_svr_turn_envelope_bound(m, a[0], a[1], turn, a[2], a[3])) > e)
+		e = t;
+	return e;
 }

@@ -96,6 +96,9 @@ void hylo_planner_bound_tables(hylo_planner *pl)
 				xs[3] = rm->air_velocity[c][0];
 				xs[4] = rm->air_velocity[c][1];
 				v = sqrt(xs[3] * xs[3] + xs[4] * xs[4]);
+				/* As hylo_envelope_flight_turn measures them. */
+				pl->air_moving[c] = xs[3] != 0 || xs[4] != 0;
+				pl->air_heading[c] = pl->air_moving[c] ? atan2(xs[4], xs[3]) : 0;
 			} else if (hylo_mode_describe(mode)->planar) {
 				v = s->speeds[c / s->n_headings];
 			} else {
@@ -140,7 +143,8 @@ static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_
 	pb->dy = dy;
 	pb->d = sqrt(dx * dx + dy * dy);
 	pb->dz = b.z - a.z;
-	pb->phi = with_bearings ? atan2(dy, dx) : 0;
+	pb->by_flight_turn = pb->model && air && pb->model->turn_envelope && !(dx == 0 && dy == 0);
+	pb->phi = with_bearings || pb->by_flight_turn ? atan2(dy, dx) : 0;
 	pb->roadmap_ends = i < rm->n_positions && j < rm->n_positions;
 	pb->by_turn = pb->model && !air && pb->model->envelope->n_z > 1 &&
 		      !(dx == 0 && dy == 0);
@@ -155,6 +159,13 @@ static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_
 	if (with_bearings && pb->by_turn && pb->roadmap_ends)
 		for (h = 0; h < rm->sampling.n_headings; h++)
 			pb->bearing[h] = hylo_wrap_angle(pb->phi - rm->sampling.headings[h]);
+	/* Flight: each combination's term of the turn once per pair (the
+	 * arithmetic of hylo_envelope_flight_turn_of). */
+	pb->flight_turn_base_ok = pb->by_flight_turn && pb->roadmap_ends &&
+				  hylo_svr_turn_envelope_cell(pb->model, pb->d, pb->dz, 0, &pb->flight_turn_base);
+	if (pb->flight_turn_base_ok)
+		for (h = 0; h < hylo_roadmap_combos(rm, pb->mode) && h < HYLO_MAX_COMBOS; h++)
+			pb->air_off[h] = pl->air_moving[h] ? fabs(hylo_wrap_angle(pl->air_heading[h] - pb->phi)) : 0;
 }
 
 void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hylo_pair_bound *pb)
@@ -216,15 +227,40 @@ static hylo_real envelope_of_states(const hylo_pair_bound *pb, const hylo_real *
 				    const hylo_real *head)
 {
 	if (hylo_mode_describe(pb->mode)->air) {
+		hylo_real v1 = sqrt(tail[3] * tail[3] + tail[4] * tail[4]);
+		hylo_real v2 = sqrt(head[3] * head[3] + head[4] * head[4]), e, t, turn;
+
 		if (tail[5] != 0 || head[5] != 0)
 			return 0;
-		return hylo_svr_envelope_bound(pb->model, pb->d, pb->dz,
-					       sqrt(tail[3] * tail[3] + tail[4] * tail[4]),
-					       sqrt(head[3] * head[3] + head[4] * head[4]));
+		e = hylo_svr_envelope_bound(pb->model, pb->d, pb->dz, v1, v2);
+		if (pb->by_flight_turn && hylo_envelope_flight_turn(tail, head, &turn) &&
+		    (t = hylo_svr_turn_envelope_bound(pb->model, pb->d, pb->dz, turn, v1, v2)) > e)
+			e = t;
+		return e;
 	}
 	return hylo_svr_envelope_bound(pb->model, pb->d,
 				       pb->by_turn ? hylo_envelope_turn(pb->phi, tail[3], head[3]) : 0,
 				       tail[2], head[2]);
+}
+
+/* The turn table's cell of turn at the pair's distance: hylo_svr_turn_envelope_cell's
+ * arithmetic from the distance's cell at turn 0. */
+static int flight_turn_cell(const hylo_pair_bound *pb, hylo_real turn, size_t *cell)
+{
+	const hylo_svr_envelope *e = pb->model->turn_envelope;
+	hylo_real x;
+
+	if (e->n_z == 1) {
+		*cell = pb->flight_turn_base;
+		return 1;
+	}
+	x = turn / e->z_step;
+	if (x == (hylo_real)e->n_z)
+		x = e->n_z - 1;
+	if (!(x >= 0 && x < (hylo_real)e->n_z))
+		return 0;
+	*cell = pb->flight_turn_base + (size_t)(uint32_t)x * e->n_v * e->n_v;
+	return 1;
 }
 
 /* The same from the combinations' precomputed speed nodes and bearings. */
@@ -232,10 +268,22 @@ static hylo_real envelope_of_combos(const hylo_pair_bound *pb, uint32_t ci, uint
 {
 	const hylo_planner *pl = pb->pl;
 	uint32_t nh = pl->roadmap.sampling.n_headings;
-	size_t cell = pb->cell;
+	size_t cell = pb->cell, tcell;
+	hylo_real e = 0, t;
 
 	if (!pl->combo_speed_ok[pb->slot][ci] || !pl->combo_speed_ok[pb->slot][cj])
 		return 0;
+	if (pb->by_flight_turn) {
+		if (pb->cell_ok)
+			e = hylo_svr_envelope_value(pb->model, cell, pl->combo_speed[pb->slot][ci],
+						    pl->combo_speed[pb->slot][cj]);
+		if (pb->flight_turn_base_ok &&
+		    flight_turn_cell(pb, pb->air_off[ci] + pb->air_off[cj], &tcell) &&
+		    (t = hylo_svr_turn_envelope_value(pb->model, tcell, pl->combo_speed[pb->slot][ci],
+						      pl->combo_speed[pb->slot][cj])) > e)
+			e = t;
+		return e;
+	}
 	if (pb->by_turn) {
 		if (!hylo_svr_envelope_cell(pb->model, pb->d,
 					    hylo_envelope_turn_of(pb->bearing[ci % nh],
@@ -274,6 +322,16 @@ static void bounds_batch(const hylo_pair_bound *pb, int at, uint32_t fixed, cons
 	hylo_real xs[HYLO_XS_DIM];
 	size_t n_vv;
 
+	if (pb->model && pb->roadmap_ends && !pb->by_turn) {
+		/* Flight, or planar without turn cells: from the combinations
+		 * alone (hylo_planner_bound needs no states between roadmap nodes). */
+		for (c = 0; c < q->n_combos; c++) {
+			hylo_real e = at == 0 ? envelope_of_combos(pb, fixed, c) : envelope_of_combos(pb, c, fixed);
+
+			out[c] = e > pb->floor ? e : pb->floor;
+		}
+		return;
+	}
 	if (!pb->model || !pb->roadmap_ends || !pb->by_turn) {
 		for (c = 0; c < q->n_combos; c++) {
 			hylo_planner_node_state(pl, other, c, xs);

@@ -48,6 +48,10 @@ typedef struct {
 	int roadmap_ends;               /* both positions sampled (not start or goal) */
 	int by_turn;                    /* planar, turn cells: a cell per heading pair */
 	int cell_ok;                    /* else: the pair's one cell */
+	int by_flight_turn;             /* flight with a turn table, positions apart */
+	int flight_turn_base_ok;        /* by flight turn, roadmap ends: the next two */
+	size_t flight_turn_base;        /* the turn table's cell of the distance, turn 0 */
+	hylo_real air_off[HYLO_MAX_COMBOS];  /* |wrap(heading - phi)| per air combination, 0 still */
 	size_t cell;
 	hylo_real bearing[HYLO_MAX_GRID];   /* wrap(phi - heading) per grid heading */
 	size_t turn_base;               /* by turn: the distance's first turn cell */

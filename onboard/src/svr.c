@@ -111,6 +111,8 @@ static inline hylo_v4 exp_nonpositive4(hylo_v4 x)
 	return p;
 }
 
+static int turn_cells(const hylo_svr_model *m);
+
 static int finite_array(const double *a, uint32_t n)
 {
 	uint32_t i;
@@ -121,9 +123,10 @@ static int finite_array(const double *a, uint32_t n)
 	return 1;
 }
 
-static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hylo_reason *r)
+/* e is m's envelope, or its turn table (turn: its cells are turns). */
+static hylo_status check_envelope(const hylo_svr_model *m, const hylo_svr_envelope *e, int turn,
+				  const char *name, hylo_reason *r)
 {
-	const hylo_svr_envelope *e = m->envelope;
 	const hylo_feature_layout *l = hylo_feature_layout_of_count(m->n_features);
 	uint64_t n;
 	uint32_t i;
@@ -152,7 +155,7 @@ static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hyl
 				 "svr model %s: envelope steps d %g, z %g, v %g m/s (finite, > 0) or "
 				 "origins z %g, v %g not finite", name, e->d_step, e->z_step, e->v_step,
 				 e->z_min, e->v_min);
-	if (l->envelope_turn && e->n_z > 1 &&
+	if (turn && e->n_z > 1 &&
 	    !(e->z_min == 0 && fabs(e->n_z * e->z_step - TWO_PI) <= 1e-12 * TWO_PI))
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "svr model %s: a planar envelope's %u turn cells of %g rad from %g "
@@ -166,6 +169,28 @@ static hylo_status check_envelope(const hylo_svr_model *m, const char *name, hyl
 			return hylo_fail(r, HYLO_E_BAD_VALUE,
 					 "svr model %s: envelope value %u is %g (finite, >= 0)", name,
 					 (unsigned)i, (double)e->value[i]);
+	return HYLO_OK;
+}
+
+/* A turn table: a flight model's, with an envelope of the same distance
+ * cells and speed nodes, turn cells over [0, 2 pi]. */
+static hylo_status check_turn_envelope(const hylo_svr_model *m, const char *name, hylo_reason *r)
+{
+	const hylo_svr_envelope *e = m->turn_envelope, *c = m->envelope;
+	const hylo_feature_layout *l = hylo_feature_layout_of_count(m->n_features);
+	hylo_status st;
+
+	if (!l || l->kind != HYLO_LAYOUT_SPATIAL || !c)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: a turn table needs flight features (%d) and an envelope",
+				 name, hylo_feature_layout_of(HYLO_LAYOUT_SPATIAL)->n_features);
+	if ((st = check_envelope(m, e, 1, name, r)) != HYLO_OK)
+		return st;
+	if (e->n_d != c->n_d || e->d_step != c->d_step || e->n_v != c->n_v ||
+	    e->v_min != c->v_min || e->v_step != c->v_step)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "svr model %s: the turn table's distance cells and speed nodes must "
+				 "be the envelope's", name);
 	return HYLO_OK;
 }
 
@@ -236,7 +261,9 @@ hylo_status hylo_svr_check(const hylo_svr_model *m, hylo_reason *r)
 	    !finite_array(m->sv, m->n_sv * m->n_features))
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
 				 "svr model %s: a support vector or coefficient is not finite", name);
-	if (m->envelope && (st = check_envelope(m, name, r)) != HYLO_OK)
+	if (m->envelope && (st = check_envelope(m, m->envelope, turn_cells(m), name, r)) != HYLO_OK)
+		return st;
+	if (m->turn_envelope && (st = check_turn_envelope(m, name, r)) != HYLO_OK)
 		return st;
 	hylo_reason_clear(r);
 	return HYLO_OK;
@@ -329,13 +356,13 @@ static int turn_cells(const hylo_svr_model *m)
 	return l && l->envelope_turn;
 }
 
-int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t *cell)
+/* The cell of table e (turn: its z cells are turns, the last closed). */
+static int table_cell(const hylo_svr_envelope *e, int turn, double d, double dz, size_t *cell)
 {
-	const hylo_svr_envelope *e;
 	uint32_t k, j = 0;
 	double x;
 
-	if (!m || !(e = m->envelope) || !e->value)
+	if (!e || !e->value)
 		return 0;
 	x = d / e->d_step;
 	if (!(x >= 0 && x < (double)e->n_d))
@@ -345,7 +372,7 @@ int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t 
 		x = (dz - e->z_min) / e->z_step;
 		/* A planar turn of 2 pi (the goal straight behind with the same
 		 * heading) lies in the last turn cell. */
-		if (x == (double)e->n_z && turn_cells(m))
+		if (x == (double)e->n_z && turn)
 			x = e->n_z - 1;
 		if (!(x >= 0 && x < (double)e->n_z))
 			return 0;
@@ -355,11 +382,16 @@ int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t 
 	return 1;
 }
 
-double hylo_svr_envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
-			       const uint32_t head[2])
+int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t *cell)
 {
-	const float *v = &m->envelope->value[cell];
-	uint32_t n = m->envelope->n_v;
+	return m && table_cell(m->envelope, turn_cells(m), d, dz, cell);
+}
+
+static double table_value(const hylo_svr_envelope *e, size_t cell, const uint32_t tail[2],
+			  const uint32_t head[2])
+{
+	const float *v = &e->value[cell];
+	uint32_t n = e->n_v;
 	double best = v[tail[0] * n + head[0]], x;
 
 	if ((x = v[tail[0] * n + head[1]]) < best)
@@ -369,6 +401,40 @@ double hylo_svr_envelope_value(const hylo_svr_model *m, size_t cell, const uint3
 	if ((x = v[tail[1] * n + head[1]]) < best)
 		best = x;
 	return best;
+}
+
+double hylo_svr_envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
+			       const uint32_t head[2])
+{
+	return table_value(m->envelope, cell, tail, head);
+}
+
+int hylo_svr_turn_envelope_cell(const hylo_svr_model *m, double d, double dz, double turn,
+				size_t *cell)
+{
+	double r = m ? m->max_distance_m : 0;
+
+	if (!m || !m->turn_envelope || !(d * d + dz * dz <= r * r))
+		return 0;
+	return table_cell(m->turn_envelope, 1, d, turn, cell);
+}
+
+double hylo_svr_turn_envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
+				    const uint32_t head[2])
+{
+	return table_value(m->turn_envelope, cell, tail, head);
+}
+
+double hylo_svr_turn_envelope_bound(const hylo_svr_model *m, double d, double dz, double turn,
+				    double v1, double v2)
+{
+	uint32_t a[2], b[2];
+	size_t cell;
+
+	if (!hylo_svr_turn_envelope_cell(m, d, dz, turn, &cell) ||
+	    !envelope_nodes(m->turn_envelope, v1, a) || !envelope_nodes(m->turn_envelope, v2, b))
+		return 0;
+	return hylo_svr_turn_envelope_value(m, cell, a, b);
 }
 
 double hylo_svr_envelope_bound(const hylo_svr_model *m, double d, double dz, double v1, double v2)

@@ -8,7 +8,9 @@
  * hylo_envelope_of_edge, and the bound is not 0 (no edge of the training
  * range falls outside the table). Negative control: the same table with
  * every value 5% higher must be caught, so that the check would fail on an
- * envelope that is not a bound. Ground and marine tables have 16 turn cells
+ * envelope that is not a bound. The flight model's turn table (by distance
+ * and turn instead of climb) is part of hylo_envelope_of_edge: it must
+ * raise some of the bounds, and a turn table 5% higher must be caught too. Ground and marine tables have 16 turn cells
  * over [0, 2 pi], and also bound the edges that stay in place (turn 0 by
  * definition, whose features depend on the tail heading's quadrant), which
  * random edges never hit. The trainer measures the random edges on 10^6
@@ -32,7 +34,7 @@
 #define EDGES 20000
 #define MAX_VALUES 300000
 
-static float scaled[MAX_VALUES];
+static float scaled[MAX_VALUES], scaled_turn[MAX_VALUES];
 
 /* Ground, marine: the turn axis, and edges in place for 12 x 12 tail and
  * head headings and every speed pair. */
@@ -68,10 +70,10 @@ static void check_turns_and_in_place(const hylo_svr_model *m, hylo_mode mode)
 static void check_model(const hylo_registry_model *r)
 {
 	const hylo_svr_model *m = r->model;
-	const hylo_svr_envelope *e = m->envelope;
-	hylo_svr_envelope high;
-	hylo_svr_model m_high;
-	uint32_t n_values, i, below = 0, zero = 0, caught = 0;
+	const hylo_svr_envelope *e = m->envelope, *t = m->turn_envelope;
+	hylo_svr_envelope high, turn_high;
+	hylo_svr_model m_high, m_turn_high, m_climb;
+	uint32_t n_values, i, below = 0, zero = 0, caught = 0, caught_turn = 0, raised = 0;
 	double closest = INFINITY, worst = 0;
 
 	if (!e)
@@ -85,6 +87,19 @@ static void check_model(const hylo_registry_model *r)
 	high.value = scaled;
 	m_high = *m;
 	m_high.envelope = &high;
+	/* Flight: the turn table alone 5% higher, and the climb table alone. */
+	m_turn_high = *m;
+	m_climb = *m;
+	m_climb.turn_envelope = NULL;
+	if (t) {
+		n_values = t->n_d * t->n_z * t->n_v * t->n_v;
+		assert_true(n_values <= MAX_VALUES);
+		for (i = 0; i < n_values; i++)
+			scaled_turn[i] = t->value[i] * 1.05f;
+		turn_high = *t;
+		turn_high.value = scaled_turn;
+		m_turn_high.turn_envelope = &turn_high;
+	}
 	rng_state = 20260101u + (uint64_t)r->mode;
 	for (i = 0; i < EDGES; i++) {
 		double tail[HYLO_XS_DIM], head[HYLO_XS_DIM], f[HYLO_MAX_FEATURES], cost, bound;
@@ -100,6 +115,10 @@ static void check_model(const hylo_registry_model *r)
 		}
 		closest = fmin(closest, (cost - bound) / cost);
 		caught += cost < hylo_envelope_of_edge(&m_high, r->mode, tail, head);
+		if (t) {
+			caught_turn += cost < hylo_envelope_of_edge(&m_turn_high, r->mode, tail, head);
+			raised += bound > hylo_envelope_of_edge(&m_climb, r->mode, tail, head);
+		}
 	}
 	printf("# %s: %u of %d edges below the envelope (worst %.3g), closest %.3g relative above it; "
 	       "%u with no bound; a table 5%% higher: %u below\n",
@@ -111,6 +130,13 @@ static void check_model(const hylo_registry_model *r)
 		fail_msg("%s: %u of %d edges within the training range have no bound", m->name, zero, EDGES);
 	if (caught == 0)
 		fail_msg("%s: the check does not notice a table 5%% too high", m->name);
+	if (t) {
+		printf("# %s: the turn table raises %u of %d bounds; a turn table 5%% higher: %u below\n",
+		       m->name, raised, EDGES, caught_turn);
+		if (raised == 0 || caught_turn == 0)
+			fail_msg("%s: the turn table raises %u bounds, one 5%% higher is caught %u times",
+				 m->name, raised, caught_turn);
+	}
 	if (r->mode == HYLO_MODE_GROUND || r->mode == HYLO_MODE_MARINE)
 		check_turns_and_in_place(m, r->mode);
 }
@@ -129,8 +155,9 @@ static void test_model(void **state)
 	fail_msg("no committed model %s", name);
 }
 
-/* Ground, marine and flight models have an envelope; the double
- * integrator's none (its features are absolute positions). */
+/* Ground, marine and flight models have an envelope, flight ones a turn
+ * table too; the double integrator's none (its features are absolute
+ * positions). */
 static void test_which_models(void **state)
 {
 	uint32_t k;
@@ -142,7 +169,11 @@ static void test_which_models(void **state)
 
 		if (di != (r->model->envelope == NULL))
 			fail_msg("%s: %s", r->model->name, di ? "an envelope" : "no envelope");
+		if ((r->mode == HYLO_MODE_FLIGHT) != (r->model->turn_envelope != NULL))
+			fail_msg("%s: %s", r->model->name,
+				 r->mode == HYLO_MODE_FLIGHT ? "no turn table" : "a turn table");
 		assert_null(r->feasibility ? r->feasibility->envelope : NULL);
+		assert_null(r->feasibility ? r->feasibility->turn_envelope : NULL);
 	}
 }
 

@@ -1,7 +1,7 @@
 // The export stage reads the header the fit stage wrote back into the model
 // (parse_svr_header, trainer/svr_export.cpp) before it adds the envelope:
 // every committed header and small models of each kind (with and without a
-// feasibility classifier, constants, an envelope) come back field for field
+// feasibility classifier, constants, an envelope, a flight turn table) come back field for field
 // and give the same text again; text this trainer did not write is refused
 // with a clear error, and so are envelopes the header cannot hold. Prints
 // TAP.
@@ -75,15 +75,18 @@ bool same(const SvrExport &a, const SvrExport &b)
 		  a.speed_max_mps == b.speed_max_mps && a.state_bounded == b.state_bounded &&
 		  a.state_min == b.state_min && a.state_max == b.state_max && a.provenance == b.provenance &&
 		  a.constants.size() == b.constants.size() && a.feasibility.has_value() == b.feasibility.has_value() &&
-		  a.envelope.has_value() == b.envelope.has_value();
+		  a.envelope.has_value() == b.envelope.has_value() &&
+		  a.turn_envelope.has_value() == b.turn_envelope.has_value();
 	for (size_t i = 0; ok && i < a.constants.size(); i++)
 		ok = a.constants[i].key == b.constants[i].key && a.constants[i].value == b.constants[i].value &&
 		     a.constants[i].comment == b.constants[i].comment;
 	if (ok && a.feasibility)
 		ok = a.feasibility->sv == b.feasibility->sv && a.feasibility->coef == b.feasibility->coef &&
 		     a.feasibility->rho == b.feasibility->rho && a.feasibility->gamma == b.feasibility->gamma;
-	if (ok && a.envelope) {
-		const EnvelopeExport &x = *a.envelope, &y = *b.envelope;
+	for (std::optional<EnvelopeExport> SvrExport::*t : {&SvrExport::envelope, &SvrExport::turn_envelope}) {
+		if (!ok || !(a.*t))
+			continue;
+		const EnvelopeExport &x = *(a.*t), &y = *(b.*t);
 		ok = x.n_d == y.n_d && x.n_z == y.n_z && x.n_v == y.n_v && x.d_step == y.d_step &&
 		     x.z_min == y.z_min && x.z_step == y.z_step && x.v_min == y.v_min && x.v_step == y.v_step &&
 		     x.value == y.value;
@@ -133,6 +136,13 @@ int main()
 	flight.state_min = {0, 0, 0, -8, -8, -0.25};
 	flight.state_max = {0, 0, 0, 8, 8, 1e-300};
 	round_trip(flight, "with its trained region (vx, vy, vz bounded)");
+	flight.turn_envelope = table(2, 16, 3);
+	flight.turn_envelope->z_min = 0;
+	flight.turn_envelope->z_step = 2 * 3.14159265358979323846 / 16;
+	flight.turn_envelope->d_step = flight.envelope->d_step;
+	flight.turn_envelope->v_min = flight.envelope->v_min;
+	flight.turn_envelope->v_step = flight.envelope->v_step;
+	round_trip(flight, "with a turn table of 16 turn cells over [0, 2 pi]");
 	SvrExport di = small(HYLO_MODE_DI_NEG, 4);
 	di.robot = "di";
 	round_trip(di, "a double-integrator model (whose name repeats its mode's prefix)");
@@ -240,6 +250,19 @@ int main()
 	bad.envelope->z_step *= 1 + 1e-9;
 	check_throws([&] { svr_header_text(bad); }, "turn cells covering [0, 2 pi]",
 		     "turn cells that do not cover [0, 2 pi]: refused");
+	bad = flight;
+	bad.turn_envelope->v_step *= 2;
+	check_throws([&] { svr_header_text(bad); }, "distance cells and speed nodes",
+		     "a turn table with other speed nodes than the envelope's: refused");
+	bad = flight;
+	bad.turn_envelope->n_z = 8;
+	bad.turn_envelope->value.resize(2 * 8 * 9);
+	check_throws([&] { svr_header_text(bad); }, "turn cells covering [0, 2 pi]",
+		     "a turn table whose turn cells do not cover [0, 2 pi]: refused");
+	bad = turning;
+	bad.turn_envelope = table(3, 16, 2);
+	check_throws([&] { svr_header_text(bad); }, "only a flight model",
+		     "a turn table on a ground model: refused");
 	bad = di;
 	bad.envelope = table(2, 1, 3);
 	check_throws([&] { svr_header_text(bad); }, "no envelope", "an envelope on a double integrator: refused");

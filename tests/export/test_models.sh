@@ -116,6 +116,19 @@ if [[ $out == *'"envelope_turn_rad":6.2831853071795862,'* && $ahead == *'"envelo
    awk -v e="$env" -v c="$cost" -v a="$env_ahead" 'BEGIN { exit !(e > 0 && e <= c && a < e) }'; then
   tap_ok "hylo-cost prints a ground edge's turn and its bound ($env J turning round, $env_ahead J ahead)"; else
   tap_not_ok "hylo-cost prints a ground edge's turn and its bound" "$out" "$ahead"; fi
+# Flight: the turn table's flight turn (how far both velocities point away
+# from the displacement) is printed, and its bound holds for a flight that
+# must reverse both ways: above the aligned edge's, below its own cost.
+out=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,-8,0,0 6,0,0,-8,0,0 2>&1)
+env=$(echo "$out" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
+cost=$(echo "$out" | sed -n 's/.*"predicted_cost_j":\([-0-9.e+]*\),.*/\1/p')
+ahead=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,8,0,0 6,0,0,8,0,0 2>&1)
+env_ahead=$(echo "$ahead" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
+if [[ $out == *'"envelope_turn_rad":6.2831853071795862,'* && $ahead == *'"envelope_turn_rad":0,'* ]] &&
+   [ -n "$env" ] && [ -n "$cost" ] && [ -n "$env_ahead" ] &&
+   awk -v e="$env" -v c="$cost" -v a="$env_ahead" 'BEGIN { exit !(e <= c && e > 1.5 * a) }'; then
+  tap_ok "hylo-cost prints a flight edge's turn and its bound ($env J reversing, $env_ahead J aligned)"; else
+  tap_not_ok "hylo-cost prints a flight edge's turn and its bound" "$out" "$ahead"; fi
 # Refit a model from its committed dataset and export it: the same bytes.
 refit() {
   local h=$1 base robot mode rows

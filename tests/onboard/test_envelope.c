@@ -3,7 +3,8 @@
  * arguments it is looked up with (hylo_envelope_args, hylo_envelope_turn
  * and hylo_envelope_of_edge, envelope.h) on small hand-made tables: a speed
  * on a node and within 1e-9 of it, between nodes, outside the table, flight
- * climbs and vertical velocities, planar turn cells; the turn itself (known
+ * climbs and vertical velocities, planar turn cells, the flight turn table;
+ * the turn itself (known
  * cases, symmetries, agreement with the features' turn); hylo_svr_check
  * refusing bad tables; and the two feature symmetries the trainer's
  * envelope relies on (a planar goal's mirror image, a flight edge turned
@@ -43,6 +44,11 @@ static hylo_svr_envelope flight_env = { 2, 4, 3, 1.0, -2.0, 1.0, 0, 4.0, flight_
 #define TURN_STEP (2 * PI / 16)
 static float turn_values[2 * 16 * 2 * 2];
 static hylo_svr_envelope turn_env = { 2, 16, 2, 1.0, 0, TURN_STEP, 0, 1.0, turn_values };
+
+/* Flight's turn table: flight_env's distance cells and speed nodes, 16 turn
+ * cells; value 20000 + 1000 k + 10 j + 3 i1 + i2. */
+static float flight_turn_values[2 * 16 * 3 * 3];
+static hylo_svr_envelope flight_turn_env = { 2, 16, 3, 1.0, 0, TURN_STEP, 0, 4.0, flight_turn_values };
 
 static uint64_t rng_state = 12345;
 
@@ -85,6 +91,12 @@ static int setup(void **state)
 				for (b = 0; b < 3; b++)
 					flight_values[((k * 4 + j) * 3 + a) * 3 + b] =
 						(float)(10000 + 1000 * k + 100 * j + 10 * a + b);
+	for (k = 0; k < 2; k++)
+		for (j = 0; j < 16; j++)
+			for (a = 0; a < 3; a++)
+				for (b = 0; b < 3; b++)
+					flight_turn_values[((k * 16 + j) * 3 + a) * 3 + b] =
+						(float)(20000 + 1000 * k + 10 * j + 3 * a + b);
 	for (k = 0; k < 2; k++)
 		for (j = 0; j < 16; j++)
 			for (a = 0; a < 2; a++)
@@ -176,6 +188,56 @@ static void test_flight(void **state)
 	head[5] = 0;
 	/* The model's features are not the mode's. */
 	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_GROUND, tail, head) == 0);
+}
+
+/* The flight turn (hylo_envelope_flight_turn) and the turn table: looked up
+ * by distance and turn within the training ball, and hylo_envelope_of_edge
+ * takes the larger of its bound and the climb table's. */
+static void test_flight_turn_table(void **state)
+{
+	hylo_svr_model m = model(HYLO_FEATURES_FLIGHT, &flight_env);
+	const double tail[6] = { 10, 20, 5, 0, 4, 0 };
+	double head[6] = { 10.3, 20.4, 4.5, 8 * 0.6, -8 * 0.8, 0 }, t = -1, want;
+	const double ahead[6] = { 0, 0, 0, 4, 0, 0 }, end[6] = { 1, 0, 0, 8, 0, 0 };
+	const double back[6] = { 1, 0, 0, -8, 0, 0 }, up[6] = { 0, 0, 1, 8, 0, 0 };
+	const double left[6] = { 0, 0, 0, 0, 4, 0 }, right[6] = { 1, 0, 0, 0, -8, 0 };
+	const double still[6] = { 0, 0, 0, 0, 0, 0 };
+
+	(void)state;
+	m.max_distance_m = 3;
+	m.turn_envelope = &flight_turn_env;
+	assert_int_equal(hylo_svr_check(&m, NULL), HYLO_OK);
+	/* Both velocities along the displacement: 0; the head's reversed: pi;
+	 * both across it: pi / 2 each; a zero velocity adds nothing. */
+	assert_int_equal(hylo_envelope_flight_turn(ahead, end, &t), 1);
+	assert_true(t == 0);
+	assert_int_equal(hylo_envelope_flight_turn(ahead, back, &t), 1);
+	assert_true(fabs(t - PI) < 1e-15);
+	assert_int_equal(hylo_envelope_flight_turn(left, right, &t), 1);
+	assert_true(fabs(t - PI) < 1e-15);
+	assert_int_equal(hylo_envelope_flight_turn(still, right, &t), 1);
+	assert_true(fabs(t - PI / 2) < 1e-15);
+	/* No horizontal displacement, or a velocity that is not level: none. */
+	t = -1;
+	assert_int_equal(hylo_envelope_flight_turn(ahead, up, &t), 0);
+	head[5] = 0.5;
+	assert_int_equal(hylo_envelope_flight_turn(tail, head, &t), 0);
+	head[5] = 0;
+	assert_true(t == -1);
+	/* The lookup: cell (1, 8), speeds 4 and 8; outside the ball, none. */
+	assert_true(hylo_svr_turn_envelope_bound(&m, 1.5, 0.5, PI + 1e-3, 4, 8) == 21085);
+	assert_true(hylo_svr_turn_envelope_bound(&m, 1.5, 2.7, PI + 1e-3, 4, 8) == 0);
+	assert_true(hylo_svr_turn_envelope_bound(&m, 1.5, 0.5, 2 * PI, 4, 8) == 21155);
+	assert_true(hylo_svr_turn_envelope_bound(&m, 1.5, 0.5, 2 * PI + 1e-9, 4, 8) == 0);
+	/* The edge of test_flight: turn = (pi/2 - phi) + (phi + atan2(0.8, 0.6))
+	 * with phi = atan2(0.4, 0.3), cell 6; the larger of the two tables. */
+	assert_int_equal(hylo_envelope_flight_turn(tail, head, &t), 1);
+	want = fabs(hylo_wrap_angle(PI / 2 - atan2(0.4, 0.3))) + fabs(hylo_wrap_angle(-atan2(0.8, 0.6) - atan2(0.4, 0.3)));
+	assert_true(fabs(t - want) < 1e-12 && (int)(t / TURN_STEP) == 6);
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_FLIGHT, tail, head) == 20065);
+	m.turn_envelope = NULL;
+	assert_true(hylo_envelope_of_edge(&m, HYLO_MODE_FLIGHT, tail, head) == 10112);
+	assert_true(hylo_svr_turn_envelope_bound(&m, 1.5, 0.5, PI, 4, 8) == 0);
 }
 
 static void test_edge_args(void **state)
@@ -379,6 +441,28 @@ static void test_check_refuses_bad_tables(void **state)
 	expect_refused(&f, HYLO_E_BAD_VALUE);
 	/* The double integrator has no envelope. */
 	expect_refused(&di, HYLO_E_BAD_VALUE);
+	/* A turn table: flight only, with the envelope's distance cells and
+	 * speed nodes, turn cells over [0, 2 pi]. */
+	e = flight_env;
+	f.turn_envelope = &flight_turn_env;
+	assert_int_equal(hylo_svr_check(&f, NULL), HYLO_OK);
+	{
+		hylo_svr_envelope t = flight_turn_env;
+
+		f.turn_envelope = &t;
+		t.v_step = 2;
+		expect_refused(&f, HYLO_E_BAD_VALUE);
+		t = flight_turn_env, t.n_z = 8;
+		expect_refused(&f, HYLO_E_BAD_VALUE);
+		t = flight_turn_env, t.d_step = 0.5;
+		expect_refused(&f, HYLO_E_BAD_VALUE);
+		f.envelope = NULL;
+		t = flight_turn_env;
+		expect_refused(&f, HYLO_E_BAD_VALUE);
+		m.envelope = &planar_env;
+		m.turn_envelope = &flight_turn_env;
+		expect_refused(&m, HYLO_E_BAD_VALUE);
+	}
 }
 
 static void assert_features_close(const double *a, const double *b, unsigned n)
@@ -446,6 +530,7 @@ int main(void)
 		cmocka_unit_test(test_between_nodes),
 		cmocka_unit_test(test_out_of_range),
 		cmocka_unit_test(test_flight),
+		cmocka_unit_test(test_flight_turn_table),
 		cmocka_unit_test(test_edge_args),
 		cmocka_unit_test(test_turn_known),
 		cmocka_unit_test(test_turn_symmetry_and_features),

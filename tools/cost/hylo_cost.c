@@ -24,8 +24,10 @@ static void usage(FILE *f)
 		"feasibility classifier, if any, predicts a solution, and the model's envelope:\n"
 		"the lower bound of its cost over every heading that the planner's search may\n"
 		"use for an edge of this distance, these speeds and (ground, marine) this turn,\n"
-		"the least total heading change of a path to X2 (JSON envelope_j, null when\n"
-		"there is none; envelope_turn_rad, null for flight). Notes when the displacement,\n"
+		"the least total heading change of a path to X2 (flight: the climb, and the\n"
+		"turn table's flight turn, how far both velocities point away from the\n"
+		"displacement) (JSON envelope_j, null when there is none; envelope_turn_rad,\n"
+		"null for a flight edge without a flight turn). Notes when the displacement,\n"
 		"a speed or another coordinate (e.g. a flight vz: the training velocities are\n"
 		"level) lies outside the model's trained region, naming it (JSON:\n"
 		"beyond_training_range, outside_region: one text per finding, or []).\n"
@@ -89,6 +91,7 @@ int main(int argc, char **argv)
 	hylo_reason reason;
 	const hylo_mode_model *mm = NULL;
 	double cost, floor_cost, dist, feas = NAN, envelope, args[4];
+	int flight_turn;
 	int planar;
 	char outside[3][200];
 	int n_outside;
@@ -147,6 +150,7 @@ int main(int argc, char **argv)
 	envelope = hylo_envelope_of_edge(mm->model, (hylo_mode)mode, x1, x2);
 	planar = (mode == HYLO_MODE_GROUND || mode == HYLO_MODE_MARINE) &&
 		 hylo_envelope_args((hylo_mode)mode, x1, x2, args);
+	flight_turn = mode == HYLO_MODE_FLIGHT && hylo_envelope_flight_turn(x1, x2, &args[1]);
 	dist = hylo_edge_distance((hylo_mode)mode, x1, x2);
 	floor_cost = hylo_svr_cost_floor(mm->model, dist);
 	n_outside = trained_region_notes(mm->model, (hylo_mode)mode, x1, x2, dist, outside);
@@ -161,7 +165,7 @@ int main(int argc, char **argv)
 		else
 			printf("null");
 		printf(",\"envelope_turn_rad\":");
-		if (planar)
+		if (planar || flight_turn)
 			printf("%.17g", args[1]);
 		else
 			printf("null");
@@ -184,6 +188,10 @@ int main(int argc, char **argv)
 	if (envelope > 0 && planar)
 		printf("envelope: %.6g J (the least cost over every heading with a turn of %.4g rad, at "
 		       "this distance and these speeds)\n", envelope, args[1]);
+	else if (envelope > 0 && flight_turn)
+		printf("envelope: %.6g J (the larger of the least cost over every velocity direction at "
+		       "this distance, climb and these speeds, and over every climb with a flight turn "
+		       "of %.4g rad)\n", envelope, args[1]);
 	else if (envelope > 0)
 		printf("envelope: %.6g J (the least cost over every heading at this distance and these "
 		       "speeds)\n", envelope);

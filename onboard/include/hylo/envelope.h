@@ -14,7 +14,8 @@
  * The bound holds for every heading (ground, marine: every tail and head
  * heading of that turn; flight: every direction of either level velocity
  * and of the displacement), because the table is the least cost over all
- * of them.
+ * of them. Flight models also carry a turn table (svr.h, turn_envelope):
+ * by distance and hylo_envelope_flight_turn() instead of climb.
  */
 #ifndef HYLO_ENVELOPE_H
 #define HYLO_ENVELOPE_H
@@ -54,6 +55,28 @@ hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2);
 hylo_real hylo_envelope_turn_of(hylo_real bearing, hylo_real dtheta);
 
 /**
+ * The turn of a flight edge [rad], in [0, 2 pi]: how far its level
+ * velocities point away from the horizontal displacement, the turn table's
+ * argument (svr.h, turn_envelope):
+ *   turn = |wrap(psi1 - phi)| + |wrap(psi2 - phi)|
+ * with phi = atan2(dy, dx) the displacement's heading and psi = atan2(vy,
+ * vx) a velocity's, a zero velocity's term 0. Writes it and returns 1;
+ * returns 0 when the positions coincide horizontally (the features then
+ * take another frame) or a velocity is not level. libm's atan2, as the
+ * features; no allocation; safe in a control loop.
+ */
+int hylo_envelope_flight_turn(const hylo_real *tail_xs, const hylo_real *head_xs, hylo_real *turn);
+
+/**
+ * The same from its parts, for callers that turn many velocity pairs of one
+ * displacement: phi the displacement's heading, psi1 and psi2 the
+ * velocities' (ignored where moving1, moving2 are 0: a zero velocity).
+ * hylo_envelope_flight_turn() is exactly this of those. No allocation.
+ */
+hylo_real hylo_envelope_flight_turn_of(hylo_real phi, hylo_real psi1, int moving1, hylo_real psi2,
+                                       int moving2);
+
+/**
  * Writes the envelope arguments (distance [m], turn [rad] or climb [m],
  * tail speed, head speed [m/s]; see above) of the edge tail_xs -> head_xs
  * (sampled coordinates of mode, HYLO_XS_DIM at most) into args[4] and
@@ -67,7 +90,9 @@ int hylo_envelope_args(hylo_mode mode, const hylo_real *tail_xs, const hylo_real
 
 /**
  * m's envelope bound [J] for the edge tail_xs -> head_xs of mode:
- * hylo_svr_envelope_bound() at hylo_envelope_args(). A lower bound of
+ * hylo_svr_envelope_bound() at hylo_envelope_args(), for flight the larger
+ * of that and hylo_svr_turn_envelope_bound() at the edge's
+ * hylo_envelope_flight_turn(). A lower bound of
  * hylo_svr_predict() for the edge when both speeds lie on the table's speed
  * nodes (to 1e-9 m/s); between nodes see hylo_svr_envelope_bound(). 0 ("no
  * envelope") when m or a state is NULL, m has no envelope, m's feature count

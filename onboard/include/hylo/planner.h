@@ -171,6 +171,9 @@ typedef struct {
 	uint32_t combo_speed[2][HYLO_MAX_COMBOS][2];
 	uint8_t combo_speed_ok[2][HYLO_MAX_COMBOS];
 	hylo_real heading_change[HYLO_MAX_GRID][HYLO_MAX_GRID];
+	/* each air combination's velocity heading, and whether it moves */
+	hylo_real air_heading[HYLO_MAX_COMBOS];
+	uint8_t air_moving[HYLO_MAX_COMBOS];
 	/* the envelope's turn cell of the edges into each roadmap position from
 	 * each neighbour, per heading pair: adjacency entry a's at pair_turn[a *
 	 * pair_turn_stride], kept with the roadmap (0: it does not fit) */

@@ -95,6 +95,13 @@ typedef struct {
 	double state_max[HYLO_XS_DIM];
 	const char *provenance;        /* samples, seed, hashes, errors, version; may be NULL */
 	const hylo_svr_envelope *envelope;  /* NULL: none (the double integrator, classifiers) */
+	/* Flight only (else NULL): a second table by horizontal distance and
+	 * turn (hylo_envelope_flight_turn: how far both velocities point away
+	 * from the displacement) instead of climb, each value the least
+	 * predicted cost over every climb within max_distance_m; envelope's
+	 * distance cells and speed nodes, n_z turn cells over [0, 2 pi] as a
+	 * planar table's. The planner takes the larger of the two bounds. */
+	const hylo_svr_envelope *turn_envelope;
 } hylo_svr_model;
 
 /**
@@ -158,6 +165,23 @@ int hylo_svr_envelope_speed(const hylo_svr_model *m, double v, uint32_t nodes[2]
 int hylo_svr_envelope_cell(const hylo_svr_model *m, double d, double dz, size_t *cell);
 double hylo_svr_envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
                                const uint32_t head[2]);
+
+/*
+ * The turn table's bound (turn_envelope, flight models) for a flight edge of
+ * horizontal distance d [m], climb dz [m], turn [rad]
+ * (hylo_envelope_flight_turn) and tail and head horizontal speeds v1, v2:
+ * as hylo_svr_envelope_bound(), and 0 (no bound) also when m has no turn
+ * table or d^2 + dz^2 > max_distance_m^2. Its parts as above: the cell of
+ * a distance and turn (0: none; the climb only decides whether there is
+ * one) and its value for two speeds' nodes (the speed nodes are the
+ * envelope's). No libm, no allocation; safe in a control loop.
+ */
+double hylo_svr_turn_envelope_bound(const hylo_svr_model *m, double d, double dz, double turn,
+                                    double v1, double v2);
+int hylo_svr_turn_envelope_cell(const hylo_svr_model *m, double d, double dz, double turn,
+                                size_t *cell);
+double hylo_svr_turn_envelope_value(const hylo_svr_model *m, size_t cell, const uint32_t tail[2],
+                                    const uint32_t head[2]);
 
 /** The floor the planner raises m's prediction for an edge of length
  * distance_m to: cost_floor_j + cost_floor_per_m * distance_m [J]. */
