@@ -79,9 +79,7 @@ int hylo_envelope_args(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 hylo_real hylo_envelope_of_edge(const hylo_svr_model *m, hylo_mode mode, const hylo_real *tail_xs,
 				const hylo_real *head_xs)
 {
-	hylo_real a[4];
-
-	hylo_real e, turn, t;
+	hylo_real a[4], e, turn, t;
 
 	if (!m || !m->envelope || m->n_features != hylo_feature_count(mode) ||
 	    !hylo_envelope_args(mode, tail_xs, head_xs, a))

@@ -158,7 +158,7 @@ static hylo_status check_envelope(const hylo_svr_model *m, const hylo_svr_envelo
 	if (turn && e->n_z > 1 &&
 	    !(e->z_min == 0 && fabs(e->n_z * e->z_step - TWO_PI) <= 1e-12 * TWO_PI))
 		return hylo_fail(r, HYLO_E_BAD_VALUE,
-				 "svr model %s: a planar envelope's %u turn cells of %g rad from %g "
+				 "svr model %s: an envelope's %u turn cells of %g rad from %g "
 				 "must cover [0, 2 pi] (or one cell, the turn ignored)", name,
 				 (unsigned)e->n_z, e->z_step, e->z_min);
 	if (!e->value)
