@@ -91,15 +91,6 @@ uint32_t hylo_roadmap_class(const hylo_roadmap *rm, hylo_mode mode, uint32_t c)
 	return 0;
 }
 
-hylo_real hylo_roadmap_class_speed(const hylo_roadmap *rm, hylo_mode mode, uint32_t k)
-{
-	if (is_planar(mode))
-		return rm->sampling.speeds[k];
-	if (is_air(mode))
-		return rm->sampling.air_speeds[k];
-	return 0;
-}
-
 int hylo_roadmap_at_rest(const hylo_roadmap *rm, hylo_mode mode, uint32_t c)
 {
 	if (is_planar(mode))

@@ -537,11 +537,6 @@ uint32_t hylo_search_found(const hylo_search *s, uint32_t k)
 	return s && k < s->n_found ? s->found[k] : HYLO_NO_NODE;
 }
 
-hylo_real hylo_search_weight(const hylo_search *s)
-{
-	return s ? s->weight : 1;
-}
-
 hylo_real hylo_search_min_key(const hylo_search *s)
 {
 	hylo_real k = INFINITY;

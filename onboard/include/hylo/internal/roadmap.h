@@ -113,9 +113,6 @@ uint32_t hylo_roadmap_class_count(const hylo_roadmap *rm, hylo_mode mode);
 /** Speed class of combination c of a position of mode. */
 uint32_t hylo_roadmap_class(const hylo_roadmap *rm, hylo_mode mode, uint32_t c);
 
-/** Speed of class k of mode [m/s] (the double integrator: 0). */
-hylo_real hylo_roadmap_class_speed(const hylo_roadmap *rm, hylo_mode mode, uint32_t k);
-
 /** Connection radius of mode under the roadmap's options. */
 hylo_real hylo_roadmap_radius(const hylo_roadmap *rm, hylo_mode mode);
 

@@ -161,9 +161,6 @@ uint32_t hylo_search_found(const hylo_search *s, uint32_t k);
  */
 int hylo_search_defer(hylo_search *s, uint32_t u, uint32_t group, hylo_real key);
 
-/** The search's weight w (f = g + w h) of the current run. */
-hylo_real hylo_search_weight(const hylo_search *s);
-
 /** The least key still waiting (node or deferred group), +inf when none: a
  * lower bound of the optimum while an A* (w = 1) run is under way or after
  * it ran out of budget. */
