@@ -36,6 +36,18 @@
 
 static float scaled[MAX_VALUES], scaled_turn[MAX_VALUES];
 
+/* *out: table e with every value 5% higher, held in buf. */
+static void five_percent_higher(const hylo_svr_envelope *e, float *buf, hylo_svr_envelope *out)
+{
+	uint32_t n_values = e->n_d * e->n_z * e->n_v * e->n_v, i;
+
+	assert_true(n_values <= MAX_VALUES);
+	for (i = 0; i < n_values; i++)
+		buf[i] = e->value[i] * 1.05f;
+	*out = *e;
+	out->value = buf;
+}
+
 /* Ground, marine: the turn axis, and edges in place for 12 x 12 tail and
  * head headings and every speed pair. */
 static void check_turns_and_in_place(const hylo_svr_model *m, hylo_mode mode)
@@ -73,18 +85,13 @@ static void check_model(const hylo_registry_model *r)
 	const hylo_svr_envelope *e = m->envelope, *t = m->turn_envelope;
 	hylo_svr_envelope high, turn_high;
 	hylo_svr_model m_high, m_turn_high, m_climb;
-	uint32_t n_values, i, below = 0, zero = 0, caught = 0, caught_turn = 0, raised = 0;
+	uint32_t i, below = 0, zero = 0, caught = 0, caught_turn = 0, raised = 0;
 	double closest = INFINITY, worst = 0;
 
 	if (!e)
 		fail_msg("%s has no envelope", m->name);
 	assert_int_equal(hylo_svr_check(m, NULL), HYLO_OK);
-	n_values = e->n_d * e->n_z * e->n_v * e->n_v;
-	assert_true(n_values <= MAX_VALUES);
-	for (i = 0; i < n_values; i++)
-		scaled[i] = e->value[i] * 1.05f;
-	high = *e;
-	high.value = scaled;
+	five_percent_higher(e, scaled, &high);
 	m_high = *m;
 	m_high.envelope = &high;
 	/* Flight: the turn table alone 5% higher, and the climb table alone. */
@@ -92,12 +99,7 @@ static void check_model(const hylo_registry_model *r)
 	m_climb = *m;
 	m_climb.turn_envelope = NULL;
 	if (t) {
-		n_values = t->n_d * t->n_z * t->n_v * t->n_v;
-		assert_true(n_values <= MAX_VALUES);
-		for (i = 0; i < n_values; i++)
-			scaled_turn[i] = t->value[i] * 1.05f;
-		turn_high = *t;
-		turn_high.value = scaled_turn;
+		five_percent_higher(t, scaled_turn, &turn_high);
 		m_turn_high.turn_envelope = &turn_high;
 	}
 	rng_state = 20260101u + (uint64_t)r->mode;

@@ -95,10 +95,12 @@ out=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,0,0,-2.7
 if [[ $out == *'"beyond_training_range":true,"outside_region":["X1'"'"'s vz = -2.7 m/s is outside the training range [0, 0] m/s"]'* ]]; then
   tap_ok "hylo-cost names a descending start velocity outside the flight model's trained region"; else
   tap_not_ok "hylo-cost names a descending start velocity outside the flight model's trained region" "$out"; fi
+# A number field of hylo-cost --json: json_number NAME OUTPUT.
+json_number() { echo "$2" | sed -n 's/.*"'"$1"'":\([-0-9.e+]*\),.*/\1/p'; }
 # hylo-cost prints the edge's envelope bound next to its cost, below it.
 out=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,4,0,0 5,1,-1,0,8,0 2>&1)
-env=$(echo "$out" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
-cost=$(echo "$out" | sed -n 's/.*"predicted_cost_j":\([-0-9.e+]*\),.*/\1/p')
+env=$(json_number envelope_j "$out")
+cost=$(json_number predicted_cost_j "$out")
 none=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,4,0,0.5 5,1,-1,0,8,0 2>&1)
 if [ -n "$env" ] && [ -n "$cost" ] && awk -v e="$env" -v c="$cost" 'BEGIN { exit !(e > 0 && e <= c) }' &&
    [[ $none == *'"envelope_j":null'* ]]; then
@@ -107,10 +109,10 @@ if [ -n "$env" ] && [ -n "$cost" ] && awk -v e="$env" -v c="$cost" 'BEGIN { exit
 # Ground and water: the bound depends on the turn, which hylo-cost prints
 # (the goal straight behind with the start's heading: 2 pi).
 out=$("$B/bin/hylo-cost" --robot ambot --mode ground --json 0,0,0.5,0 -1,0,0.5,0 2>&1)
-env=$(echo "$out" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
-cost=$(echo "$out" | sed -n 's/.*"predicted_cost_j":\([-0-9.e+]*\),.*/\1/p')
+env=$(json_number envelope_j "$out")
+cost=$(json_number predicted_cost_j "$out")
 ahead=$("$B/bin/hylo-cost" --robot ambot --mode ground --json 0,0,0.5,0 1,0,0.5,0 2>&1)
-env_ahead=$(echo "$ahead" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
+env_ahead=$(json_number envelope_j "$ahead")
 if [[ $out == *'"envelope_turn_rad":6.2831853071795862,'* && $ahead == *'"envelope_turn_rad":0,'* ]] &&
    [ -n "$env" ] && [ -n "$cost" ] && [ -n "$env_ahead" ] &&
    awk -v e="$env" -v c="$cost" -v a="$env_ahead" 'BEGIN { exit !(e > 0 && e <= c && a < e) }'; then
@@ -120,10 +122,10 @@ if [[ $out == *'"envelope_turn_rad":6.2831853071795862,'* && $ahead == *'"envelo
 # from the displacement) is printed, and its bound holds for a flight that
 # must reverse both ways: above the aligned edge's, below its own cost.
 out=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,-8,0,0 6,0,0,-8,0,0 2>&1)
-env=$(echo "$out" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
-cost=$(echo "$out" | sed -n 's/.*"predicted_cost_j":\([-0-9.e+]*\),.*/\1/p')
+env=$(json_number envelope_j "$out")
+cost=$(json_number predicted_cost_j "$out")
 ahead=$("$B/bin/hylo-cost" --robot drivocopter --mode flight --json 0,0,0,8,0,0 6,0,0,8,0,0 2>&1)
-env_ahead=$(echo "$ahead" | sed -n 's/.*"envelope_j":\([-0-9.e+]*\),.*/\1/p')
+env_ahead=$(json_number envelope_j "$ahead")
 if [[ $out == *'"envelope_turn_rad":6.2831853071795862,'* && $ahead == *'"envelope_turn_rad":0,'* ]] &&
    [ -n "$env" ] && [ -n "$cost" ] && [ -n "$env_ahead" ] &&
    awk -v e="$env" -v c="$cost" -v a="$env_ahead" 'BEGIN { exit !(e <= c && e > 1.5 * a) }'; then
