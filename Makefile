@@ -61,19 +61,23 @@ venv-bench: .venv/.bench-stamp
 check-deps:
 	@tools/install-deps --check
 
-# Tests run in the order listed; the sanitizer builds run last.
+# test, demo and bench build on every CPU unless make was given -j.
+BUILD_JOBS = $(if $(findstring -j,$(MAKEFLAGS)),,-j$(shell nproc))
+
+# Tests run in the order listed, as many at once as there are CPUs
+# (TEST_JOBS=1: one by one); the sanitizer builds run last.
 test: deps
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory $(BUILD_JOBS) all
 	@$(MAKE) --no-print-directory venv || echo "make test: no Python venv (is PyPI reachable?); Python client checks will be skipped"
 	@tools/run-tests $(TESTS) $(TESTS_SAN)
 
 # Plans the default scenes through the planner node with the committed models.
 demo: deps
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory $(BUILD_JOBS) all
 	@tools/demo.sh
 
 bench: deps
-	@$(MAKE) --no-print-directory all $(BENCH_TARGETS)
+	@$(MAKE) --no-print-directory $(BUILD_JOBS) all $(BENCH_TARGETS)
 	@$(MAKE) --no-print-directory venv-bench || echo "make bench: no CasADi from PyPI; its reference will be left out"
 	@mkdir -p $(BUILD)/bench
 	@tools/bench/run $(BUILD)
