@@ -4,6 +4,8 @@
 # with hylo-render into docs/pictures/<scene>.png, and records the scene,
 # robot file and models each was made from (tools/provenance). A scene whose
 # robot has no committed model yet is drawn without a path (the title says why).
+# Arguments: scene files to draw alone (default: every scenes/*.yaml), e.g.
+# after one robot's models changed.
 set -u
 cd "$(dirname "$0")/.."
 B=${BUILD:-build}
@@ -12,7 +14,9 @@ W=$(mktemp -d)
 trap 'rm -rf "$W"' EXIT
 mkdir -p "$OUT"
 status=0
-for scene in scenes/*.yaml; do
+scenes=("$@")
+[ ${#scenes[@]} -gt 0 ] || scenes=(scenes/*.yaml)
+for scene in "${scenes[@]}"; do
   name=$(basename "$scene" .yaml)
   "$B/bin/hylo-scene" "$scene" --goal --lcm-url "file://$W/$name.in.log?mode=w" || { status=1; continue; }
   "$B/bin/hylo-planner" --lcm-url "file://$W/$name.in.log?speed=0" \
