@@ -845,7 +845,9 @@ static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan,
 				    ? (uint8_t)pl->robot->modes[1].mode
 				    : (uint8_t)pl->robot->modes[0].mode;
 	pl->h_layered = 0;
-	pl->h_forward_valid = 0;
+	pl->forward_begun = 0;
+	pl->cap = 0;
+	pl->cap_step = 0;
 	pl->layered_within = within;
 	pl->deadline = deadline;
 	if (pl->use_heuristic)

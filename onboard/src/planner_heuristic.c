@@ -279,13 +279,22 @@ hylo_status hylo_planner_heuristic(hylo_planner *pl, const hylo_budget *budget)
  * closed yet. A node's value is its exact bound-distance to the nearest
  * sequence still sought: in a layer whose own sequence is found only the way
  * to a further change of mode counts, and a layer that cannot reach its goal
- * copy with its number of changes is pruned. The search only needs nodes
- * that could lie on a path within `cap` (alternatives_within times the first
- * one's cost): a node whose forward bound-distance from the start plus its
- * backward one exceeds cap is not expanded, and a node never reached gets
- * +inf (a path within cap through it would have reached it). The heuristic
- * only grows; the search re-checks its keys (search.h). Node ids: the
- * layered ones, then a source linked to the open goal copies.
+ * copy with its number of changes is pruned.
+ *
+ * Both searches only need the nodes that could lie on a path within a cap
+ * c. A forward A* search from the start (on the current heuristic h, run up
+ * to c) gives every node a lower bound L of its bound-distance from the
+ * start: the exact one where it closed the node, else c - h (the node's f
+ * is above c). L is consistent (L(v) <= L(u) + c(u, v)), and the backward
+ * search does not expand a node whose L plus its distance reaches c. The
+ * cap follows the search: a step beyond the latest goal found, raised again
+ * when every key has passed it (hylo_search_refresh_above), and the forward
+ * search goes on from where it stopped. At the last cap, alternatives_within
+ * times the first goal's cost, a node never reached gets +inf (a path
+ * within it through the node would have reached it); below it, min(its
+ * distance, c - L), at least 0: consistent as L is, and never below h (c -
+ * L >= h). The search re-checks its keys (search.h). Node ids: the layered
+ * ones, then a source linked to the open goal copies.
  */
 
 static uint32_t layered_source(const hylo_planner *pl)
@@ -301,8 +310,17 @@ static int moves_into(const hylo_planner *pl, uint32_t l, uint8_t m, uint32_t lh
 	return next == lh;
 }
 
-/* The forward bound-distances from the start's copy in layer 0 to every
- * node copy that could be on a path within pl->layered_cap. */
+/* The forward search's heuristic: the current one (A* from the start, so
+ * that the cap can grow and the search go on). */
+static hylo_real forward_h(void *ctx, uint32_t u)
+{
+	const hylo_planner *pl = ctx;
+
+	return u < layered_source(pl) ? hylo_planner_h(pl, u) : 0;
+}
+
+/* The forward bound-distances from the start's copy in layer 0, in order of
+ * those plus the current heuristic. */
 static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t u, uint32_t *heads,
 				  hylo_real *costs, uint32_t cap, uint32_t *n, hylo_reason *r)
 {
@@ -323,10 +341,7 @@ static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t u, uint32_
 	l = u / stride;
 	v = u % stride;
 	i = rm->node_pos[v];
-	/* Beyond the cap even by the plain heuristic (still in h_node: this
-	 * runs before the first layered one), nothing is wanted. */
-	if (i == pl->goal_pos ||
-	    hylo_search_cost(s, u) + (pl->h_layered ? 0 : pl->h_node[v]) > pl->layered_cap)
+	if (i == pl->goal_pos)
 		return HYLO_OK;
 	c = v - rm->pos[i].node_base;
 	moves.s = s;
@@ -392,7 +407,7 @@ static hylo_status expand_layered(void *ctx, hylo_search *s, uint32_t u, uint32_
 	v = u % stride;
 	/* No edge leads into the start; beyond cap nothing is wanted. */
 	if (rm->node_pos[v] == pl->start_pos ||
-	    pl->h_forward[u] + hylo_search_cost(s, u) > pl->layered_cap)
+	    pl->h_forward[u] + hylo_search_cost(s, u) >= pl->layered_cap)
 		return HYLO_OK;
 	/* A move into v is in v's mode: from layer lh when that is lh's travel
 	 * mode (or lh is the last), from lh - 1 when it is not lh - 1's. */
@@ -422,47 +437,102 @@ static int budget_left(const hylo_planner *pl, hylo_budget *b)
 	return b->time_budget_ms > 0;
 }
 
+/* A step of the cap, as a fraction of the first goal's cost (the paper's
+ * scenes' later sequences lie 6-16% above their first; docs/decisions.md). */
+#define CAP_STEP 0.07
+
+/* L (see above) into h_forward, from the forward search run up to
+ * pl->layered_cap; +inf where the current heuristic says no goal copy still
+ * open can be reached. */
+static void forward_bounds(hylo_planner *pl)
+{
+	const hylo_search *f = &pl->forward_search;
+	uint32_t u, src = layered_source(pl);
+
+	for (u = 0; u < src; u++) {
+		hylo_real h = hylo_planner_h(pl, u), rough = pl->layered_cap - h, d = hylo_search_cost(f, u);
+
+		if (isinf(h))
+			pl->h_forward[u] = INFINITY;
+		else
+			pl->h_forward[u] = hylo_search_closed(f, u) && d < rough ? d : rough;
+	}
+}
+
+/* Runs the forward search up to pl->layered_cap, or goes on with it (the
+ * heuristic has grown since); *done = 1 when it got there. */
+static hylo_status forward(hylo_planner *pl, int *done)
+{
+	hylo_budget budget;
+	hylo_outcome outcome = HYLO_NO_PATH;
+	hylo_graph g;
+	hylo_status st;
+	uint32_t src = layered_source(pl);
+
+	*done = 0;
+	if (!budget_left(pl, &budget))
+		return HYLO_OK;
+	memset(&g, 0, sizeof g);
+	g.n_nodes = src + 2;
+	g.expand = expand_forward;
+	g.heuristic = forward_h;
+	g.weight = 1;
+	g.ctx = pl;
+	/* Its goal is a node no edge reaches: it stops at the cap. */
+	if (pl->forward_begun)
+		st = hylo_search_resume(&pl->forward_search, &g, pl->layered_cap, 1, &budget, &outcome,
+					&pl->reason);
+	else
+		st = hylo_search_run_below(&pl->forward_search, &g, pl->roadmap.n_nodes, src + 1,
+					   pl->layered_cap, &budget, &outcome, &pl->reason);
+	pl->forward_begun = st == HYLO_OK;
+	*done = st == HYLO_OK && outcome == HYLO_NO_PATH;
+	return st;
+}
+
 /* h_node for every layered node towards the goal copies fwd has not closed,
- * for paths costing at most cap; *done = 0 (h_node unchanged, still a valid
- * heuristic) when the goal's time budget ran out first. */
+ * for paths costing at most cap (last: the last cap, +inf beyond it); *done
+ * = 0 (h_node unchanged, still a valid heuristic) when the goal's time
+ * budget ran out first. */
 static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hylo_real cap,
-				   int *done)
+				   int last, int *done)
 {
 	hylo_search *s = &pl->layer_search;
-	const hylo_roadmap *rm = &pl->roadmap;
 	uint32_t src = layered_source(pl), u;
 	hylo_budget budget;
 	hylo_outcome outcome = HYLO_NO_PATH;
 	hylo_graph g;
-	hylo_status st = HYLO_OK;
+	hylo_status st;
+	int reached;
 
 	*done = 0;
-	memset(&g, 0, sizeof g);
 	/* Room for slightly different rounding of the same sums in the search. */
 	pl->layered_cap = cap * (1 + 1e-9) + 1e-9;
-	pl->layered_forward = fwd;
+	st = forward(pl, &reached);
+	if (st != HYLO_OK || !reached || !budget_left(pl, &budget))
+		return st;
+	forward_bounds(pl);
+	memset(&g, 0, sizeof g);
+	g.n_nodes = src + 2;
+	g.expand = expand_layered;
 	g.weight = 1;
 	g.ctx = pl;
-	/* Both searches run until nothing is left: their goal is a node no edge
-	 * reaches. The forward one is the same for every goal copy closed (the
-	 * cap is the first one's). */
-	g.n_nodes = src + 2;
-	if (!pl->h_forward_valid && budget_left(pl, &budget)) {
-		g.expand = expand_forward;
-		st = hylo_search_run(s, &g, rm->n_nodes, src + 1, &budget, &outcome, &pl->reason);
-		for (u = 0; st == HYLO_OK && outcome == HYLO_NO_PATH && u < src; u++)
-			pl->h_forward[u] = hylo_search_cost(s, u);
-		pl->h_forward_valid = st == HYLO_OK && outcome == HYLO_NO_PATH;
-	}
-	g.expand = expand_layered;
-	if (st == HYLO_OK && pl->h_forward_valid && budget_left(pl, &budget))
-		st = hylo_search_run(s, &g, src, src + 1, &budget, &outcome, &pl->reason);
+	pl->layered_forward = fwd;
+	/* It runs until nothing is left: its goal is a node no edge reaches. */
+	st = hylo_search_run(s, &g, src, src + 1, &budget, &outcome, &pl->reason);
 	pl->layered_forward = NULL;
-	if (st != HYLO_OK || !pl->h_forward_valid || outcome != HYLO_NO_PATH)
+	if (st != HYLO_OK || outcome != HYLO_NO_PATH)
 		return st;
 	pl->h_valid = 0;   /* h_node is indexed by layer now */
-	for (u = 0; u < src; u++)
-		pl->h_node[u] = hylo_search_cost(s, u);
+	for (u = 0; u < src; u++) {
+		hylo_real d = hylo_search_cost(s, u), rough = pl->layered_cap - pl->h_forward[u];
+
+		if (isinf(pl->h_forward[u]))
+			d = INFINITY;
+		else if (!last && d > rough)
+			d = rough > 0 ? rough : 0;
+		pl->h_node[u] = d;
+	}
 	pl->h_layered = 1;
 	*done = 1;
 	return HYLO_OK;
@@ -472,17 +542,31 @@ hylo_status hylo_planner_found(void *ctx, hylo_search *s, uint32_t goal, int *gr
 			       hylo_reason *r)
 {
 	hylo_planner *pl = ctx;
-	hylo_real cap;
+	hylo_real first, last, level, cap;
 	hylo_status st;
 
-	(void)goal;
 	*grew = 0;
 	if (!pl->use_heuristic)
 		return HYLO_OK;
-	cap = pl->layered_within * hylo_search_cost(s, hylo_search_found(s, 0));
-	/* No edge on a path dearer than cap is worth a cost any more. */
-	pl->bound = cap;
-	st = layer_heuristic(pl, s, cap, grew);
+	first = hylo_search_cost(s, hylo_search_found(s, 0));
+	last = pl->layered_within * first;
+	/* No edge on a path dearer than last is worth a cost any more. */
+	pl->bound = last;
+	/* After a goal, one step beyond it; when the keys passed the cap, a
+	 * step twice the last one beyond them. */
+	pl->cap_step = goal == HYLO_NO_NODE ? 2 * pl->cap_step : CAP_STEP * first;
+	level = goal == HYLO_NO_NODE ? hylo_search_min_key(s) : hylo_search_cost(s, goal);
+	cap = level + pl->cap_step;
+	if (cap < pl->cap)
+		cap = pl->cap;
+	if (!(cap < last))
+		cap = last;
+	/* The forward search may have got there even when the budget stops
+	 * the rest: the cap never goes back. */
+	pl->cap = cap;
+	st = layer_heuristic(pl, s, cap, cap == last, grew);
+	if (st == HYLO_OK && *grew && cap < last)
+		hylo_search_refresh_above(s, pl->layered_cap);
 	if (st != HYLO_OK && r != &pl->reason)
 		*r = pl->reason;
 	return st;

@@ -201,11 +201,24 @@ static void reset(hylo_search *s, uint32_t n_nodes)
 	s->want = 0;
 	s->within = INFINITY;
 	s->rekey = 0;
+	s->refresh_above = INFINITY;
+	s->limit = INFINITY;
 	for (i = 0; i < n_nodes; i++) {
 		s->g[i] = INFINITY;
 		s->parent[i] = HYLO_NO_NODE;
 		s->heap_pos[i] = SEARCH_UNSEEN;
 	}
+}
+
+static hylo_status check_budget(const hylo_budget *b, hylo_reason *r)
+{
+	if (isnan(b->time_budget_ms) || b->time_budget_ms < 0)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "search: time_budget_ms = %g must be >= 0", b->time_budget_ms);
+	if (b->time_budget_ms > 0 && !b->clock)
+		return hylo_fail(r, HYLO_E_NULL,
+				 "search: time_budget_ms = %g needs a clock", b->time_budget_ms);
+	return HYLO_OK;
 }
 
 static hylo_status check_args(const hylo_graph *g, uint32_t start, const uint32_t *goals,
@@ -233,13 +246,7 @@ static hylo_status check_args(const hylo_graph *g, uint32_t start, const uint32_
 		if (goals[k] >= g->n_nodes)
 			return hylo_fail(r, HYLO_E_BAD_VALUE, "search: goal %lu not below n_nodes = %lu",
 					 (unsigned long)goals[k], (unsigned long)g->n_nodes);
-	if (isnan(b->time_budget_ms) || b->time_budget_ms < 0)
-		return hylo_fail(r, HYLO_E_BAD_VALUE,
-				 "search: time_budget_ms = %g must be >= 0", b->time_budget_ms);
-	if (b->time_budget_ms > 0 && !b->clock)
-		return hylo_fail(r, HYLO_E_NULL,
-				 "search: time_budget_ms = %g needs a clock", b->time_budget_ms);
-	return HYLO_OK;
+	return check_budget(b, r);
 }
 
 /* At most HYLO_MAX_SEARCH_GOALS compares. */
@@ -398,6 +405,21 @@ static int stale_group(hylo_search *s, const hylo_graph *g)
 	return 1;
 }
 
+/* Lets the heuristic grow (hylo_found_fn) after goal was closed, or when
+ * the keys passed the refresh level (goal HYLO_NO_NODE). */
+static hylo_status heuristic_grows(hylo_search *s, const hylo_graph *g, uint32_t goal,
+				   hylo_reason *r)
+{
+	int grew = 0;
+	hylo_status st;
+
+	/* A callback that cannot grow it (budget spent) is not asked again. */
+	s->refresh_above = INFINITY;
+	st = g->found(g->ctx, s, goal, &grew, r);
+	s->rekey |= grew && g->heuristic;
+	return st;
+}
+
 static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_budget *b,
 			       double t0, hylo_outcome *outcome, hylo_reason *r)
 {
@@ -407,7 +429,7 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 	/* Each pass closes one node or resolves one deferred group; a node
 	 * defers at most HYLO_MAX_SUCCESSORS groups when it is closed. */
 	for (;;) {
-		if ((s->heap_size == 0 && s->n_deferred == 0) ||
+		if ((s->heap_size == 0 && s->n_deferred == 0) || hylo_search_min_key(s) > s->limit ||
 		    (s->n_found > 0 && hylo_search_min_key(s) > s->within * s->g[s->found[0]])) {
 			*outcome = ended(s, HYLO_NO_PATH);
 			return HYLO_OK;
@@ -427,6 +449,12 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 				*outcome = ended(s, HYLO_BUDGET_EXHAUSTED);
 				return HYLO_OK;
 			}
+		}
+		if (g->found && hylo_search_min_key(s) > s->refresh_above) {
+			st = heuristic_grows(s, g, HYLO_NO_NODE, r);
+			if (st != HYLO_OK)
+				return st;
+			continue;
 		}
 		if (s->n_deferred > 0 && (s->heap_size == 0 || s->defer_key[0] <= s->heap_f[0])) {
 			uint32_t group;
@@ -448,18 +476,15 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 		u = heap_pop(s);
 		s->stats.expansions++;
 		if (is_goal(s, u)) {
-			int grew = 0;
-
 			s->found[s->n_found++] = u;
 			if (s->n_found == s->want) {
 				*outcome = HYLO_FOUND;
 				return HYLO_OK;
 			}
 			if (g->found) {
-				st = g->found(g->ctx, s, u, &grew, r);
+				st = heuristic_grows(s, g, u, r);
 				if (st != HYLO_OK)
 					return st;
-				s->rekey |= grew && g->heuristic;
 			}
 			continue;
 		}
@@ -469,9 +494,21 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 	}
 }
 
-hylo_status hylo_search_run_goals(hylo_search *s, const hylo_graph *g, uint32_t start,
-				  const uint32_t *goals, uint32_t n_goals, uint32_t want, hylo_real within,
-				  const hylo_budget *budget, hylo_outcome *outcome, hylo_reason *r)
+/* The clock's reading at the start of a run into *t0 (0 without a time budget). */
+static hylo_status clock_start(const hylo_budget *budget, double *t0, hylo_reason *r)
+{
+	*t0 = 0;
+	if (budget->time_budget_ms <= 0)
+		return HYLO_OK;
+	*t0 = budget->clock(budget->clock_ctx);
+	if (!isfinite(*t0))
+		return hylo_fail(r, HYLO_E_BAD_VALUE, "search: clock returned %g", *t0);
+	return HYLO_OK;
+}
+
+static hylo_status run(hylo_search *s, const hylo_graph *g, uint32_t start, const uint32_t *goals,
+		       uint32_t n_goals, uint32_t want, hylo_real within, hylo_real limit,
+		       const hylo_budget *budget, hylo_outcome *outcome, hylo_reason *r)
 {
 	hylo_reason local;
 	hylo_real h;
@@ -490,19 +527,19 @@ hylo_status hylo_search_run_goals(hylo_search *s, const hylo_graph *g, uint32_t 
 	st = check_args(g, start, goals, n_goals, want, budget, r);
 	if (st == HYLO_OK && !(within >= 1))
 		st = hylo_fail(r, HYLO_E_BAD_VALUE, "search: within = %g must be >= 1", within);
+	if (st == HYLO_OK && isnan(limit))
+		st = hylo_fail(r, HYLO_E_BAD_VALUE, "search: limit is NaN");
+	if (st == HYLO_OK)
+		st = clock_start(budget, &t0, r);
 	if (st != HYLO_OK)
 		return st;
-	if (budget->time_budget_ms > 0) {
-		t0 = budget->clock(budget->clock_ctx);
-		if (!isfinite(t0))
-			return hylo_fail(r, HYLO_E_BAD_VALUE, "search: clock returned %g", t0);
-	}
 	reset(s, g->n_nodes);
 	for (k = 0; k < n_goals; k++)
 		s->goals[k] = goals[k];
 	s->n_goals = n_goals;
 	s->want = want;
 	s->within = within;
+	s->limit = limit;
 	s->weight = g->weight;
 	st = heuristic(g, start, &h, r);
 	if (st != HYLO_OK)
@@ -514,6 +551,52 @@ hylo_status hylo_search_run_goals(hylo_search *s, const hylo_graph *g, uint32_t 
 		heap_push(s, start, s->weight * h);
 		s->stats.pushes++;
 	}
+	st = search_loop(s, g, budget, t0, outcome, r);
+	if (st == HYLO_OK)
+		hylo_reason_clear(r);
+	return st;
+}
+
+hylo_status hylo_search_run_goals(hylo_search *s, const hylo_graph *g, uint32_t start,
+				  const uint32_t *goals, uint32_t n_goals, uint32_t want, hylo_real within,
+				  const hylo_budget *budget, hylo_outcome *outcome, hylo_reason *r)
+{
+	return run(s, g, start, goals, n_goals, want, within, INFINITY, budget, outcome, r);
+}
+
+hylo_status hylo_search_run_below(hylo_search *s, const hylo_graph *g, uint32_t start,
+				  uint32_t goal, hylo_real limit, const hylo_budget *budget,
+				  hylo_outcome *outcome, hylo_reason *r)
+{
+	return run(s, g, start, &goal, 1, 1, INFINITY, limit, budget, outcome, r);
+}
+
+hylo_status hylo_search_resume(hylo_search *s, const hylo_graph *g, hylo_real limit, int grew,
+			       const hylo_budget *budget, hylo_outcome *outcome, hylo_reason *r)
+{
+	hylo_reason local;
+	double t0 = 0;
+	hylo_status st;
+
+	if (!r)
+		r = &local;
+	if (!s || !g || !budget || !outcome)
+		return hylo_fail(r, HYLO_E_NULL, "hylo_search_resume: NULL argument");
+	if (g->n_nodes != s->n_nodes || s->n_goals == 0)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "hylo_search_resume: no run of this graph (%lu nodes) to go on with",
+				 (unsigned long)g->n_nodes);
+	if (isnan(limit) || limit < s->limit)
+		return hylo_fail(r, HYLO_E_BAD_VALUE,
+				 "hylo_search_resume: limit %g below the last run's %g", limit, s->limit);
+	st = check_budget(budget, r);
+	if (st == HYLO_OK)
+		st = clock_start(budget, &t0, r);
+	if (st != HYLO_OK)
+		return st;
+	s->limit = limit;
+	s->rekey |= grew && g->heuristic;
+	*outcome = HYLO_NO_PATH;
 	st = search_loop(s, g, budget, t0, outcome, r);
 	if (st == HYLO_OK)
 		hylo_reason_clear(r);
@@ -548,6 +631,12 @@ hylo_real hylo_search_min_key(const hylo_search *s)
 	if (s->n_deferred > 0 && s->defer_key[0] < k)
 		k = s->defer_key[0];
 	return k;
+}
+
+void hylo_search_refresh_above(hylo_search *s, hylo_real key)
+{
+	if (s && !isnan(key))
+		s->refresh_above = key;
 }
 
 hylo_real hylo_search_cost(const hylo_search *s, uint32_t v)

@@ -470,6 +470,9 @@ typedef struct {
 	uint32_t goals[GROW_GOALS];
 	int open[GROW_GOALS];
 	int grow;                    /* 0: found is not told, h stays the minimum over all */
+	int staged;                  /* after a goal, only half of the growth until the keys pass level */
+	double alpha, level;
+	uint32_t n_refresh;
 	uint32_t n_exp;
 	double exp_f[MAXN];          /* g + current h of each expansion */
 	uint32_t exp_phase[MAXN];    /* goals closed before it */
@@ -481,12 +484,19 @@ static grow_ctx gc;
 static hylo_real grow_h(void *ctx, uint32_t u)
 {
 	const grow_ctx *c = ctx;
-	double h = INFINITY;
+	double h = INFINITY, h0 = INFINITY;
 	int k;
 
-	for (k = 0; k < GROW_GOALS; k++)
+	for (k = 0; k < GROW_GOALS; k++) {
 		if (c->open[k] && dist(c->t, u, c->goals[k]) < h)
 			h = dist(c->t, u, c->goals[k]);
+		if (dist(c->t, u, c->goals[k]) < h0)
+			h0 = dist(c->t, u, c->goals[k]);
+	}
+	/* Staged: the larger of the first heuristic and a part of the grown
+	 * one, both consistent. */
+	if (c->staged && isfinite(h))
+		return fmax(h0, c->alpha * h);
 	return h;
 }
 
@@ -505,13 +515,26 @@ static hylo_status grow_found(void *ctx, hylo_search *s, uint32_t goal, int *gre
 	grow_ctx *c = ctx;
 	int k;
 
-	(void)s;
 	(void)r;
+	*grew = 1;
+	if (goal == HYLO_NO_NODE) {
+		/* Asked only once every key has passed the level it set. */
+		assert_true(c->staged);
+		assert_true(hylo_search_min_key(s) > c->level);
+		c->n_refresh++;
+		c->alpha = 1;
+		return HYLO_OK;
+	}
 	c->phase++;
 	for (k = 0; k < GROW_GOALS; k++)
 		if (c->goals[k] == goal)
 			c->open[k] = 0;
-	*grew = 1;
+	/* Half the growth after the first goal only: it never shrinks. */
+	if (c->staged && c->phase == 1) {
+		c->alpha = 0.5;
+		c->level = hylo_search_cost(s, goal) * 1.1;
+		hylo_search_refresh_above(s, c->level);
+	}
 	return HYLO_OK;
 }
 
@@ -553,7 +576,7 @@ static void dist_avoiding_goals(const tgraph *t, double *d)
 	}
 }
 
-static uint64_t run_grow(tgraph *t, int grow, hylo_real *cost)
+static uint64_t run_grow(tgraph *t, int grow, int staged, hylo_real *cost)
 {
 	double d[MAXN];
 	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
@@ -570,6 +593,9 @@ static uint64_t run_grow(tgraph *t, int grow, hylo_real *cost)
 	}
 	gc.t = t;
 	gc.grow = grow;
+	gc.staged = staged;
+	gc.alpha = 1;
+	gc.level = INFINITY;
 	gc.n_exp = 0;
 	gc.phase = 0;
 	t->instrument = 0;
@@ -610,12 +636,15 @@ static uint64_t run_grow(tgraph *t, int grow, hylo_real *cost)
  * (towards the nearest goal still open) finds every goal at its optimal cost
  * (goals are dead ends) in order, never expands a node whose current f exceeds the next goal's
  * cost (the keys it took were current), and expands no more than the
- * heuristic that stays the minimum over all goals.
+ * heuristic that stays the minimum over all goals. Staged (half the growth
+ * after the first goal, the rest once every key has passed 1.1 times its cost:
+ * hylo_search_refresh_above) it finds the same costs, and is asked again
+ * only when the keys have passed that level.
  */
 static void test_growing_heuristic(void **state)
 {
-	hylo_real c_grow[GROW_GOALS], c_fixed[GROW_GOALS];
-	uint64_t fewer = 0, multi = 0;
+	hylo_real c_grow[GROW_GOALS], c_fixed[GROW_GOALS], c_staged[GROW_GOALS];
+	uint64_t fewer = 0, multi = 0, refreshed = 0;
 	int i, k;
 
 	(void)state;
@@ -630,16 +659,114 @@ static void test_growing_heuristic(void **state)
 		if (gc.goals[0] == gc.goals[1] || gc.goals[1] == gc.goals[2] || gc.goals[0] == gc.goals[2])
 			continue;
 		tg.goal = gc.goals[0];
-		e_fixed = run_grow(&tg, 0, c_fixed);
-		e_grow = run_grow(&tg, 1, c_grow);
-		for (k = 0; k < (int)hylo_search_n_found(ws); k++)
+		e_fixed = run_grow(&tg, 0, 0, c_fixed);
+		gc.n_refresh = 0;
+		run_grow(&tg, 1, 1, c_staged);
+		refreshed += gc.n_refresh > 0;
+		e_grow = run_grow(&tg, 1, 0, c_grow);
+		for (k = 0; k < (int)hylo_search_n_found(ws); k++) {
 			assert_true(c_grow[k] == c_fixed[k]);
+			assert_true(c_staged[k] == c_fixed[k]);
+		}
 		assert_true(e_grow <= e_fixed);
 		fewer += e_grow < e_fixed;
 		multi += hylo_search_n_found(ws) >= 2;
 	}
 	assert_true(multi > 50);
 	assert_true(fewer > 10);
+	assert_true(refreshed > 10);
+}
+
+/* ---- stopping at a limit and going on ------------------------------------ */
+
+/* After a stop at limit: the nodes closed are exactly those whose f (exact
+ * cost from the start plus h) is at most limit, ties at the limit aside,
+ * each at its exact cost, and every key left is above limit. */
+static void check_below(const tgraph *t, const hylo_search *s, double limit)
+{
+	uint32_t v;
+
+	assert_true(hylo_search_min_key(s) > limit);
+	for (v = 0; v < t->n; v++) {
+		double f = t->d[t->start][v] + dist(t, v, t->goal);
+
+		if (hylo_search_closed(s, v)) {
+			assert_true(f <= limit * (1 + 1e-12));
+			assert_true(close_rel(hylo_search_cost(s, v), t->d[t->start][v]));
+		} else if (v != t->goal) {
+			assert_false(f < limit * (1 - 1e-12));
+		}
+	}
+}
+
+/*
+ * 200 seeded graphs, 3 queries each: A* run below 40% of the goal's cost,
+ * resumed up to 80%, then to the end, stops where it should each time
+ * (check_below), and ends exactly as one run: same outcome, expansions,
+ * costs and parents. Resume refuses a lower limit, a NaN and another graph.
+ */
+static void test_resume(void **state)
+{
+	hylo_graph g = { 0, NULL, NULL, NULL, 1, NULL, NULL, NULL };
+	hylo_budget b = no_budget();
+	hylo_outcome out, out2;
+	hylo_reason r;
+	uint64_t stopped = 0;
+	uint32_t v;
+	int i, q;
+
+	(void)state;
+	rng_state = 4242;
+	g.expand = csr_expand;
+	g.heuristic = csr_h;
+	g.ctx = &tg;
+	for (i = 0; i < N_GRAPHS; i++) {
+		gen_graph(&tg, i);
+		g.n_nodes = tg.n;
+		tg.h_mode = 1;
+		tg.skip_closed = 0;
+		tg.instrument = 0;
+		for (q = 0; q < N_QUERIES; q++) {
+			double d;
+
+			tg.start = (uint32_t)(rnd() % tg.n);
+			tg.goal = (uint32_t)(rnd() % tg.n);
+			d = tg.d[tg.start][tg.goal];
+			if (tg.goal == tg.start || !isfinite(d) || d == 0)
+				continue;
+			assert_int_equal(hylo_search_run(ws, &g, tg.start, tg.goal, &b, &out, &r), HYLO_OK);
+			assert_int_equal(hylo_search_run_below(ws2, &g, tg.start, tg.goal, 0.4 * d, &b, &out2, &r),
+					 HYLO_OK);
+			assert_int_equal(out2, HYLO_NO_PATH);
+			check_below(&tg, ws2, 0.4 * d);
+			stopped += ws2->stats.expansions < ws->stats.expansions;
+			assert_int_equal(hylo_search_resume(ws2, &g, 0.8 * d, 0, &b, &out2, &r), HYLO_OK);
+			assert_int_equal(out2, HYLO_NO_PATH);
+			check_below(&tg, ws2, 0.8 * d);
+			assert_int_equal(hylo_search_resume(ws2, &g, INFINITY, 0, &b, &out2, &r), HYLO_OK);
+			assert_int_equal(out2, out);
+			assert_int_equal(ws2->stats.expansions, ws->stats.expansions);
+			for (v = 0; v < tg.n; v++) {
+				assert_true(hylo_search_cost(ws2, v) == hylo_search_cost(ws, v));
+				assert_int_equal(hylo_search_parent(ws2, v), hylo_search_parent(ws, v));
+			}
+		}
+	}
+	assert_true(stopped > 100);
+	/* Bad input: nothing changes. */
+	gen_graph(&tg, 0);
+	g.n_nodes = tg.n;
+	tg.start = 0;
+	tg.goal = tg.n - 1;
+	assert_int_equal(hylo_search_run_below(ws2, &g, 0, tg.n - 1, 0, &b, &out2, &r), HYLO_OK);
+	assert_int_equal(hylo_search_resume(ws2, &g, -1, 0, &b, &out2, &r), HYLO_E_BAD_VALUE);
+	assert_non_null(strstr(r.text, "below the last run's"));
+	assert_int_equal(hylo_search_resume(ws2, &g, NAN, 0, &b, &out2, &r), HYLO_E_BAD_VALUE);
+	g.n_nodes = tg.n + 1;
+	assert_int_equal(hylo_search_resume(ws2, &g, INFINITY, 0, &b, &out2, &r), HYLO_E_BAD_VALUE);
+	assert_non_null(strstr(r.text, "no run of this graph"));
+	assert_int_equal(hylo_search_resume(NULL, &g, INFINITY, 0, &b, &out2, &r), HYLO_E_NULL);
+	assert_int_equal(hylo_search_run_below(ws2, &g, 0, 1, NAN, &b, &out2, &r), HYLO_E_BAD_VALUE);
 }
 
 /* ---- hand-made graphs ---------------------------------------------------- */
@@ -1442,6 +1569,7 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test_setup(test_random_graphs, setup),
 		cmocka_unit_test_setup(test_growing_heuristic, setup),
+		cmocka_unit_test_setup(test_resume, setup),
 		cmocka_unit_test_setup(test_decrease_key, setup),
 		cmocka_unit_test_setup(test_tie_breaking, setup),
 		cmocka_unit_test_setup(test_infinite_heuristic, setup),

@@ -202,11 +202,13 @@ typedef struct {
 	uint32_t layers, layer_stride;
 	uint8_t layer_mode[2];          /* travel mode of even and odd layers */
 	/* the layered heuristic (planner_heuristic.c): in h_node once h_layered */
-	hylo_search layer_search;       /* its searches */
-	hylo_real h_forward[HYLO_MAX_NODES]; /* every node copy's bound-distance from the start */
-	int h_forward_valid;            /* computed for this goal */
+	hylo_search layer_search;       /* its backward searches */
+	hylo_search forward_search;     /* its forward search, resumed as the cap grows */
+	int forward_begun;              /* forward_search belongs to this goal */
+	hylo_real h_forward[HYLO_MAX_NODES]; /* every node copy's bound-distance from the start, or less */
 	const hylo_search *layered_forward;  /* while it runs: the alternatives' search */
 	hylo_real layered_cap;          /* paths dearer than this are not wanted */
+	hylo_real cap, cap_step;        /* the cap of h_node (layered_cap without rounding room), its last step */
 	hylo_real layered_within;       /* the goal's alternatives_within */
 	double deadline;                /* the goal's, on the planner's clock [ms]; +inf: none */
 	int h_layered;                  /* h_node holds the layered heuristic (indexed by copy) */

@@ -43,8 +43,10 @@ typedef hylo_status (*hylo_expand_fn)(void *ctx, hylo_search *s, uint32_t u,
 
 /*
  * The successors of a group that expand of node u deferred (group is the
- * caller's own number for it), written as expand writes them. Called at most
- * once per deferred group, after u was closed.
+ * caller's own number for it), written as expand writes them. Called once
+ * each time the group comes first, after u was closed; it may return some
+ * of them and defer the group again with a larger key for the rest (there
+ * is room: the group has just been taken out).
  */
 typedef hylo_status (*hylo_resolve_fn)(void *ctx, hylo_search *s, uint32_t u, uint32_t group,
                                        uint32_t *heads, hylo_real *costs, uint32_t cap,
@@ -55,12 +57,13 @@ typedef hylo_status (*hylo_resolve_fn)(void *ctx, hylo_search *s, uint32_t u, ui
 typedef hylo_real (*hylo_heuristic_fn)(void *ctx, uint32_t u);
 
 /*
- * Called when a run towards several goals closed goal and goes on: the
- * heuristic may then grow (towards the goals still open, never below what it
- * was: it stays consistent towards each of them). Sets *grew to 1 when it did;
- * the search then checks every key it takes against the heuristic's current
- * value (a node's, and a deferred group's through group_key) and puts it back
- * when it has grown.
+ * Called when a run towards several goals closed goal and goes on, and with
+ * goal = HYLO_NO_NODE when every key has passed the level the callback set
+ * with hylo_search_refresh_above: the heuristic may then grow (towards the
+ * goals still open, never below what it was: it stays consistent towards
+ * each of them). Sets *grew to 1 when it did; the search then checks every
+ * key it takes against the heuristic's current value (a node's, and a
+ * deferred group's through group_key) and puts it back when it has grown.
  */
 typedef hylo_status (*hylo_found_fn)(void *ctx, hylo_search *s, uint32_t goal, int *grew,
                                      hylo_reason *r);
@@ -92,7 +95,7 @@ typedef struct {
 	uint64_t edges_evaluated;      /* successor costs returned by expand and resolve */
 	uint64_t pushes;               /* heap insertions */
 	uint64_t decrease_keys;        /* improved open nodes */
-	uint64_t deferred;             /* groups deferred by expand */
+	uint64_t deferred;             /* groups deferred by expand, or again by resolve */
 	uint64_t resolved;             /* of those, resolved (the rest never came first) */
 } hylo_search_stats;
 
@@ -116,6 +119,8 @@ struct hylo_search {
 	uint32_t found[HYLO_MAX_SEARCH_GOALS];  /* goals closed, in order of cost */
 	uint32_t n_found;
 	int rekey;                           /* the heuristic grew: keys are checked when taken */
+	hylo_real refresh_above;             /* found(HYLO_NO_NODE) once every key is above; +inf: never */
+	hylo_real limit;                     /* the run stops once every key is above; +inf: never */
 	uint32_t heads[HYLO_MAX_SUCCESSORS]; /* scratch for expand */
 	hylo_real costs[HYLO_MAX_SUCCESSORS];
 };
@@ -148,16 +153,36 @@ hylo_status hylo_search_run_goals(hylo_search *s, const hylo_graph *g, uint32_t 
                                   hylo_real within, const hylo_budget *budget, hylo_outcome *outcome,
                                   hylo_reason *r);
 
+/**
+ * hylo_search_run that stops (HYLO_NO_PATH unless the goal was closed) once
+ * every key is above limit: the nodes closed so far are those whose f is at
+ * most limit, each with its optimal cost (A*, consistent heuristic).
+ * hylo_search_resume goes on from there. Errors as hylo_search_run.
+ */
+hylo_status hylo_search_run_below(hylo_search *s, const hylo_graph *g, uint32_t start,
+                                  uint32_t goal, hylo_real limit, const hylo_budget *budget,
+                                  hylo_outcome *outcome, hylo_reason *r);
+
+/**
+ * Goes on with the last run of s, on the same graph, up to limit (+inf: to
+ * the end), after it stopped at its limit or its budget. grew = 1 when the
+ * heuristic has grown since (still consistent): the keys are then checked
+ * as they are taken (hylo_found_fn). Errors as hylo_search_run.
+ */
+hylo_status hylo_search_resume(hylo_search *s, const hylo_graph *g, hylo_real limit, int grew,
+                               const hylo_budget *budget, hylo_outcome *outcome, hylo_reason *r);
+
 /** Goals closed by the last run, and the k-th of them in the order they were
  * closed, i.e. of their costs (HYLO_NO_NODE beyond). */
 uint32_t hylo_search_n_found(const hylo_search *s);
 uint32_t hylo_search_found(const hylo_search *s, uint32_t k);
 
 /**
- * For expand of node u: defers a group of u's successors (group: the caller's
- * number, passed back to resolve) whose f-values will all be at least key.
- * Returns 1, or 0 when HYLO_MAX_DEFERRED groups are waiting already: then
- * expand must return those successors itself. No allocation.
+ * For expand of node u (or resolve of one of its groups): defers a group of
+ * u's successors (group: the caller's number, passed back to resolve) whose
+ * f-values will all be at least key. Returns 1, or 0 when HYLO_MAX_DEFERRED
+ * groups are waiting already: then expand must return those successors
+ * itself. No allocation.
  */
 int hylo_search_defer(hylo_search *s, uint32_t u, uint32_t group, hylo_real key);
 
@@ -165,6 +190,11 @@ int hylo_search_defer(hylo_search *s, uint32_t u, uint32_t group, hylo_real key)
  * lower bound of the optimum while an A* (w = 1) run is under way or after
  * it ran out of budget. */
 hylo_real hylo_search_min_key(const hylo_search *s);
+
+/* For a found callback: call it again (goal HYLO_NO_NODE) once every key is
+ * above `key`, where its heuristic is only a rough bound. Each call of the
+ * callback clears it. */
+void hylo_search_refresh_above(hylo_search *s, hylo_real key);
 
 /* heap_pos[v] of a node expanded (closed): above any heap index. */
 #define HYLO_SEARCH_CLOSED (HYLO_NO_NODE - 1u)
