@@ -5,10 +5,12 @@
 # Tests on the committed scenes (tests/scenes/): no edge the planner
 # evaluates lies outside its model's trained region (test_trained_region);
 # every path planned keeps its robot's body and the default margin from every
-# hazard, hylo/clearance.h (test_plan_clearance).
+# hazard, hylo/clearance.h (test_plan_clearance); the search evaluates only
+# edges that could be on a path no dearer than the plan (test_lazy_evaluation).
 TRAINED_REGION_TEST := $(BUILD)/test/scenes/test_trained_region
 PLAN_CLEARANCE_TEST := $(BUILD)/test/scenes/test_plan_clearance
-SCENE_TESTS := $(TRAINED_REGION_TEST) $(PLAN_CLEARANCE_TEST)
+LAZY_EVALUATION_TEST := $(BUILD)/test/scenes/test_lazy_evaluation
+SCENE_TESTS := $(TRAINED_REGION_TEST) $(PLAN_CLEARANCE_TEST) $(LAZY_EVALUATION_TEST)
 $(SCENE_TESTS): $(BUILD)/test/scenes/%: tests/scenes/%.cpp tests/scenes/scene_suite.hpp tools/scene/planner_view.hpp \
 		tools/scene/committed.hpp $(BUILD)/obj/tools/scene/scene.o $(BUILD)/obj/node/registry.o \
 		$(BUILD)/obj/node/registry_models.o $(ONBOARD_LIB)

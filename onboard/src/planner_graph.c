@@ -538,63 +538,6 @@ static hylo_status emit(hylo_planner *pl, uint32_t v, hylo_real cost, uint32_t *
 	return HYLO_OK;
 }
 
-/* Evaluates the wanted heads of group (u, j) that are not known yet, keeps
- * them in the cache, and appends every wanted head with a finite cost. */
-static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, uint32_t group,
-				 uint32_t j, uint32_t *heads, hylo_real *costs, uint32_t cap,
-				 uint32_t *n)
-{
-	const hylo_roadmap *rm = &pl->roadmap;
-	const hylo_position *q = &rm->pos[j];
-	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
-	hylo_real *cached = group_costs(pl, u, group, 1);
-	hylo_real got[HYLO_MAX_COMBOS], tail[HYLO_XS_DIM], lb[HYLO_MAX_COMBOS], hv, fresh[HYLO_MAX_COMBOS];
-	hylo_pair_bound pb;
-	uint32_t c2, m = 0;
-	hylo_status st;
-
-	hylo_planner_node_state(pl, i, c, tail);
-	hylo_planner_pair_bound(pl, i, j, &pb);
-	hylo_planner_bounds_from(&pb, c, tail, j, lb);
-	for (c2 = 0; c2 < q->n_combos; c2++) {
-		got[c2] = NAN;
-		if (!wanted(pl, o, q->node_base + c2, o->move, lb[c2], &hv))
-			continue;
-		if (cached && !isnan(cached[c2]))
-			got[c2] = cached[c2];
-		else
-			pl->eval_idx[m++] = c2;
-	}
-	st = evaluate(pl, i, c, tail, j, pl->eval_idx, m, fresh);
-	if (st != HYLO_OK)
-		return st;
-	for (c2 = 0; c2 < m; c2++) {
-		got[pl->eval_idx[c2]] = fresh[c2];
-		if (cached)
-			cached[pl->eval_idx[c2]] = fresh[c2];
-	}
-	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++)
-		if (isfinite(got[c2]) &&
-		    !(pl->use_heuristic && o->s &&
-		      o->g + got[c2] + hylo_planner_h(pl, o->move + q->node_base + c2) >
-			      pl->bound * (1 + BOUND_SLACK)))
-			st = emit(pl, o->move + q->node_base + c2, got[c2], heads, costs, cap, n);
-	return st;
-}
-
-/* Lower bounds lb[] of the edges from u to the combinations of position j. */
-static void group_bounds(hylo_planner *pl, uint32_t u, uint32_t j, hylo_real *lb)
-{
-	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
-	hylo_real tail[HYLO_XS_DIM];
-	hylo_pair_bound pb;
-
-	hylo_planner_node_state(pl, i, c, tail);
-	hylo_planner_pair_bound(pl, i, j, &pb);
-	hylo_planner_bounds_from(&pb, c, tail, j, lb);
-}
-
 /* The least f-value the wanted heads of group (u, j) could get (those whose
  * costs are not known yet, when skip_known: the others go out at once);
  * *need = 0 (and +inf) when there are none. */
@@ -617,6 +560,83 @@ static hylo_real pending_key(hylo_planner *pl, const offer *o, uint32_t u, uint3
 			key = f;
 	}
 	return key;
+}
+
+/*
+ * Evaluates the wanted heads of group (u, j) whose costs are not known yet,
+ * keeps them in the cache, and appends every wanted head with a finite cost.
+ * Lazy (A*, on a roadmap node's group): only the heads whose f-bound is not
+ * above every key still waiting, which would come next anyway; the others
+ * wait as the same group, keyed by the least of theirs, and most are never
+ * needed: their heads are closed through cheaper edges first.
+ */
+static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, uint32_t group,
+				 uint32_t j, int lazy, uint32_t *heads, hylo_real *costs, uint32_t cap,
+				 uint32_t *n)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_position *q = &rm->pos[j];
+	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
+	hylo_real *cached = group_costs(pl, u, group, 1);
+	hylo_real got[HYLO_MAX_COMBOS], tail[HYLO_XS_DIM], lb[HYLO_MAX_COMBOS], hv, fresh[HYLO_MAX_COMBOS];
+	hylo_real next = INFINITY, key;
+	hylo_pair_bound pb;
+	uint32_t c2, m = 0;
+	hylo_status st;
+	int later = 0, need;
+
+	if (lazy && cached && o->s && pl->use_heuristic)
+		next = hylo_search_min_key(o->s);
+	hylo_planner_node_state(pl, i, c, tail);
+	hylo_planner_pair_bound(pl, i, j, &pb);
+	hylo_planner_bounds_from(&pb, c, tail, j, lb);
+	for (c2 = 0; c2 < q->n_combos; c2++) {
+		got[c2] = NAN;
+		if (!wanted(pl, o, q->node_base + c2, o->move, lb[c2], &hv))
+			continue;
+		if (cached && !isnan(cached[c2]))
+			got[c2] = cached[c2];
+		else if (o->g + lb[c2] + pl->weight * hv > next)
+			later = 1;
+		else
+			pl->eval_idx[m++] = c2;
+	}
+	st = evaluate(pl, i, c, tail, j, pl->eval_idx, m, fresh);
+	if (st != HYLO_OK)
+		return st;
+	for (c2 = 0; c2 < m; c2++) {
+		got[pl->eval_idx[c2]] = fresh[c2];
+		if (cached)
+			cached[pl->eval_idx[c2]] = fresh[c2];
+	}
+	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++)
+		if (isfinite(got[c2]) &&
+		    !(pl->use_heuristic && o->s &&
+		      o->g + got[c2] + hylo_planner_h(pl, o->move + q->node_base + c2) >
+			      pl->bound * (1 + BOUND_SLACK)))
+			st = emit(pl, o->move + q->node_base + c2, got[c2], heads, costs, cap, n);
+	if (st != HYLO_OK || !later)
+		return st;
+	/* Room: the search has just taken this group out. */
+	key = pending_key(pl, o, u, group, j, lb, 1, &need);
+	if (need && !hylo_search_defer(o->s, o->tail, group, key))
+		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE,
+				 "resolve: group %u of node %u could not wait again (key %g)",
+				 (unsigned)group, (unsigned)u, key);
+	return HYLO_OK;
+}
+
+/* Lower bounds lb[] of the edges from u to the combinations of position j. */
+static void group_bounds(hylo_planner *pl, uint32_t u, uint32_t j, hylo_real *lb)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
+	hylo_real tail[HYLO_XS_DIM];
+	hylo_pair_bound pb;
+
+	hylo_planner_node_state(pl, i, c, tail);
+	hylo_planner_pair_bound(pl, i, j, &pb);
+	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 }
 
 /*
@@ -650,7 +670,7 @@ static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uin
 		return HYLO_OK;
 	if (pl->use_heuristic && o->s && hylo_search_defer(o->s, o->tail, group, key))
 		return HYLO_OK;
-	return resolve_group(pl, o, u, group, j, heads, costs, cap, n);
+	return resolve_group(pl, o, u, group, j, 0, heads, costs, cap, n);
 }
 
 /* Appends the switch edges of node u (position i, combination c). */
@@ -751,7 +771,7 @@ hylo_status hylo_planner_resolve(void *ctx, hylo_search *s, uint32_t u, uint32_t
 		return hylo_fail(&pl->reason, HYLO_E_BAD_VALUE, "resolve: node %u has no group %u",
 				 (unsigned)v, (unsigned)group);
 	offer_for(pl, s, u, &o);
-	return resolve_group(pl, &o, v, group, j, heads, costs, cap, n);
+	return resolve_group(pl, &o, v, group, j, 1, heads, costs, cap, n);
 }
 
 /*

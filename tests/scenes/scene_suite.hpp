@@ -12,6 +12,7 @@
 #include "hylo/planner.h"
 #include "tests/tap.hpp"
 #include "tools/scene/committed.hpp"
+#include "tools/scene/planner_view.hpp"
 
 struct SceneSuite {
 	std::unique_ptr<hylo::scene::CommittedPlanner> committed;
@@ -34,6 +35,21 @@ inline bool open_suite(int argc, char **argv, SceneSuite &s)
 		s.scenes = hylo::scene::committed_scenes();
 	check(s.scenes.size() >= 8, "the committed scenes", std::to_string(s.scenes.size()) + " scene files");
 	return true;
+}
+
+// Plans scene sc from `there` and back (start and goal swapped), each on
+// the scene's map set anew (no edge cost kept from the other), and calls
+// visit(name, goal) after each with the plan in s.plan.
+template <class Visit>
+void plan_there_and_back(SceneSuite &s, const hylo::scene::Scene &sc, const hylo_goal &there, Visit visit)
+{
+	const hylo_map_view v = hylo::scene::map_view(sc);
+	const hylo_goal back = hylo::scene::way_back(there);
+	for (const hylo_goal *g : {&there, &back}) {
+		hylo_planner_set_map(s.committed->get(), &v);
+		hylo_planner_plan(s.committed->get(), g, s.plan.get());
+		visit(sc.name + (g == &there ? "" : " (back)"), *g);
+	}
 }
 
 #endif

@@ -25,12 +25,7 @@ int main(int argc, char **argv)
 	const std::vector<std::string> &scenes = suite.scenes;
 	for (const std::string &path : scenes) {
 		const hylo::scene::Scene sc = hylo::scene::load(path);
-		const hylo_map_view v = hylo::scene::map_view(sc);
-		const hylo_goal there = hylo::scene::goal_of(sc), back = hylo::scene::way_back(there);
-		for (const hylo_goal *g : {&there, &back}) {
-			const std::string name = sc.name + (g == &there ? "" : " (back)");
-			hylo_planner_set_map(pl, &v);
-			hylo_planner_plan(pl, g, plan.get());
+		plan_there_and_back(suite, sc, hylo::scene::goal_of(sc), [&](const std::string &name, const hylo_goal &) {
 			const bool planned = plan->status == HYLO_OK && plan->outcome == HYLO_FOUND &&
 					     plan->n_edges_evaluated > 0;
 			check(planned, name + ": planned", plan->reason.text);
@@ -38,7 +33,7 @@ int main(int argc, char **argv)
 			      name + ": every evaluated edge inside its model's trained region",
 			      std::to_string(plan->n_untrained) + " of " + std::to_string(plan->n_edges_evaluated) +
 				      " outside");
-		}
+		});
 	}
 	// A flight start descending at 2.7 m/s (the training velocities are
 	// level) above a chasm scene's start: refused, naming vz; level, planned.
