@@ -559,7 +559,8 @@ hylo_status hylo_planner_found(void *ctx, hylo_search *s, uint32_t goal, int *gr
 	cap = level + pl->cap_step;
 	if (cap < pl->cap)
 		cap = pl->cap;
-	if (!(cap < last))
+	/* A weighted search (w > 1) runs ahead of its keys: the last cap at once. */
+	if (!(cap < last) || pl->weight != 1)
 		cap = last;
 	/* The forward search may have got there even when the budget stops
 	 * the rest: the cap never goes back. */
