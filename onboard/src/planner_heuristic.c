@@ -490,6 +490,28 @@ static hylo_status forward(hylo_planner *pl, int *done)
 	return st;
 }
 
+/* 1 when a move can enter the goal's copy in layer lh: a move in the goal's
+ * mode ends in lh (from lh or from lh - 1) only when that is lh's travel
+ * mode or lh is the last layer, and the goal's position has no switch
+ * edges. */
+static int goal_enterable(const hylo_planner *pl, uint32_t lh)
+{
+	return moves_into(pl, lh, pl->roadmap.pos[pl->goal_pos].mode, lh);
+}
+
+/* The layers up to the highest whose goal copy the search fwd has not
+ * closed and a move can enter: a path never goes down a layer, so from the
+ * layers above no open goal copy can be reached at all, whatever the cap. */
+static uint32_t live_layers(const hylo_planner *pl, const hylo_search *fwd)
+{
+	uint32_t l = pl->layers;
+
+	while (l > 0 && (hylo_search_closed(fwd, (l - 1) * pl->layer_stride + pl->roadmap.n_nodes + 1) ||
+			 !goal_enterable(pl, l - 1)))
+		l--;
+	return l;
+}
+
 /* h_node for every layered node towards the goal copies fwd has not closed,
  * for paths costing at most cap (last: the last cap, +inf beyond it); *done
  * = 0 (h_node unchanged, still a valid heuristic) when the goal's time
@@ -503,6 +525,7 @@ static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hyl
 	hylo_outcome outcome = HYLO_NO_PATH;
 	hylo_graph g;
 	hylo_status st;
+	uint32_t live;
 	int reached;
 
 	*done = 0;
@@ -524,10 +547,11 @@ static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hyl
 	if (st != HYLO_OK || outcome != HYLO_NO_PATH)
 		return st;
 	pl->h_valid = 0;   /* h_node is indexed by layer now */
+	live = live_layers(pl, fwd);
 	for (u = 0; u < src; u++) {
 		hylo_real d = hylo_search_cost(s, u), rough = pl->layered_cap - pl->h_forward[u];
 
-		if (isinf(pl->h_forward[u]))
+		if (isinf(pl->h_forward[u]) || u / pl->layer_stride >= live)
 			d = INFINITY;
 		else if (!last && d > rough)
 			d = rough > 0 ? rough : 0;

@@ -577,7 +577,7 @@ static void check_alternatives(const tu_map *m, hylo_goal g, uint32_t k_wanted, 
 	/* Fewer than asked: every class within reach is listed. */
 	if (plan->n_alternatives < k_wanted)
 		for (l = 0; l < layers; l++)
-			if (best[l] <= within * plan->total_cost)
+			if (isfinite(best[l]) && best[l] <= within * plan->total_cost)
 				assert_true(best[l] <= last);
 	free(e.first);
 	free(e.head);
@@ -597,6 +597,12 @@ static void test_alternatives(void **state)
 	tm_small_river(&m);
 	check_alternatives(&m, tm_river_goal(), 3, INFINITY);
 	check_alternatives(&m, tm_river_goal(), 4, 1.5);
+	/* Every class (the goal copies of the top layers close first, and the
+	 * layers above the highest open one are pruned). */
+	check_alternatives(&m, tm_river_goal(), HYLO_MAX_ALTERNATIVES, INFINITY);
+	tu_map_free(&m);
+	tm_small_chasm(&m);
+	check_alternatives(&m, tm_chasm_goal(), HYLO_MAX_ALTERNATIVES, INFINITY);
 	tu_map_free(&m);
 }
 
