@@ -429,8 +429,10 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 	/* Each pass closes one node or resolves one deferred group; a node
 	 * defers at most HYLO_MAX_SUCCESSORS groups when it is closed. */
 	for (;;) {
-		if ((s->heap_size == 0 && s->n_deferred == 0) || hylo_search_min_key(s) > s->limit ||
-		    (s->n_found > 0 && hylo_search_min_key(s) > s->within * s->g[s->found[0]])) {
+		hylo_real least = hylo_search_min_key(s);
+
+		if ((s->heap_size == 0 && s->n_deferred == 0) || least > s->limit ||
+		    (s->n_found > 0 && least > s->within * s->g[s->found[0]])) {
 			*outcome = ended(s, HYLO_NO_PATH);
 			return HYLO_OK;
 		}
@@ -450,7 +452,7 @@ static hylo_status search_loop(hylo_search *s, const hylo_graph *g, const hylo_b
 				return HYLO_OK;
 			}
 		}
-		if (g->found && hylo_search_min_key(s) > s->refresh_above) {
+		if (g->found && least > s->refresh_above) {
 			st = heuristic_grows(s, g, HYLO_NO_NODE, r);
 			if (st != HYLO_OK)
 				return st;
