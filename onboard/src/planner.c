@@ -846,6 +846,7 @@ static hylo_status search(hylo_planner *pl, const hylo_goal *g, hylo_plan *plan,
 				    : (uint8_t)pl->robot->modes[0].mode;
 	pl->h_layered = 0;
 	pl->forward_begun = 0;
+	pl->n_live = pl->layers;
 	pl->cap = 0;
 	pl->cap_step = 0;
 	pl->layered_within = within;

@@ -117,6 +117,14 @@ void hylo_planner_bound_tables(hylo_planner *pl)
 		memset(pl->pair_turn, TURN_UNKNOWN, (size_t)rm->n_adjacency * pl->pair_turn_stride);
 }
 
+hylo_real hylo_planner_pair_floor(const hylo_planner *pl, uint32_t i, uint32_t j)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	const hylo_mode_model *mm = &pl->robot->modes[hylo_robot_mode_index(pl->robot, (hylo_mode)rm->pos[i].mode)];
+
+	return floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
+}
+
 /* The pair's bound parameters; the bearing and its wrap per heading only
  * with_bearings (the turn cells come from the cache otherwise). */
 static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_bearings,
@@ -134,7 +142,7 @@ static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_
 	air = hylo_mode_describe(pb->mode)->air;
 	pb->slot = hylo_robot_mode_index(pl->robot, pb->mode);
 	mm = &pl->robot->modes[pb->slot];
-	pb->floor = floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(a, b);
+	pb->floor = hylo_planner_pair_floor(pl, i, j);
 	pb->model = mm->model && mm->model->envelope &&
 			    mm->model->n_features == hylo_feature_count(pb->mode)
 		    ? mm->model : NULL;
@@ -518,6 +526,22 @@ static int wanted(const hylo_planner *pl, const offer *o, uint32_t v, uint32_t l
 	return !(pl->use_heuristic && o->g + lb + *hv > pl->bound * (1 + BOUND_SLACK));
 }
 
+/* The bound parameters of the pair of group `group` of a node of position
+ * i (its neighbour j): the turn cells cached under j's entry naming i. */
+static void group_pair_bound(hylo_planner *pl, uint32_t i, uint32_t group, uint32_t j,
+			     hylo_pair_bound *pb)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t a;
+
+	if (group == HYLO_GOAL_GROUP || i >= rm->n_positions ||
+	    (a = rm->adj_reverse[rm->pos[i].adj_begin + group]) == UINT32_MAX) {
+		hylo_planner_pair_bound(pl, i, j, pb);
+		return;
+	}
+	hylo_planner_pair_bound_into(pl, i, j, a, pb);
+}
+
 /* Where group costs come from and go to: the cache for roadmap nodes' groups. */
 static hylo_real *group_costs(hylo_planner *pl, uint32_t u, uint32_t group, int create)
 {
@@ -588,7 +612,7 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 	if (lazy && cached && o->s && pl->use_heuristic)
 		next = hylo_search_min_key(o->s);
 	hylo_planner_node_state(pl, i, c, tail);
-	hylo_planner_pair_bound(pl, i, j, &pb);
+	group_pair_bound(pl, i, group, j, &pb);
 	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 	for (c2 = 0; c2 < q->n_combos; c2++) {
 		got[c2] = NAN;
@@ -627,7 +651,7 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 }
 
 /* Lower bounds lb[] of the edges from u to the combinations of position j. */
-static void group_bounds(hylo_planner *pl, uint32_t u, uint32_t j, hylo_real *lb)
+static void group_bounds(hylo_planner *pl, uint32_t u, uint32_t group, uint32_t j, hylo_real *lb)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	uint32_t i = rm->node_pos[u], c = u - rm->pos[i].node_base;
@@ -635,7 +659,7 @@ static void group_bounds(hylo_planner *pl, uint32_t u, uint32_t j, hylo_real *lb
 	hylo_pair_bound pb;
 
 	hylo_planner_node_state(pl, i, c, tail);
-	hylo_planner_pair_bound(pl, i, j, &pb);
+	group_pair_bound(pl, i, group, j, &pb);
 	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 }
 
@@ -654,7 +678,7 @@ static hylo_status offer_group(hylo_planner *pl, const offer *o, uint32_t u, uin
 	uint32_t c2;
 	int need;
 
-	group_bounds(pl, u, j, lb);
+	group_bounds(pl, u, group, j, lb);
 	for (c2 = 0; c2 < q->n_combos && st == HYLO_OK; c2++) {
 		if (!cached || isnan(cached[c2]) || !wanted(pl, o, q->node_base + c2, o->move, lb[c2], &hv))
 			continue;
@@ -740,6 +764,21 @@ static uint32_t group_position(const hylo_planner *pl, uint32_t v, uint32_t grou
 	return group < n_adj ? adj[group] : HYLO_NO_POSITION;
 }
 
+/* 0 when no head of group (v, j) is wanted even at the pair's floor, the
+ * least bound of its edges: most groups waiting when the heuristic grows
+ * have died so, and their bounds need not be computed. */
+static int may_want(const hylo_planner *pl, const offer *o, uint32_t v, uint32_t j)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t c2;
+	hylo_real floor = hylo_planner_pair_floor(pl, rm->node_pos[v], j), hv;
+
+	for (c2 = 0; c2 < rm->pos[j].n_combos; c2++)
+		if (wanted(pl, o, rm->pos[j].node_base + c2, o->move, floor, &hv))
+			return 1;
+	return 0;
+}
+
 hylo_real hylo_planner_group_key(void *ctx, hylo_search *s, uint32_t u, uint32_t group)
 {
 	hylo_planner *pl = ctx;
@@ -751,7 +790,9 @@ hylo_real hylo_planner_group_key(void *ctx, hylo_search *s, uint32_t u, uint32_t
 	if (j == HYLO_NO_POSITION)
 		return -INFINITY;   /* not ours: resolve says so */
 	offer_for(pl, s, u, &o);
-	group_bounds(pl, v, j, lb);
+	if (!may_want(pl, &o, v, j))
+		return INFINITY;
+	group_bounds(pl, v, group, j, lb);
 	/* Every wanted head: another layer's copy of v may have filled the
 	 * cache since, and this group's heads have not gone out. */
 	return pending_key(pl, &o, v, group, j, lb, 0, &need);

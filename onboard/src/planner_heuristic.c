@@ -34,7 +34,26 @@ typedef struct {
 	const hylo_search *s;
 	uint32_t off[2];
 	uint32_t n_off;
+	/* The search being expanded and its tail's cost g (NULL: none): heads
+	 * the edge would not improve are left out, and, with beyond, those the
+	 * search would never take: beyond[v] plus the head's cost reaches cap
+	 * (the layered search's pruning by L; the forward search's keys after
+	 * the last cap). */
+	const hylo_search *improve;
+	const hylo_real *beyond;
+	hylo_real g, cap;
 } copies;
+
+/* 1 when the edge into v at cost would change nothing (see copies). */
+static int useless(const copies *cp, uint32_t v, hylo_real cost)
+{
+	hylo_real g;
+
+	if (!cp->improve)
+		return 0;
+	g = cp->g + cost;   /* as the search adds them */
+	return !(g < hylo_search_cost_of(cp->improve, v)) || (cp->beyond && cp->beyond[v] + g >= cp->cap);
+}
 
 static hylo_status push(hylo_planner *pl, const copies *cp, uint32_t u, hylo_real cost,
 			uint32_t *heads, hylo_real *costs, uint32_t cap, uint32_t *n)
@@ -42,7 +61,7 @@ static hylo_status push(hylo_planner *pl, const copies *cp, uint32_t u, hylo_rea
 	uint32_t k;
 
 	for (k = 0; k < cp->n_off; k++) {
-		if (cp->s && hylo_search_closed(cp->s, u + cp->off[k]))
+		if ((cp->s && hylo_search_closed(cp->s, u + cp->off[k])) || useless(cp, u + cp->off[k], cost))
 			continue;
 		if (*n >= cap)
 			return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
@@ -69,6 +88,20 @@ static int open_copies(const hylo_planner *pl, const copies *cp, uint32_t i, uin
 	return any;
 }
 
+/* 1 when every copy marked in open[] of the nodes of position p would be
+ * left out as useless even through an edge costing floor (the least bound
+ * of the pair's edges): their bounds need not be computed. */
+static int all_useless(const copies *cp, const hylo_position *p, const uint8_t *open, hylo_real floor)
+{
+	uint32_t c, k;
+
+	for (c = 0; c < p->n_combos; c++)
+		for (k = 0; k < cp->n_off; k++)
+			if ((open[c] & (1u << k)) && !useless(cp, p->node_base + c + cp->off[k], floor))
+				return 0;
+	return 1;
+}
+
 /* Appends the copies open_copies marked in open[] of the nodes of
  * position p, node c's with cost lb[c]. */
 static hylo_status push_open(hylo_planner *pl, const copies *cp, const hylo_position *p,
@@ -79,7 +112,8 @@ static hylo_status push_open(hylo_planner *pl, const copies *cp, const hylo_posi
 
 	for (c = 0; c < p->n_combos; c++)
 		for (k = 0; k < cp->n_off; k++) {
-			if (!(open[c] & (1u << k)))
+			if (!(open[c] & (1u << k)) ||
+			    useless(cp, p->node_base + c + cp->off[k], lb[c]))
 				continue;
 			if (m >= cap)
 				return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
@@ -124,7 +158,10 @@ static hylo_status position_predecessors(hylo_planner *pl, const copies *cp, uin
 	uint8_t open[HYLO_MAX_COMBOS];
 	hylo_pair_bound pb;
 
-	if (!open_copies(pl, cp, i, open))
+	/* The layered search's pruning leaves out half at once (the plain
+	 * search's few: not worth the look there). */
+	if (!open_copies(pl, cp, i, open) ||
+	    (cp->beyond && all_useless(cp, p, open, hylo_planner_pair_floor(pl, i, j))))
 		return HYLO_OK;
 	if (a == UINT32_MAX)
 		hylo_planner_pair_bound(pl, i, j, &pb);
@@ -180,6 +217,9 @@ static hylo_status expand_backward(void *ctx, hylo_search *s, uint32_t v, uint32
 	cp.s = s;
 	cp.off[0] = 0;
 	cp.n_off = 1;
+	cp.improve = s;
+	cp.beyond = NULL;
+	cp.g = hylo_search_cost(s, v);
 	if (rm->node_pos[v] == pl->start_pos && !isfinite(pl->h_reach))   /* every node is wanted */
 		return HYLO_OK;
 	if (rm->node_pos[v] == pl->start_pos)   /* its distance is known: go on to the sentinel */
@@ -311,12 +351,16 @@ static int moves_into(const hylo_planner *pl, uint32_t l, uint8_t m, uint32_t lh
 }
 
 /* The forward search's heuristic: the current one (A* from the start, so
- * that the cap can grow and the search go on). */
+ * that the cap can grow and the search go on), +inf in the layers above
+ * the live ones (n_live, live_layers; they only shrink as goal copies
+ * close): no path comes down from them. */
 static hylo_real forward_h(void *ctx, uint32_t u)
 {
 	const hylo_planner *pl = ctx;
 
-	return u < layered_source(pl) ? hylo_planner_h(pl, u) : 0;
+	if (u >= layered_source(pl))
+		return 0;
+	return u / pl->layer_stride < pl->n_live ? hylo_planner_h(pl, u) : INFINITY;
 }
 
 /* The forward bound-distances from the start's copy in layer 0, in order of
@@ -347,9 +391,13 @@ static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t u, uint32_
 	moves.s = s;
 	moves.off[0] = (moves_into(pl, l, rm->pos[i].mode, l) ? l : l + 1) * stride;
 	moves.n_off = 1;
-	switches.s = s;
+	moves.improve = s;
+	moves.g = hylo_search_cost(s, u);
+	/* After the last cap it is not resumed: keys above it never come. */
+	moves.beyond = pl->cap == pl->bound && pl->h_layered ? pl->h_node : NULL;
+	moves.cap = nextafter(pl->layered_cap, INFINITY);   /* a key above layered_cap */
+	switches = moves;
 	switches.off[0] = l * stride;
-	switches.n_off = 1;
 	hylo_planner_node_state(pl, i, c, tail);
 	adj = hylo_planner_neighbours(pl, i, &n_adj);
 	for (k = 0; k <= n_adj && st == HYLO_OK; k++) {
@@ -395,6 +443,7 @@ static hylo_status expand_layered(void *ctx, hylo_search *s, uint32_t u, uint32_
 	if (u == src) {
 		goal.s = pl->layered_forward;   /* its closed goal copies are found */
 		goal.n_off = 1;
+		goal.improve = NULL;
 		for (l = 0; l < pl->layers && st == HYLO_OK; l++) {
 			goal.off[0] = l * stride;
 			st = push(pl, &goal, rm->n_nodes + 1, 0, heads, costs, cap, n);
@@ -414,11 +463,15 @@ static hylo_status expand_layered(void *ctx, hylo_search *s, uint32_t u, uint32_
 	mode = rm->pos[rm->node_pos[v]].mode;
 	moves.s = s;
 	moves.n_off = 0;
+	moves.improve = s;
+	moves.beyond = pl->h_forward;
+	moves.g = hylo_search_cost(s, u);
+	moves.cap = pl->layered_cap;
 	if (moves_into(pl, lh, mode, lh))
 		moves.off[moves.n_off++] = lh * stride;
 	if (lh > 0 && moves_into(pl, lh - 1, mode, lh))
 		moves.off[moves.n_off++] = (lh - 1) * stride;
-	switches.s = s;
+	switches = moves;
 	switches.off[0] = lh * stride;
 	switches.n_off = 1;
 	return predecessors(pl, &moves, &switches, v, heads, costs, cap, n);
@@ -525,12 +578,12 @@ static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hyl
 	hylo_outcome outcome = HYLO_NO_PATH;
 	hylo_graph g;
 	hylo_status st;
-	uint32_t live;
 	int reached;
 
 	*done = 0;
 	/* Room for slightly different rounding of the same sums in the search. */
 	pl->layered_cap = cap * (1 + 1e-9) + 1e-9;
+	pl->n_live = live_layers(pl, fwd);
 	st = forward(pl, &reached);
 	if (st != HYLO_OK || !reached || !budget_left(pl, &budget))
 		return st;
@@ -547,11 +600,10 @@ static hylo_status layer_heuristic(hylo_planner *pl, const hylo_search *fwd, hyl
 	if (st != HYLO_OK || outcome != HYLO_NO_PATH)
 		return st;
 	pl->h_valid = 0;   /* h_node is indexed by layer now */
-	live = live_layers(pl, fwd);
 	for (u = 0; u < src; u++) {
 		hylo_real d = hylo_search_cost(s, u), rough = pl->layered_cap - pl->h_forward[u];
 
-		if (isinf(pl->h_forward[u]) || u / pl->layer_stride >= live)
+		if (isinf(pl->h_forward[u]) || u / pl->layer_stride >= pl->n_live)
 			d = INFINITY;
 		else if (!last && d > rough)
 			d = rough > 0 ? rough : 0;

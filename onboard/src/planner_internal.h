@@ -67,6 +67,10 @@ void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hyl
 void hylo_planner_pair_bound_into(hylo_planner *pl, uint32_t i, uint32_t j, uint32_t a,
 				  hylo_pair_bound *pb);
 
+/* The least bound of any edge from position i to j: its mode's floor for
+ * their distance (every bound is at least that). */
+hylo_real hylo_planner_pair_floor(const hylo_planner *pl, uint32_t i, uint32_t j);
+
 /* The bound of the edge from combination ci (state tail) of the pair's
  * first position to combination cj (state head) of its second. */
 hylo_real hylo_planner_bound(const hylo_pair_bound *pb, uint32_t ci, const hylo_real *tail,

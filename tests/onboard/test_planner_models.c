@@ -585,6 +585,26 @@ static void check_alternatives(const tu_map *m, hylo_goal g, uint32_t k_wanted, 
 	free(alt);
 }
 
+/* The window's edge: within just above the dearest class's cost over the
+ * first, which must still be listed (the searches' pruning keeps paths up
+ * to the window, rounding aside). */
+static void check_window_edge(const tu_map *m, hylo_goal g)
+{
+	hylo_goal every = g;
+	double first, dearest;
+
+	set_map(m);
+	every.alternatives = HYLO_MAX_ALTERNATIVES;
+	every.alternatives_within = INFINITY;
+	hylo_planner_plan(planner, &every, plan);
+	assert_int_equal(plan->outcome, HYLO_FOUND);
+	assert_true(plan->n_alternatives >= 2);
+	first = plan->alternative_cost[0];
+	dearest = plan->alternative_cost[plan->n_alternatives - 1];
+	check_alternatives(m, g, HYLO_MAX_ALTERNATIVES, dearest / first * (1 + 1e-7));
+	assert_true(plan->alternative_cost[plan->n_alternatives - 1] == dearest);
+}
+
 static void test_alternatives(void **state)
 {
 	tu_map m;
@@ -604,6 +624,19 @@ static void test_alternatives(void **state)
 	tm_small_chasm(&m);
 	check_alternatives(&m, tm_chasm_goal(), HYLO_MAX_ALTERNATIVES, INFINITY);
 	tu_map_free(&m);
+}
+
+static void test_alternatives_window_edge(void **state)
+{
+	tu_map river, chasm;
+
+	(void)state;
+	tm_small_river(&river);
+	check_window_edge(&river, tm_river_goal());
+	tu_map_free(&river);
+	tm_small_chasm(&chasm);
+	check_window_edge(&chasm, tm_chasm_goal());
+	tu_map_free(&chasm);
 }
 
 /* ---- sizing ------------------------------------------------------------- */
@@ -657,6 +690,7 @@ int main(void)
 		cmocka_unit_test(test_anytime),
 		cmocka_unit_test(test_anytime_alternatives),
 		cmocka_unit_test(test_alternatives),
+		cmocka_unit_test(test_alternatives_window_edge),
 		cmocka_unit_test(test_sizing),
 	};
 

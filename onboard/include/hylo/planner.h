@@ -205,6 +205,7 @@ typedef struct {
 	hylo_search layer_search;       /* its backward searches */
 	hylo_search forward_search;     /* its forward search, resumed as the cap grows */
 	int forward_begun;              /* forward_search belongs to this goal */
+	uint32_t n_live;                /* layers 0 .. n_live - 1 can still reach an open goal copy */
 	hylo_real h_forward[HYLO_MAX_NODES]; /* every node copy's bound-distance from the start, or less */
 	const hylo_search *layered_forward;  /* while it runs: the alternatives' search */
 	hylo_real layered_cap;          /* paths dearer than this are not wanted */

@@ -225,6 +225,13 @@ static inline int hylo_search_mark_open(const hylo_search *s, uint32_t first, ui
 /** Best known cost from the start to v; +inf when v was not reached. */
 hylo_real hylo_search_cost(const hylo_search *s, uint32_t v);
 
+/** The same for v < n_nodes, unchecked and inline: expand callbacks ask it
+ * for every head, to leave out those the edge would not improve. */
+static inline hylo_real hylo_search_cost_of(const hylo_search *s, uint32_t v)
+{
+	return s->g[v];
+}
+
 /** Predecessor of v on its best path; HYLO_NO_NODE for the start or unreached. */
 uint32_t hylo_search_parent(const hylo_search *s, uint32_t v);
 
