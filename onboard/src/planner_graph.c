@@ -120,7 +120,8 @@ void hylo_planner_bound_tables(hylo_planner *pl)
 hylo_real hylo_planner_pair_floor(const hylo_planner *pl, uint32_t i, uint32_t j)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
-	const hylo_mode_model *mm = &pl->robot->modes[hylo_robot_mode_index(pl->robot, (hylo_mode)rm->pos[i].mode)];
+	int k = hylo_robot_mode_index(pl->robot, (hylo_mode)rm->pos[i].mode);
+	const hylo_mode_model *mm = &pl->robot->modes[k];
 
 	return floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
 }

@@ -52,7 +52,8 @@ static int useless(const copies *cp, uint32_t v, hylo_real cost)
 	if (!cp->improve)
 		return 0;
 	g = cp->g + cost;   /* as the search adds them */
-	return !(g < hylo_search_cost_of(cp->improve, v)) || (cp->beyond && cp->beyond[v] + g >= cp->cap);
+	return !(g < hylo_search_cost_of(cp->improve, v)) ||
+	       (cp->beyond && cp->beyond[v] + g >= cp->cap);
 }
 
 static hylo_status push(hylo_planner *pl, const copies *cp, uint32_t u, hylo_real cost,
@@ -61,7 +62,8 @@ static hylo_status push(hylo_planner *pl, const copies *cp, uint32_t u, hylo_rea
 	uint32_t k;
 
 	for (k = 0; k < cp->n_off; k++) {
-		if ((cp->s && hylo_search_closed(cp->s, u + cp->off[k])) || useless(cp, u + cp->off[k], cost))
+		if ((cp->s && hylo_search_closed(cp->s, u + cp->off[k])) ||
+		    useless(cp, u + cp->off[k], cost))
 			continue;
 		if (*n >= cap)
 			return hylo_fail(&pl->reason, HYLO_E_CAP_SUCCESSORS,
@@ -91,7 +93,8 @@ static int open_copies(const hylo_planner *pl, const copies *cp, uint32_t i, uin
 /* 1 when every copy marked in open[] of the nodes of position p would be
  * left out as useless even through an edge costing floor (the least bound
  * of the pair's edges): their bounds need not be computed. */
-static int all_useless(const copies *cp, const hylo_position *p, const uint8_t *open, hylo_real floor)
+static int all_useless(const copies *cp, const hylo_position *p, const uint8_t *open,
+		       hylo_real floor)
 {
 	uint32_t c, k;
 
