@@ -117,13 +117,18 @@ void hylo_planner_bound_tables(hylo_planner *pl)
 		memset(pl->pair_turn, TURN_UNKNOWN, (size_t)rm->n_adjacency * pl->pair_turn_stride);
 }
 
+/* The floor of mode model mm for an edge from a to b. */
+static hylo_real floor_of(const hylo_mode_model *mm, hylo_point a, hylo_point b)
+{
+	return floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(a, b);
+}
+
 hylo_real hylo_planner_pair_floor(const hylo_planner *pl, uint32_t i, uint32_t j)
 {
 	const hylo_roadmap *rm = &pl->roadmap;
 	int k = hylo_robot_mode_index(pl->robot, (hylo_mode)rm->pos[i].mode);
-	const hylo_mode_model *mm = &pl->robot->modes[k];
 
-	return floor_j(mm) + floor_per_m(mm) * hylo_roadmap_distance(rm->pos[i].p, rm->pos[j].p);
+	return floor_of(&pl->robot->modes[k], rm->pos[i].p, rm->pos[j].p);
 }
 
 /* The pair's bound parameters; the bearing and its wrap per heading only
@@ -143,7 +148,7 @@ static void pair_setup(const hylo_planner *pl, uint32_t i, uint32_t j, int with_
 	air = hylo_mode_describe(pb->mode)->air;
 	pb->slot = hylo_robot_mode_index(pl->robot, pb->mode);
 	mm = &pl->robot->modes[pb->slot];
-	pb->floor = hylo_planner_pair_floor(pl, i, j);
+	pb->floor = floor_of(mm, a, b);
 	pb->model = mm->model && mm->model->envelope &&
 			    mm->model->n_features == hylo_feature_count(pb->mode)
 		    ? mm->model : NULL;
@@ -219,6 +224,20 @@ void hylo_planner_pair_bound_into(hylo_planner *pl, uint32_t i, uint32_t j, uint
 			for (h2 = 0; h2 < nh; h2++)
 				cells[h1 * nh + h2] = turn_cell(pb, h1, h2);
 	pb->turn_cells = cells;
+}
+
+void hylo_planner_pair_bound_to(hylo_planner *pl, uint32_t i, uint32_t k, uint32_t j,
+				hylo_pair_bound *pb)
+{
+	const hylo_roadmap *rm = &pl->roadmap;
+	uint32_t a;
+
+	if (k == HYLO_GOAL_GROUP || i >= rm->n_positions ||
+	    (a = rm->adj_reverse[rm->pos[i].adj_begin + k]) == UINT32_MAX) {
+		hylo_planner_pair_bound(pl, i, j, pb);
+		return;
+	}
+	hylo_planner_pair_bound_into(pl, i, j, a, pb);
 }
 
 /* hylo_svr_envelope_value, one lookup when both speeds are on nodes. */
@@ -527,22 +546,6 @@ static int wanted(const hylo_planner *pl, const offer *o, uint32_t v, uint32_t l
 	return !(pl->use_heuristic && o->g + lb + *hv > pl->bound * (1 + BOUND_SLACK));
 }
 
-/* The bound parameters of the pair of group `group` of a node of position
- * i (its neighbour j): the turn cells cached under j's entry naming i. */
-static void group_pair_bound(hylo_planner *pl, uint32_t i, uint32_t group, uint32_t j,
-			     hylo_pair_bound *pb)
-{
-	const hylo_roadmap *rm = &pl->roadmap;
-	uint32_t a;
-
-	if (group == HYLO_GOAL_GROUP || i >= rm->n_positions ||
-	    (a = rm->adj_reverse[rm->pos[i].adj_begin + group]) == UINT32_MAX) {
-		hylo_planner_pair_bound(pl, i, j, pb);
-		return;
-	}
-	hylo_planner_pair_bound_into(pl, i, j, a, pb);
-}
-
 /* Where group costs come from and go to: the cache for roadmap nodes' groups. */
 static hylo_real *group_costs(hylo_planner *pl, uint32_t u, uint32_t group, int create)
 {
@@ -613,7 +616,7 @@ static hylo_status resolve_group(hylo_planner *pl, const offer *o, uint32_t u, u
 	if (lazy && cached && o->s && pl->use_heuristic)
 		next = hylo_search_min_key(o->s);
 	hylo_planner_node_state(pl, i, c, tail);
-	group_pair_bound(pl, i, group, j, &pb);
+	hylo_planner_pair_bound_to(pl, i, group, j, &pb);
 	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 	for (c2 = 0; c2 < q->n_combos; c2++) {
 		got[c2] = NAN;
@@ -660,7 +663,7 @@ static void group_bounds(hylo_planner *pl, uint32_t u, uint32_t group, uint32_t 
 	hylo_pair_bound pb;
 
 	hylo_planner_node_state(pl, i, c, tail);
-	group_pair_bound(pl, i, group, j, &pb);
+	hylo_planner_pair_bound_to(pl, i, group, j, &pb);
 	hylo_planner_bounds_from(&pb, c, tail, j, lb);
 }
 

@@ -411,11 +411,7 @@ static hylo_status expand_forward(void *ctx, hylo_search *s, uint32_t u, uint32_
 			break;
 		if (!open_copies(pl, &moves, j, open))
 			continue;
-		/* The pair's turn cells are cached under j's entry naming i. */
-		if (k < n_adj && i < rm->n_positions && rm->adj_reverse[rm->pos[i].adj_begin + k] != UINT32_MAX)
-			hylo_planner_pair_bound_into(pl, i, j, rm->adj_reverse[rm->pos[i].adj_begin + k], &pb);
-		else
-			hylo_planner_pair_bound(pl, i, j, &pb);
+		hylo_planner_pair_bound_to(pl, i, k < n_adj ? k : HYLO_GOAL_GROUP, j, &pb);
 		hylo_planner_bounds_from(&pb, c, tail, j, lb);
 		for (c2 = 0; c2 < rm->pos[j].n_combos; c2++)
 			if (!isfinite(lb[c2]))

@@ -67,6 +67,12 @@ void hylo_planner_pair_bound(const hylo_planner *pl, uint32_t i, uint32_t j, hyl
 void hylo_planner_pair_bound_into(hylo_planner *pl, uint32_t i, uint32_t j, uint32_t a,
 				  hylo_pair_bound *pb);
 
+/* The same for the edges from position i to j, its neighbour k in
+ * hylo_planner_neighbours (HYLO_GOAL_GROUP: the goal), with the turn cells
+ * cached under j's entry naming i when there is one. */
+void hylo_planner_pair_bound_to(hylo_planner *pl, uint32_t i, uint32_t k, uint32_t j,
+				hylo_pair_bound *pb);
+
 /* The least bound of any edge from position i to j: its mode's floor for
  * their distance (every bound is at least that). */
 hylo_real hylo_planner_pair_floor(const hylo_planner *pl, uint32_t i, uint32_t j);
