@@ -340,7 +340,9 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 		a[2] = speed();
 		b[0] = rad * std::cos(ang), b[1] = rad * std::sin(ang);
 		b[2] = speed();
-		b[3] = r.uniform(-kPi, kPi);
+		// A half turn is the one towards the goal, as the features price it
+		// (hylo_relative); no committed row comes within the tie of pi.
+		b[3] = hylo_half_turn_towards(r.uniform(-kPi, kPi), b[1]);
 	} else if (d.layout == HYLO_LAYOUT_SPATIAL) {
 		auto ball = [&](double radius, double *v) {
 			double x, y, z;

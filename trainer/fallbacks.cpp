@@ -175,13 +175,14 @@ MultiPhaseSolution finer_mesh(const RobotParams &robot, const std::vector<Waypoi
 // Every edge of the plan solved on its own (strategy starts), joined in
 // time; a guard pair adds its switching cost. Not converged at the first
 // edge that fails, which status_text names.
-MultiPhaseSolution edges_joined(const RobotParams &robot, const std::vector<Waypoint> &plan,
+MultiPhaseSolution edges_joined(const RobotParams &robot, const std::vector<Waypoint> &given,
 				const TakeoffLanding &costs, const SolveOptions &opt)
 {
 	SolveOptions edge_opt = opt;
 	edge_opt.strategy_starts = true;
 	MultiPhaseSolution out;
 	out.converged = true;
+	const std::vector<Waypoint> plan = unwound_headings(given);
 	for (size_t i = 1; i < plan.size(); i++) {
 		const Waypoint &a = plan[i - 1], &b = plan[i];
 		const hylo_mode ma = a.mode, mb = b.mode;

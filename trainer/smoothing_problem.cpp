@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "hylo/features.h"
 #include "trainer/map_guards.hpp"
 
 namespace hylo::trainer {
@@ -302,10 +303,11 @@ void join_switches(Layout &l, const RobotParams &robot, const std::vector<Waypoi
 
 }  // namespace
 
-MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<Waypoint> &plan,
+MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<Waypoint> &given,
 				    const TerrainGrid &map, const TakeoffLanding &costs, const SmoothOptions &opt)
 {
-	check_waypoints(robot, plan);
+	check_waypoints(robot, given);
+	const std::vector<Waypoint> plan = unwound_headings(given);
 	Layout l = lay_out_phases(robot, plan, map, opt);
 	const std::unique_ptr<CorridorMaps> maps = corridor_maps(robot, map, opt, l.p.notes);
 	if (maps)
@@ -314,6 +316,19 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 	join_cuts(l, robot, plan);
 	join_switches(l, robot, plan, map, costs, opt, maps.get());
 	return std::move(l.p);
+}
+
+std::vector<Waypoint> unwound_headings(const std::vector<Waypoint> &plan)
+{
+	std::vector<Waypoint> out = plan;
+	for (size_t i = 1; i < plan.size(); i++) {
+		if (!mode_desc(plan[i - 1].mode).planar || !mode_desc(plan[i].mode).planar)
+			continue;
+		double r[HYLO_RELATIVE_PLANAR];
+		hylo_relative(plan[i].mode, plan[i - 1].state, plan[i].state, r);
+		out[i].state[3] = out[i - 1].state[3] + r[2];
+	}
+	return out;
 }
 
 std::vector<Waypoint> straightened(const std::vector<Waypoint> &plan)

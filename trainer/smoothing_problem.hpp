@@ -69,6 +69,14 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 				    const TerrainGrid &map, const TakeoffLanding &costs,
 				    const SmoothOptions &opt = {});
 
+// The plan with each ground or water heading continuing the one before by
+// the turn the planner priced (hylo_relative: within pi, a half turn towards
+// the goal's side), so that a guess or an edge's solve turns as the plan was
+// costed, never the long way round across the wrap at +-pi. The last heading
+// is the goal's up to whole turns (the same pose). smoothing_problem applies
+// it; so must anything else that solves between a plan's waypoints.
+std::vector<Waypoint> unwound_headings(const std::vector<Waypoint> &plan);
+
 // The plan with every run of one mode straightened: its inner waypoints
 // moved onto the line between the run's end points (same count, evenly
 // spaced; ground and water headings along the line). Ends, switch points,

@@ -8,7 +8,7 @@ hylo_real hylo_envelope_turn_of(hylo_real bearing, hylo_real dtheta)
 {
 	hylo_real s = bearing < 0 ? -1 : 1, b = fabs(bearing);
 
-	return b + fabs(hylo_wrap_angle(s * dtheta - b));
+	return b + fabs(hylo_wrap_angle(s * hylo_half_turn_towards(dtheta, bearing) - b));
 }
 
 hylo_real hylo_envelope_turn(hylo_real phi, hylo_real theta1, hylo_real theta2)

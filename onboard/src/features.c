@@ -54,6 +54,15 @@ hylo_real hylo_wrap_angle(hylo_real a)
 	return w;
 }
 
+hylo_real hylo_half_turn_towards(hylo_real dtheta, hylo_real side)
+{
+	const hylo_real pi = 3.141592653589793238462643383279;
+
+	if (!(fabs(dtheta) >= pi - HYLO_HALF_TURN_TIE))
+		return dtheta;
+	return side < 0 ? -fabs(dtheta) : fabs(dtheta);
+}
+
 /* Flight's frame: the heading of the horizontal displacement, else of the
  * start's horizontal velocity, else of the goal's, else the world's. */
 static void flight_frame(const hylo_real *tail, const hylo_real *head, hylo_real *c, hylo_real *s)
@@ -92,7 +101,7 @@ unsigned hylo_relative(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 
 		f[0] = c * dx + s * dy;
 		f[1] = -s * dx + c * dy;
-		f[2] = hylo_wrap_angle(head[3] - tail[3]);
+		f[2] = hylo_half_turn_towards(hylo_wrap_angle(head[3] - tail[3]), f[1]);
 		f[3] = tail[2];
 		f[4] = head[2];
 		return HYLO_RELATIVE_PLANAR;

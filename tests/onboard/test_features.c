@@ -128,14 +128,35 @@ static void test_planar_known_poses(void **state)
 		assert_features_equal(f, want, HYLO_FEATURES_PLANAR);
 	}
 	/* A half circle to the right: goal 2 m to the right, heading reversed.
-	 * Mirrored to the left: dy' = 2, dtheta = pi (wrapped into (-pi, pi],
-	 * then signed), bearing pi/2; turn pi, on one arc. */
+	 * A half turn turns towards the goal (right, dtheta = -pi), whichever
+	 * side of pi the heading is written on. Mirrored to the left: dy' = 2,
+	 * s * dtheta = pi, bearing pi/2; turn pi, on one arc. */
 	{
-		const double b[4] = { 0, -2, 0.5, PI };
-		double want[HYLO_FEATURES_PLANAR] = { 0, 2, -PI, 0.5, 0.5, 2, PI, 0 };
+		const double heading[3] = { PI, -PI, 3.141593 };
+		double want[HYLO_FEATURES_PLANAR] = { 0, 2, PI, 0.5, 0.5, 2, PI, 0 };
+		unsigned k;
 
-		planar(o, b, f);
-		assert_features_equal(f, want, HYLO_FEATURES_PLANAR);
+		for (k = 0; k < 3; k++) {
+			const double b[4] = { 0, -2, 0.5, heading[k] };
+
+			planar(o, b, f);
+			want[2] = fabs(hylo_wrap_angle(heading[k]));
+			want[6] = want[2];
+			want[7] = PI - want[2];
+			assert_features_equal(f, want, HYLO_FEATURES_PLANAR);
+		}
+	}
+	/* The same with the goal on the left turns left; a heading change just
+	 * short of the tie keeps its side. */
+	{
+		const double left[4] = { 0, 2, 0.5, -3.141593 };
+		const double shy[4] = { 0, 2, 0.5, -(PI - 2 * HYLO_HALF_TURN_TIE) };
+		double r[HYLO_RELATIVE_PLANAR];
+
+		hylo_relative(HYLO_MODE_GROUND, o, left, r);
+		assert_true(r[2] > 3.1415 && r[1] > 0);
+		hylo_relative(HYLO_MODE_GROUND, o, shy, r);
+		assert_true(r[2] < -3.1415);
 	}
 	/* Behind, same heading: face it (pi), drive, turn back (pi): 2 pi. The
 	 * arc through it would need a full turn: mismatch 0 after wrapping;

@@ -639,6 +639,64 @@ static void test_alternatives_window_edge(void **state)
 	tu_map_free(&chasm);
 }
 
+/* ---- half turns ---------------------------------------------------------- */
+
+/* g with every heading of pi (grid, start, goal) written as pi_as. */
+static hylo_goal pi_written_as(hylo_goal g, hylo_real pi_as)
+{
+	uint32_t k;
+
+	for (k = 0; k < g.sampling.n_headings; k++)
+		if (g.sampling.headings[k] == TU_PI)
+			g.sampling.headings[k] = pi_as;
+	if (g.start[3] == TU_PI)
+		g.start[3] = pi_as;
+	if (g.goal[3] == TU_PI)
+		g.goal[3] = pi_as;
+	return g;
+}
+
+/* A heading of pi costs the same however it is written (a grid's 3.141593
+ * lies above pi, and the wrap would make a half turn to it from 0 a right
+ * turn, from -3.141593 a left one): half turns turn towards the goal. */
+static void check_half_turns(const tu_map *m, hylo_goal base)
+{
+	static const hylo_real written[2] = { 3.141593, -3.141593 };
+	int i, k;
+
+	set_map(m);
+	for (i = 0; i < PAIRS; i++) {
+		hylo_goal g = i == 0 ? base : random_pair(&base, m);
+		double cost;
+
+		hylo_planner_plan(planner, &g, plan);
+		assert_int_equal(plan->outcome, HYLO_FOUND);
+		cost = plan->total_cost;
+		for (k = 0; k < 2; k++) {
+			hylo_goal w = pi_written_as(g, written[k]);
+
+			hylo_planner_plan(planner, &w, plan);
+			assert_int_equal(plan->outcome, HYLO_FOUND);
+			if (!(fabs(plan->total_cost - cost) <= 1e-6 * cost))
+				fail_msg("%s pair %d, pi written as %.7f: %.12g, as pi: %.12g", m->robot, i,
+					 written[k], plan->total_cost, cost);
+		}
+	}
+}
+
+static void test_half_turns(void **state)
+{
+	tu_map m;
+
+	(void)state;
+	tm_small_chasm(&m);
+	check_half_turns(&m, tm_chasm_goal());
+	tu_map_free(&m);
+	tm_small_river(&m);
+	check_half_turns(&m, tm_river_goal());
+	tu_map_free(&m);
+}
+
 /* ---- sizing ------------------------------------------------------------- */
 
 static void test_sizing(void **state)
@@ -691,6 +749,7 @@ int main(void)
 		cmocka_unit_test(test_anytime_alternatives),
 		cmocka_unit_test(test_alternatives),
 		cmocka_unit_test(test_alternatives_window_edge),
+		cmocka_unit_test(test_half_turns),
 		cmocka_unit_test(test_sizing),
 	};
 

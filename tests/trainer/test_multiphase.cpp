@@ -387,6 +387,32 @@ void graph_path_corridors(const RobotParams &ambot)
 	      ca.text() + " / " + cb.text());
 }
 
+// Headings continue across the wrap at +-pi as the planner priced them: a
+// quarter turn left from 3pi/4 to -3pi/4 (written 2 pi below) and a half
+// turn written as 3.141593 (just above pi, which the wrap makes a right
+// turn) towards a goal on the left are guessed, and end, turning left.
+void headings_unwound(const RobotParams &ambot)
+{
+	TerrainGrid m = flat_ground(12, 8, 0.5);
+	auto wp = [](double x, double y, double v, double theta) {
+		Waypoint w;
+		w.mode = HYLO_MODE_GROUND;
+		w.state[0] = x, w.state[1] = y, w.state[2] = v, w.state[3] = theta;
+		return w;
+	};
+	const double kTheta = 4;   // the full state's heading
+	const std::vector<Waypoint> quarter = {wp(2, 2, 0, 2.356194), wp(3, 3, 0.5, 3.141593), wp(3, 5, 0, -2.356194)};
+	const PhaseSpec q = smoothing_problem(ambot, quarter, m, TakeoffLanding{}).phases.at(0);
+	check(std::fabs(q.guess.at(2)[kTheta] - (-2.356194 + 2 * M_PI)) < 1e-6 && q.last_lo.at(kTheta) == q.guess.at(2)[kTheta] &&
+		      q.last_hi.at(kTheta) == q.last_lo.at(kTheta),
+	      "smoothing: headings continue across +-pi (the last one 2 pi above the plan's)",
+	      fmt(q.guess.at(2)[kTheta]) + ", end " + fmt(q.last_lo.at(kTheta)));
+	const std::vector<Waypoint> half = {wp(2, 2, 0, 0), wp(2, 4, 0, 3.141593)};
+	const PhaseSpec h = smoothing_problem(ambot, half, m, TakeoffLanding{}).phases.at(0);
+	check(std::fabs(h.last_lo.at(kTheta) - M_PI) < 1e-6, "smoothing: a half turn turns towards the goal's side",
+	      fmt(h.last_lo.at(kTheta)));
+}
+
 int main(int argc, char **argv)
 {
 	if (!pin_numerics(argc, argv))
@@ -402,6 +428,7 @@ int main(int argc, char **argv)
 	shore_crossing(ambot);
 	corridor_inset(ambot);
 	graph_path_corridors(ambot);
+	headings_unwound(ambot);
 	bad_problems(di);
 	alternatives_choice(di);
 	alternatives_prefer_safe();

@@ -4,7 +4,8 @@
 // costs: start and goal links are not cached) and the edges of the plans,
 // a seeded sample per model and source is solved exactly with the
 // trainer's collocation (training_solve_options: the solver that labelled
-// the training rows), and the model's relative error (prediction - exact)
+// the training rows; ground and marine edges in the tail's frame, as the
+// training rows), and the model's relative error (prediction - exact)
 // / exact is summarized: median and p95 of |error|, the worst |error| and
 // the bias (signed mean), next to the held-out errors on rows drawn like
 // the training rows (each model's provenance string). Edges whose exact
@@ -149,13 +150,29 @@ std::vector<Edge> sample(const std::vector<Edge> &pool, size_t n, uint64_t seed)
 	return out;
 }
 
+// The boundary states the model prices: a planar edge in its tail's frame
+// (relative coordinates, as the training rows are drawn: the start at the
+// origin with heading 0; a half turn towards the goal), others as they are.
+void bvp_states(const Edge &e, double *a, double *b)
+{
+	std::copy_n(e.a, HYLO_XS_DIM, a);
+	std::copy_n(e.b, HYLO_XS_DIM, b);
+	if (!hylo_mode_describe(e.mode)->planar)
+		return;
+	double r[HYLO_RELATIVE_PLANAR];
+	hylo_relative(e.mode, e.a, e.b, r);
+	a[0] = a[1] = a[3] = 0;
+	b[0] = r[0], b[1] = r[1], b[3] = r[2];
+}
+
 // Solves every edge (one forked process each: trainer/processes.hpp).
 void solve_all(std::vector<Edge> &edges, const std::map<std::string, RobotParams> &robots,
 	       const std::vector<std::string> &robot_of, int jobs)
 {
 	std::vector<std::string> res = fork_each(edges.size(), jobs, [&](size_t i) {
-		const Edge &e = edges[i];
-		Solution s = solve_bvp(e.mode, robots.at(robot_of[i]), e.a, e.b, training_solve_options());
+		double a[HYLO_XS_DIM], b[HYLO_XS_DIM];
+		bvp_states(edges[i], a, b);
+		Solution s = solve_bvp(edges[i].mode, robots.at(robot_of[i]), a, b, training_solve_options());
 		char buf[64];
 		std::snprintf(buf, sizeof buf, "%d %.17g", s.converged ? 1 : 0, s.cost);
 		return std::string(buf);

@@ -35,7 +35,9 @@ extern "C" {
  * displacement and the tail and head headings theta1, theta2 [rad]:
  *   b = wrap(phi - theta1), s = b < 0 ? -1 : 1, b = |b|,
  *   dth = s * wrap(theta2 - theta1), turn = b + |wrap(dth - b)|
- * (wrap: hylo_wrap_angle). Straight ahead with the same heading 0; the goal
+ * (wrap: hylo_wrap_angle; a half turn, within HYLO_HALF_TURN_TIE of pi,
+ * turns towards the goal, dth = +|dth|, as in the features:
+ * hylo_half_turn_towards). Straight ahead with the same heading 0; the goal
  * straight behind with the same heading 2 pi. A caller can compute phi once
  * per pair of positions; the result is bit for bit hylo_envelope_args()'s.
  * The features compute it along another path (in the tail's frame), so the

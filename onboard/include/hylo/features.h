@@ -7,7 +7,9 @@
  *   ground, marine: (dx', dy', wrap(theta2 - theta1), vx1, vx2), where
  *                   (dx', dy') is p2 - p1 rotated into the start's heading
  *                   frame: dx' = cos(t1)*dx + sin(t1)*dy,
- *                   dy' = -sin(t1)*dx + cos(t1)*dy                (5)
+ *                   dy' = -sin(t1)*dx + cos(t1)*dy                (5);
+ *                   a heading change within HYLO_HALF_TURN_TIE of pi
+ *                   is the half turn towards the goal's side (sign of dy')
  *   flight:         (p2 - p1, v1, v2), horizontal components rotated
  *                   into the heading of the horizontal displacement
  *                   (else of v1, else of v2): dx' = |(dx, dy)|, dy' = 0
@@ -47,6 +49,11 @@ extern "C" {
 #define HYLO_FEATURES_FLIGHT 9
 #define HYLO_FEATURES_DI 4
 
+/* How close to pi a heading change is a half turn (hylo_half_turn_towards):
+ * well above a grid's rounding (3.141593 - pi = 3.5e-7), well below any two
+ * headings a scene means apart. */
+#define HYLO_HALF_TURN_TIE 1e-5
+
 /** Number of relative coordinates of mode (0 for an invalid mode). */
 unsigned hylo_relative_count(hylo_mode mode);
 
@@ -76,6 +83,18 @@ unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 
 /** a wrapped into (-pi, pi]. */
 hylo_real hylo_wrap_angle(hylo_real a);
+
+/**
+ * A heading change dtheta (wrapped), with a half turn taken towards side:
+ * within HYLO_HALF_TURN_TIE of pi, |dtheta| with the sign of side (side < 0:
+ * a right turn, else left); otherwise dtheta. A half turn is two turns, left
+ * and right, and the wrap picks one by the headings' last digit (a grid's
+ * 3.141593 is above pi); towards the goal (side = dy', the displacement's
+ * left component in the tail's frame) is the cheaper one unless the two
+ * cost nearly the same (docs/decisions.md, "A half turn turns towards the
+ * goal"). Used by hylo_relative and hylo_envelope_turn_of alike.
+ */
+hylo_real hylo_half_turn_towards(hylo_real dtheta, hylo_real side);
 
 #ifdef __cplusplus
 }
