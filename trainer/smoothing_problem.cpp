@@ -318,16 +318,19 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 	return std::move(l.p);
 }
 
+double priced_turn(hylo_mode mode, const double *tail, const double *head)
+{
+	double r[HYLO_RELATIVE_PLANAR];
+	hylo_relative(mode, tail, head, r);
+	return r[2];
+}
+
 std::vector<Waypoint> unwound_headings(const std::vector<Waypoint> &plan)
 {
 	std::vector<Waypoint> out = plan;
-	for (size_t i = 1; i < plan.size(); i++) {
-		if (!mode_desc(plan[i - 1].mode).planar || !mode_desc(plan[i].mode).planar)
-			continue;
-		double r[HYLO_RELATIVE_PLANAR];
-		hylo_relative(plan[i].mode, plan[i - 1].state, plan[i].state, r);
-		out[i].state[3] = out[i - 1].state[3] + r[2];
-	}
+	for (size_t i = 1; i < plan.size(); i++)
+		if (mode_desc(plan[i - 1].mode).planar && mode_desc(plan[i].mode).planar)
+			out[i].state[3] = out[i - 1].state[3] + priced_turn(plan[i].mode, plan[i - 1].state, plan[i].state);
 	return out;
 }
 

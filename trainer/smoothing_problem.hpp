@@ -77,6 +77,11 @@ MultiPhaseProblem smoothing_problem(const RobotParams &robot, const std::vector<
 // it; so must anything else that solves between a plan's waypoints.
 std::vector<Waypoint> unwound_headings(const std::vector<Waypoint> &plan);
 
+// The turn the planner priced from the sampled state tail to head of a
+// ground or water mode: their heading change wrapped into (-pi, pi], a half
+// turn towards the goal's side (hylo_relative).
+double priced_turn(hylo_mode mode, const double *tail, const double *head);
+
 // The plan with every run of one mode straightened: its inner waypoints
 // moved onto the line between the run's end points (same count, evenly
 // spaced; ground and water headings along the line). Ends, switch points,

@@ -269,11 +269,8 @@ hylo_status exact_cost(void *ctx, hylo_mode mode, const hylo_real *tail, const h
 			// not the headings' difference, which may go the long way round.
 			double head[HYLO_XS_DIM];
 			std::copy_n(heads[i], HYLO_XS_DIM, head);
-			if (hylo_mode_describe(mode)->planar) {
-				double r[HYLO_RELATIVE_PLANAR];
-				hylo_relative(mode, tail, heads[i], r);
-				head[3] = tail[3] + r[2];
-			}
+			if (hylo_mode_describe(mode)->planar)
+				head[3] = tail[3] + priced_turn(mode, tail, heads[i]);
 			Solution s = solve_bvp(mode, *c->robot, tail, head, SolveOptions());
 			return s.converged ? s.cost : -1.0;
 		} catch (const std::exception &) {

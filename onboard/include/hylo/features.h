@@ -91,8 +91,8 @@ hylo_real hylo_wrap_angle(hylo_real a);
  * and right, and the wrap picks one by the headings' last digit (a grid's
  * 3.141593 is above pi); towards the goal (side = dy', the displacement's
  * left component in the tail's frame) is the cheaper one unless the two
- * cost nearly the same (docs/decisions.md, "A half turn turns towards the
- * goal"). Used by hylo_relative and hylo_envelope_turn_of alike.
+ * cost nearly the same (docs/decisions.md, "Half turns and headings across
+ * +-pi"). Used by hylo_relative and hylo_envelope_turn_of alike.
  */
 hylo_real hylo_half_turn_towards(hylo_real dtheta, hylo_real side);
 
