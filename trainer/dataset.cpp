@@ -18,6 +18,7 @@
 #include <fcntl.h>
 
 #include "hylo/features.h"
+#include "trainer/model_table.hpp"
 #include "trainer/modes.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/processes.hpp"
@@ -61,8 +62,9 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	if (opt.shards > 1)
 		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
 	// Flight pairs have been drawn two ways (v2: with cruise pairs), ground
-	// and marine ones too (v2: speeds at rest); a file of one draw is not
-	// extended with another's. Draw 1 of ground and marine has no line.
+	// and marine ones three (v2: speeds at rest; v3: then cruise pairs); a
+	// file of one draw is not extended with another's. Draw 1 of ground and
+	// marine has no line.
 	if (draws_for(opt.mode, opt.draws) > 1)
 		m << "draws: " << draws_for(opt.mode, opt.draws) << "\n";
 	// Ground and marine labels have come from straight-line starts alone (no
@@ -304,13 +306,26 @@ int draws_for(hylo_mode mode, int requested)
 {
 	const hylo_mode_desc &d = mode_desc(mode);
 	const bool planar = d.planar;
-	const int newest = planar || d.layout == HYLO_LAYOUT_SPATIAL ? 2 : 1;
+	const bool spatial = d.layout == HYLO_LAYOUT_SPATIAL;
+	const int newest = planar ? 3 : 2;
 	if (requested == 0)
 		return newest;
-	if (requested == newest || (planar && requested == 1))
+	if (requested == newest || (!spatial && requested >= 1 && requested <= newest))
 		return requested;
 	throw std::invalid_argument("--draws " + std::to_string(requested) + ": " + hylo_mode_str(mode) + " pairs are drawn " +
-				    (planar ? "as 1 or 2" : "as " + std::to_string(newest) + " only"));
+				    (planar ? "as 1, 2 or 3" : spatial ? "as 2 only" : "as 1 or 2"));
+}
+
+Supplement supplement(hylo_mode mode, int draws)
+{
+	const hylo_mode_desc &d = mode_desc(mode);
+	const int draw = draws_for(mode, draws);
+	const uint64_t paper = with_model_type(mode, [](auto t) { return decltype(t)::type::kDefaultSamples; });
+	if (d.planar && draw >= 3)
+		return {paper, paper / 4};   // 11,520 and 2,880
+	if (d.layout == HYLO_LAYOUT_PHASE && draw >= 2)
+		return {paper, paper};       // 2,000 and 2,000
+	return {};
 }
 
 int existing_draws(const GenOptions &opt)
@@ -331,12 +346,37 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 	const hylo_mode m = p.id;
 	const hylo_mode_desc &d = mode_desc(m);
 	if (d.layout == HYLO_LAYOUT_PLANAR) {
-		const bool rest = draws_for(m, draws) >= 2 && s.speed_min_mps <= 0 && s.speed_max_mps >= 0;
+		const int draw = draws_for(m, draws);
+		const bool rest = draw >= 2 && s.speed_min_mps <= 0 && s.speed_max_mps >= 0;
 		auto speed = [&]() {
 			return rest && r.uniform(0, 1) < kRestFraction ? 0.0 : r.uniform(s.speed_min_mps, s.speed_max_mps);
 		};
-		double rad = s.max_distance_m * std::sqrt(r.uniform(0, 1)), ang = r.uniform(-kPi, kPi);
 		a[0] = 0, a[1] = 0, a[3] = 0;
+		const Supplement sup = supplement(m, draw);
+		if (sup.pairs && i >= sup.from) {
+			// Cruise: the goal on an arc from the start (the turn twice
+			// the goal's bearing, as a path of constant curvature), half
+			// of them exactly, half within 0.3 rad of it; each speed at
+			// rest, at the top speed or between. Energy-optimal paths are
+			// made of such edges, and their cost is a narrow valley: an
+			// Ambot marine edge 2 m ahead from 1 to 0.5 m/s costs 53 J,
+			// 188 J with the goal 0.3 m aside, 65 J on the arc there.
+			// Drawn uniformly they are rare, and the model overpriced
+			// them by up to 75% (docs/decisions.md, "Cruise pairs").
+			auto cruise_speed = [&]() {
+				const double u = r.uniform(0, 1);
+				return rest && u < kRestFraction ? 0.0
+				       : u < kRestFraction + kTopFraction ? s.speed_max_mps
+									  : r.uniform(s.speed_min_mps, s.speed_max_mps);
+			};
+			const double len = s.max_distance_m * r.uniform(0, 1), bearing = r.uniform(-kPi / 4, kPi / 4);
+			a[2] = cruise_speed();
+			b[0] = len * std::cos(bearing), b[1] = len * std::sin(bearing);
+			b[2] = cruise_speed();
+			b[3] = 2 * bearing + (r.uniform(0, 1) < 0.5 ? 0.0 : r.uniform(-0.3, 0.3));
+			return;
+		}
+		double rad = s.max_distance_m * std::sqrt(r.uniform(0, 1)), ang = r.uniform(-kPi, kPi);
 		a[2] = speed();
 		b[0] = rad * std::cos(ang), b[1] = rad * std::sin(ang);
 		b[2] = speed();
@@ -390,6 +430,16 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 		const double lo = d.side > 0 ? 0.0 : -1.0, hi = d.side < 0 ? 0.0 : 1.0;
 		a[0] = r.uniform(lo, hi);
 		a[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
+		const Supplement sup = supplement(m, draws);
+		if (sup.pairs && i >= sup.from) {
+			// Short: the goal within kShortPairMax, inside the side.
+			do {
+				const double dist = kShortPairMax * r.uniform(0, 1), ang = r.uniform(-kPi, kPi);
+				b[0] = a[0] + dist * std::cos(ang);
+				b[1] = a[1] + dist * std::sin(ang);
+			} while (b[0] < lo || b[0] > hi || b[1] < s.speed_min_mps || b[1] > s.speed_max_mps);
+			return;
+		}
 		b[0] = r.uniform(lo, hi);
 		b[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
 	}

@@ -99,17 +99,37 @@ int feature_count(hylo_mode mode);
 // about z are not, by up to 0.1%: ZYX Euler angles).
 std::vector<std::vector<double>> feature_symmetries(hylo_mode mode);
 
-// The draw a run uses: requested (1 or 2; 0: the newest, 2) for ground and
-// marine, 2 for flight, 1 for the double integrator. Throws
-// std::invalid_argument for a draw the mode does not have.
+// The draw a run uses: requested (1, 2 or 3; 0: the newest, 3) for ground
+// and marine, 2 for flight, 1 or 2 (newest 2) for the double integrator.
+// Throws std::invalid_argument for a draw the mode does not have.
 int draws_for(hylo_mode mode, int requested);
 
-// Sample i's pair under draw `draws` (draws_for): x1s, x2s
-// (the record's xs_dim each). Ground and marine, draw 2: each speed is 0
-// with probability kRestFraction, else uniform as in draw 1 (every start,
-// goal and switch point is at rest, and draw 1's uniform speeds never are).
+// A draw's supplement: the pairs from index `from` on (the paper's sample
+// count) are drawn where the planner asks and the first draw is thin, so a
+// dataset of the draw before, up to `from` rows, is a prefix of this one,
+// pair for pair. Ground and marine, draw 3: cruise pairs; the double
+// integrator, draw 2: short pairs. pairs = 0: the draw has none.
+struct Supplement {
+	uint64_t from = 0, pairs = 0;
+};
+Supplement supplement(hylo_mode mode, int draws);
+
+// Sample i's pair under draw `draws` (draws_for): x1s, x2s (the record's
+// xs_dim each).
+// - Ground and marine, draw 2: each speed is 0 with probability
+//   kRestFraction, else uniform as in draw 1 (every start, goal and switch
+//   point is at rest, and draw 1's uniform speeds never are).
+// - Ground and marine, draw 3: draw 2's pairs, then (supplement) cruise
+//   pairs: the goal roughly ahead, a turn of at most a quarter, each speed
+//   at rest with probability kRestFraction, at the top speed with
+//   kTopFraction, else uniform.
+// - Double integrator, draw 2: draw 1's pairs, then (supplement) short
+//   pairs: the goal at a distance uniform on [0, kShortPairMax] in the phase
+//   plane from a start drawn as draw 1's (the planner's edges are its
+//   connection radius long, 0.3 on scenes/di.yaml; draw 1's are 0.7 on
+//   average).
 void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *x1s, double *x2s, int draws = 0);
-inline constexpr double kRestFraction = 0.2;
+inline constexpr double kRestFraction = 0.2, kTopFraction = 0.3, kShortPairMax = 0.5;
 
 // The draw of the dataset already in opt.out_dir (its .meta's "draws:"
 // line; none: 1), or 0 (the newest) when there is none.

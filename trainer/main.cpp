@@ -86,7 +86,8 @@ void usage(FILE *f)
 		"                    replaced atomically when every row is done (resumable, its\n"
 		"                    .meta records the repair; docs/decisions.md)\n"
 		"  --samples N       training pairs: gen extends the dataset to N rows, repair\n"
-		"                    and fit use its first N (default: 11520; flight 17016; di 2000)\n"
+		"                    and fit use its first N (default: ground and marine 14400,\n"
+		"                    11520 under --draws 1 or 2; flight 17016; di 2000)\n"
 		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
 		"                    (default: 4)\n"
 		"  --solutions       gen: also keep each row's solution in <out>/<mode>.solutions.csv\n"
@@ -106,11 +107,14 @@ void usage(FILE *f)
 		"                    and solver options), name the ones to resubmit (exit 1) or\n"
 		"                    move away (exit 2), else merge them into <out>/<mode>.csv,\n"
 		"                    byte for byte an unsharded run's (docs/trainer.md)\n"
-		"  --draws N         ground, marine: how pairs are drawn: 2, speeds at rest with\n"
-		"                    probability 0.2 (the planner's starts, goals and switch\n"
-		"                    points); 1, uniform speeds only (the committed datasets')\n"
-		"                    (recorded in a dataset's .meta; default: the existing\n"
-		"                    dataset's in --out, else 2)\n"
+		"  --draws N         ground, marine: how pairs are drawn: 3, draw 2's first\n"
+		"                    11,520 pairs, then cruise pairs (goal on an arc, speeds at\n"
+		"                    rest, at the top speed or between); 2, speeds at rest\n"
+		"                    with probability 0.2 (the planner's starts, goals and\n"
+		"                    switch points); 1, uniform speeds only (recorded in a\n"
+		"                    dataset's .meta; default: the existing dataset's in --out,\n"
+		"                    else 3); di_neg, di_pos: 2, draw 1's 2,000 pairs, then\n"
+		"                    2,000 short ones; 1 (docs/trainer.md, \"Draws\")\n"
 		"  --segments N      collocation segments (default: 20)\n"
 		"  --ipopt-option NAME=VALUE\n"
 		"                    set an Ipopt option on every solve, after hylo's own settings\n"
@@ -385,10 +389,10 @@ int run(int argc, char **argv)
 	po.gen.mode = id;
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;
-	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(id);
 	if (po.gen.draws == 0)
 		po.gen.draws = existing_draws(po.gen);
 	draws_for(id, po.gen.draws);   // a draw the mode has
+	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(id, po.gen.draws);
 	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
 		stage = po.gen.shards > 1 ? "gen" : "all";
 	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&

@@ -331,10 +331,11 @@ int region_stage(const RobotParams &robot, const PipelineOptions &opt)
 
 }  // namespace
 
-uint64_t default_samples(hylo_mode mode)
+uint64_t default_samples(hylo_mode mode, int draws)
 {
-	return with_model_type(mode,
-			       [](auto t) { return decltype(t)::type::kDefaultSamples; });
+	const Supplement sup = supplement(mode, draws);
+	return sup.pairs ? sup.from + sup.pairs
+			 : with_model_type(mode, [](auto t) { return decltype(t)::type::kDefaultSamples; });
 }
 
 int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage)

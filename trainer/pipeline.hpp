@@ -21,8 +21,10 @@ struct PipelineOptions {
 	bool solutions = false;   // gen: also keep each row's solution for the repair (--solutions)
 };
 
-// The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000 (di).
-uint64_t default_samples(hylo_mode mode);
+// The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000
+// (di); plus the draw's supplement (ground and marine, draw 3: 2,880 cruise
+// pairs; di, draw 2: 2,000 short pairs; dataset.hpp).
+uint64_t default_samples(hylo_mode mode, int draws);
 
 // Runs stage "gen", "repair", "fit", "export", "all" (gen, fit, export) or
 // "gather"; returns the exit code. "repair" repairs the dataset's first

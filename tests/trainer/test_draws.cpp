@@ -1,7 +1,9 @@
 // How training pairs are drawn (draw_pair, --draws): draw 1 of ground is
 // the committed Ambot ground dataset's stream, pair for pair; draw 2 puts
 // each ground and marine speed at rest with probability kRestFraction and
-// keeps every pair inside the trained region; a dataset records its draw
+// keeps every pair inside the trained region; draw 3 is draw 2 up to its
+// supplement, then cruise pairs; the double integrator's draw 2 is draw 1,
+// then short pairs; a dataset records its draw
 // (draw 1 of ground and marine without a line, so the committed metas stay
 // valid), a run adopts the draw of the dataset in its --out, and a draw a
 // mode does not have is refused. No solves. Prints TAP.
@@ -23,6 +25,7 @@ namespace {
 
 using namespace hylo::trainer;
 namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
 
 bool refused(hylo_mode mode, int draws)
 {
@@ -105,11 +108,86 @@ int main()
 		      std::to_string(out) + " outside, " + std::to_string(rest_d1) + " at rest in draw 1");
 	}
 
+	// Draw 3: draw 2's pairs below its supplement, so a draw-2 dataset is
+	// its prefix; cruise pairs from there on.
+	for (const char *m : {"ground", "marine"}) {
+		const ModeParams &p = ambot.mode(m);
+		const uint64_t from = supplement(p.id, 3).from;
+		const TrainedRegion region = trained_region(p);
+		const double reach = p.sampling.max_distance_m, top = p.sampling.speed_max_mps;
+		int differ = 0;
+		for (uint64_t i = 0; i < 2000; i++) {
+			double a2[6] = {0}, b2[6] = {0}, a3[6] = {0}, b3[6] = {0};
+			const uint64_t k = from - 2000 + i;
+			draw_pair(p, 1, k, a2, b2, 2);
+			draw_pair(p, 1, k, a3, b3, 3);
+			for (int j = 0; j < 6; j++)
+				differ += a2[j] != a3[j] || b2[j] != b3[j];
+		}
+		const int n = 20000;
+		int out = 0, off_arc = 0, on_arc = 0, rest = 0, at_top = 0, moving = 0;
+		for (int i = 0; i < n; i++) {
+			double a[6] = {0}, b[6] = {0};
+			draw_pair(p, 1, from + static_cast<uint64_t>(i), a, b, 3);
+			out += !inside(region, a) || !inside(region, b) || std::hypot(b[0], b[1]) > reach ||
+			       a[0] != 0 || a[1] != 0 || a[3] != 0;
+			const double bearing = std::atan2(b[1], b[0]);
+			off_arc += std::fabs(bearing) > kPi / 4 + 1e-12 || std::fabs(b[3] - 2 * bearing) > 0.3 + 1e-12;
+			on_arc += std::fabs(b[3] - 2 * bearing) < 1e-12;
+			for (double v : {a[2], b[2]}) {
+				rest += v == 0;
+				at_top += v == top;
+				moving += v != 0 && v != top;
+			}
+		}
+		const double fr = rest / (2.0 * n), ft = at_top / (2.0 * n), fa = double(on_arc) / n;
+		check(from == 11520 && supplement(p.id, 3).pairs == 2880 && supplement(p.id, 2).pairs == 0 && differ == 0 &&
+			      out == 0 && off_arc == 0 && std::fabs(fa - 0.5) < 0.01 && std::fabs(fr - kRestFraction) < 0.01 &&
+			      std::fabs(ft - kTopFraction) < 0.01 && moving > 0,
+		      std::string(m) + ", draw 3: draw 2's 11,520 pairs, then 2,880 on arcs (bearing within pi/4, "
+				       "the turn twice it, half exactly, else within 0.3 rad), speeds at rest 0.2, at the top 0.3",
+		      std::to_string(differ) + " coordinates differ from draw 2, " + std::to_string(out) + " outside, " +
+			      std::to_string(off_arc) + " off the arcs, " + std::to_string(fa) + " exactly on them; at rest " +
+			      std::to_string(fr) + ", at the top " + std::to_string(ft));
+	}
+
+	// The double integrator's draw 2: draw 1's 2,000 pairs, then short ones.
+	{
+		const RobotParams di = load_robot("trainer/params/di.yaml");
+		for (const char *m : {"di_neg", "di_pos"}) {
+			const ModeParams &p = di.mode(m);
+			const TrainedRegion region = trained_region(p);
+			const Supplement sup = supplement(p.id, 2);
+			int differ = 0, out = 0, longer = 0, n = 20000;
+			double sum = 0;
+			for (uint64_t i = 0; i < 2000; i++) {
+				double a1[6] = {0}, b1[6] = {0}, a2[6] = {0}, b2[6] = {0};
+				draw_pair(p, 1, i, a1, b1, 1);
+				draw_pair(p, 1, i, a2, b2, 2);
+				differ += a1[0] != a2[0] || a1[1] != a2[1] || b1[0] != b2[0] || b1[1] != b2[1];
+			}
+			for (int i = 0; i < n; i++) {
+				double a[6] = {0}, b[6] = {0};
+				draw_pair(p, 1, sup.from + static_cast<uint64_t>(i), a, b, 2);
+				const double d = std::hypot(b[0] - a[0], b[1] - a[1]);
+				out += !inside(region, a) || !inside(region, b);
+				longer += d > kShortPairMax;
+				sum += d;
+			}
+			check(sup.from == 2000 && sup.pairs == 2000 && supplement(p.id, 1).pairs == 0 && differ == 0 && out == 0 &&
+				      longer == 0 && sum / n < 0.3,
+			      std::string(m) + ", draw 2: draw 1's 2,000 pairs, then 2,000 at most 0.5 apart, inside the region",
+			      std::to_string(differ) + " differ from draw 1, " + std::to_string(out) + " outside, " +
+				      std::to_string(longer) + " longer; mean distance " + std::to_string(sum / n));
+		}
+	}
+
 	// Which draws a mode has.
-	check(draws_for(HYLO_MODE_GROUND, 0) == 2 && draws_for(HYLO_MODE_MARINE, 1) == 1 && draws_for(HYLO_MODE_FLIGHT, 0) == 2 &&
-		      draws_for(HYLO_MODE_DI_NEG, 0) == 1 && refused(HYLO_MODE_GROUND, 3) && refused(HYLO_MODE_FLIGHT, 1) &&
-		      refused(HYLO_MODE_DI_POS, 2),
-	      "draws: ground and marine 1 or 2 (newest 2), flight 2, double integrator 1; others refused");
+	check(draws_for(HYLO_MODE_GROUND, 0) == 3 && draws_for(HYLO_MODE_MARINE, 1) == 1 &&
+		      draws_for(HYLO_MODE_MARINE, 2) == 2 && draws_for(HYLO_MODE_FLIGHT, 0) == 2 &&
+		      draws_for(HYLO_MODE_DI_NEG, 0) == 2 && draws_for(HYLO_MODE_DI_POS, 1) == 1 && refused(HYLO_MODE_GROUND, 4) &&
+		      refused(HYLO_MODE_FLIGHT, 1) && refused(HYLO_MODE_FLIGHT, 3) && refused(HYLO_MODE_DI_POS, 3),
+	      "draws: ground and marine 1, 2 or 3 (newest 3), flight 2, double integrator 1 or 2 (newest 2); others refused");
 
 	// The meta: draw 2 recorded, draw 1 of ground without a line (as the
 	// committed metas), flight's line as before.

@@ -20,7 +20,7 @@ expect_fail() {  # NAME CODE NEEDLE CMD...
 }
 
 "$TR" --help > "$T/help"; rc=$?
-if [ "$rc" -eq 0 ] && grep -q -- "--samples N" "$T/help" && grep -q "default: 11520" "$T/help" && grep -q -- "--shard K/N" "$T/help"; then
+if [ "$rc" -eq 0 ] && grep -q -- "--samples N" "$T/help" && grep -q "default: ground and marine 14400" "$T/help" && grep -q -- "--shard K/N" "$T/help"; then
   tap_ok "--help lists the options with their defaults"; else tap_not_ok "--help lists the options with their defaults"; fi
 if grep -q -- "--ipopt-option NAME=VALUE" "$T/help" && grep -A2 -- "--ipopt-option NAME=VALUE" "$T/help" | grep -q "default: none" &&
    grep -A1 -- "--debug" "$T/help" | grep -q "default: off" && grep -q -- "--version" "$T/help"; then
@@ -59,8 +59,8 @@ expect_fail "unknown mode: exit 2" 2 "unknown mode 'swim'" "$TR" --mode swim --r
 expect_fail "unknown robot: exit 2 naming the file" 2 "trainer/params/nobot.yaml" "$TR" --mode ground --robot nobot --solve 0 0
 expect_fail "malformed --solve vector: exit 2" 2 "'x' in '0,x,0,0'" "$TR" --mode ground --robot ambot --solve 0,x,0,0 1,0,0,0
 expect_fail "wrong --solve length: exit 2" 2 "needs 4" "$TR" --mode ground --robot ambot --solve 0,0,0 1,0,0,0
-expect_fail "--draws the mode does not have: exit 2" 2 "di_neg pairs are drawn as 1 only" \
-  "$TR" --mode di_neg --robot di --draws 2 --stage gen --samples 1 --out "$T/draws"
+expect_fail "--draws the mode does not have: exit 2" 2 "di_neg pairs are drawn as 1 or 2" \
+  "$TR" --mode di_neg --robot di --draws 3 --stage gen --samples 1 --out "$T/draws"
 expect_fail "out-of-bounds boundary state: exit 2" 2 "outside" "$TR" --mode di_neg --robot di --solve 0.5,0 -0.3,0
 expect_fail "robot without that mode: exit 2" 2 "no mode 'flight'" "$TR" --mode flight --robot ambot --solve 0,0,0,0,0,0 1,0,0,0,0,0
 expect_fail "unusable output directory: clear error" 1 "cannot create the output directory" \
