@@ -62,9 +62,9 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	if (opt.shards > 1)
 		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
 	// Flight pairs have been drawn two ways (v2: with cruise pairs), ground
-	// and marine ones three (v2: speeds at rest; v3: then cruise pairs); a
-	// file of one draw is not extended with another's. Draw 1 of ground and
-	// marine has no line.
+	// and marine ones three (v2: speeds at rest; v3: then cruise pairs), the
+	// double integrator's two (v2: then short pairs); a file of one draw is
+	// not extended with another's. Draw 1 has no line.
 	if (draws_for(opt.mode, opt.draws) > 1)
 		m << "draws: " << draws_for(opt.mode, opt.draws) << "\n";
 	// Ground and marine labels have come from straight-line starts alone (no
@@ -325,7 +325,7 @@ Supplement supplement(hylo_mode mode, int draws)
 		return {paper, paper / 4};   // 11,520 and 2,880
 	if (d.layout == HYLO_LAYOUT_PHASE && draw >= 2)
 		return {paper, paper};       // 2,000 and 2,000
-	return {};
+	return {paper, 0};
 }
 
 int existing_draws(const GenOptions &opt)

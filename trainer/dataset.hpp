@@ -108,7 +108,8 @@ int draws_for(hylo_mode mode, int requested);
 // count) are drawn where the planner asks and the first draw is thin, so a
 // dataset of the draw before, up to `from` rows, is a prefix of this one,
 // pair for pair. Ground and marine, draw 3: cruise pairs; the double
-// integrator, draw 2: short pairs. pairs = 0: the draw has none.
+// integrator, draw 2: short pairs. pairs = 0: the draw has none. A draw's
+// default sample count is from + pairs.
 struct Supplement {
 	uint64_t from = 0, pairs = 0;
 };
@@ -120,7 +121,8 @@ Supplement supplement(hylo_mode mode, int draws);
 //   kRestFraction, else uniform as in draw 1 (every start, goal and switch
 //   point is at rest, and draw 1's uniform speeds never are).
 // - Ground and marine, draw 3: draw 2's pairs, then (supplement) cruise
-//   pairs: the goal roughly ahead, a turn of at most a quarter, each speed
+//   pairs: the goal on an arc from the start (bearing within pi/4, the
+//   turn twice the bearing, half exactly, half within 0.3 rad), each speed
 //   at rest with probability kRestFraction, at the top speed with
 //   kTopFraction, else uniform.
 // - Double integrator, draw 2: draw 1's pairs, then (supplement) short

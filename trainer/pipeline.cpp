@@ -334,8 +334,7 @@ int region_stage(const RobotParams &robot, const PipelineOptions &opt)
 uint64_t default_samples(hylo_mode mode, int draws)
 {
 	const Supplement sup = supplement(mode, draws);
-	return sup.pairs ? sup.from + sup.pairs
-			 : with_model_type(mode, [](auto t) { return decltype(t)::type::kDefaultSamples; });
+	return sup.from + sup.pairs;
 }
 
 int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage)
