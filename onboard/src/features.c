@@ -125,10 +125,85 @@ unsigned hylo_relative(hylo_mode mode, const hylo_real *tail, const hylo_real *h
 		f[1] = tail[1];
 		f[2] = head[0];
 		f[3] = head[1];
-		return HYLO_FEATURES_DI;
+		return HYLO_RELATIVE_DI;
 	default:
 		return 0;
 	}
+}
+
+/* The double integrator's control energy of the move r = (p1, v1, p2, v2)
+ * in time T without the bounds on u and p: (x2 - Phi x1)' W^-1 (x2 - Phi x1)
+ * with the transition Phi(T) and the controllability Gramian W(T) of
+ * p' = v, v' = u (damped: v' = u - v), plus the time weight. */
+static hylo_real di_energy(int damped, const hylo_real *r, hylo_real T)
+{
+	hylo_real w11, w12, w22, dp, dv;
+
+	if (damped) {
+		hylo_real e = exp(-T), e1 = 1 - e, e2 = 1 - e * e;
+
+		w11 = T - 2 * e1 + e2 / 2;
+		w12 = e1 - e2 / 2;
+		w22 = e2 / 2;
+		dp = r[2] - (r[0] + e1 * r[1]);
+		dv = r[3] - e * r[1];
+	} else {
+		w11 = T * T * T / 3;
+		w12 = T * T / 2;
+		w22 = T;
+		dp = r[2] - (r[0] + T * r[1]);
+		dv = r[3] - r[1];
+	}
+	return (w22 * dp * dp - 2 * w12 * dp * dv + w11 * dv * dv) / (w11 * w22 - w12 * w12) +
+	       HYLO_DI_PRIOR_RHO * T;
+}
+
+/* min over T in [HYLO_DI_PRIOR_T_MIN, HYLO_DI_PRIOR_T_MAX] of di_energy: the
+ * best of 65 geometrically spaced times, refined by 32 steps of a
+ * golden-section search between its neighbours. Fixed work (99
+ * evaluations), no allocation. */
+static hylo_real di_prior(int damped, const hylo_real *r)
+{
+	const hylo_real ratio = 1.098138675682947;  /* (T_MAX / T_MIN)^(1/64) */
+	const hylo_real g = 0.381966011250105;      /* (3 - sqrt 5) / 2 */
+	hylo_real t = HYLO_DI_PRIOR_T_MIN, best_t = t, best = di_energy(damped, r, t);
+	hylo_real a, b, m1, m2, c1, c2;
+	int k;
+
+	for (k = 1; k <= 64; k++) {
+		hylo_real c;
+
+		t = k == 64 ? HYLO_DI_PRIOR_T_MAX : t * ratio;
+		c = di_energy(damped, r, t);
+		if (c < best) {
+			best = c;
+			best_t = t;
+		}
+	}
+	a = best_t > HYLO_DI_PRIOR_T_MIN ? best_t / ratio : best_t;
+	b = best_t < HYLO_DI_PRIOR_T_MAX ? best_t * ratio : best_t;
+	m1 = a + g * (b - a);
+	m2 = b - g * (b - a);
+	c1 = di_energy(damped, r, m1);
+	c2 = di_energy(damped, r, m2);
+	for (k = 0; k < 32; k++) {
+		if (c1 < c2) {
+			b = m2;
+			m2 = m1;
+			c2 = c1;
+			m1 = a + g * (b - a);
+			c1 = di_energy(damped, r, m1);
+		} else {
+			a = m1;
+			m1 = m2;
+			c1 = c2;
+			m2 = b - g * (b - a);
+			c2 = di_energy(damped, r, m2);
+		}
+	}
+	if (c1 < best)
+		best = c1;
+	return c2 < best ? c2 : best;
 }
 
 unsigned hylo_features_of_relative(hylo_mode mode, const hylo_real *r, hylo_real *f)
@@ -148,6 +223,12 @@ unsigned hylo_features_of_relative(hylo_mode mode, const hylo_real *r, hylo_real
 		f[6] = b + fabs(hylo_wrap_angle(dth - b));
 		f[7] = fabs(hylo_wrap_angle(dth - 2 * b));
 		return HYLO_FEATURES_PLANAR;
+	}
+	if (layout_kind(mode) == HYLO_LAYOUT_PHASE) {
+		for (k = 0; k < 4; k++)
+			f[k] = r[k];
+		f[4] = log(di_prior(hylo_mode_describe(mode)->damped, r));
+		return HYLO_FEATURES_DI;
 	}
 	n = hylo_feature_count(mode);
 	for (k = 0; k < n; k++)

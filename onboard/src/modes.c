@@ -14,9 +14,9 @@ static const hylo_feature_layout layouts[HYLO_LAYOUT_COUNT] = {
 	/* (dp, v1, v2): (v1), (dp), (v2) */
 	[HYLO_LAYOUT_SPATIAL] = { HYLO_LAYOUT_SPATIAL, "spatial", HYLO_FEATURES_FLIGHT, HYLO_FEATURES_FLIGHT, 3,
 				  { 3, 4, 5, 0, 1, 2, 6, 7, 8 }, { 0, 3, 6, 9 }, 1, 0 },
-	/* (p1, v1, p2, v2): (p1, v1), (p2, v2) */
-	[HYLO_LAYOUT_PHASE] = { HYLO_LAYOUT_PHASE, "phase", HYLO_FEATURES_DI, HYLO_FEATURES_DI, 2,
-				{ 0, 1, 2, 3 }, { 0, 2, 4 }, 0, 0 },
+	/* (p1, v1, p2, v2, log prior): (p1, v1), (p2, v2, log prior) */
+	[HYLO_LAYOUT_PHASE] = { HYLO_LAYOUT_PHASE, "phase", HYLO_RELATIVE_DI, HYLO_FEATURES_DI, 2,
+				{ 0, 1, 2, 3, 4 }, { 0, 2, 5 }, 0, 0 },
 };
 
 #define PLANAR_COORDS { { "px", "m" }, { "py", "m" }, { "vx", "m/s" }, { "theta", "rad" } }
@@ -55,7 +55,7 @@ static const hylo_mode_desc modes[HYLO_MODE_COUNT] = {
 		.mode = HYLO_MODE_DI_POS, .name = "di_pos", .c_name = "HYLO_MODE_DI_POS",
 		.xs_dim = 2, .coord = PHASE_COORDS, .speed_index = 1, .speed_width = 1,
 		.distance_dims = 2, .planar = 0, .air = 0, .domain = HYLO_DOMAIN_PHASE, .side = 1,
-		.layout = HYLO_LAYOUT_PHASE, .nx = 2, .nu = 1,
+		.damped = 1, .layout = HYLO_LAYOUT_PHASE, .nx = 2, .nu = 1,
 	},
 #ifdef HYLO_EXTRA_MODE_RECORDS
 	HYLO_EXTRA_MODE_RECORDS

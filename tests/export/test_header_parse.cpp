@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "hylo/features.h"
 #include "hylo/svr.h"
 #include "tests/tap.hpp"
 #include "trainer/svr_export.hpp"
@@ -143,7 +144,7 @@ int main()
 	flight.turn_envelope->v_min = flight.envelope->v_min;
 	flight.turn_envelope->v_step = flight.envelope->v_step;
 	round_trip(flight, "with a turn table of 16 turn cells over [0, 2 pi]");
-	SvrExport di = small(HYLO_MODE_DI_NEG, 4);
+	SvrExport di = small(HYLO_MODE_DI_NEG, HYLO_FEATURES_DI);
 	di.robot = "di";
 	round_trip(di, "a double-integrator model (whose name repeats its mode's prefix)");
 

@@ -2,7 +2,8 @@
  * The edge features (onboard/include/hylo/features.h): invariance under
  * the motions that leave the optimal cost unchanged (translation, rotation
  * about z; for ground and marine the left-right mirror), the derived
- * quantities at poses where they are known exactly, and the split into
+ * quantities at poses where they are known exactly, the double
+ * integrator's prior where it has a closed form, and the split into
  * relative coordinates and features.
  */
 #include <stdarg.h>
@@ -181,6 +182,44 @@ static void test_planar_known_poses(void **state)
 	}
 }
 
+/* exp of the double integrator's prior feature of the move a -> b. */
+static double di_prior(hylo_mode mode, const double *a, const double *b)
+{
+	double f[HYLO_MAX_FEATURES];
+
+	assert_int_equal(hylo_features(mode, a, b, f), HYLO_FEATURES_DI);
+	assert_true(f[0] == a[0] && f[1] == a[1] && f[2] == b[0] && f[3] == b[1]);
+	return exp(f[4]);
+}
+
+/* The double integrator's prior (features.h) where it is known in closed
+ * form: rest to rest over d in di_neg, 12 d^2 / T^3 + rho T at
+ * T* = (36 d^2 / rho)^(1/4) (docs/models.md section 2); no move, rho T_min
+ * in both modes; coasting for 1 s in di_pos (u = 0, v' = -v) at most
+ * rho * 1 s, where di_neg, undamped, must brake (0.2005 by a fine scan). */
+static void test_di_prior(void **state)
+{
+	const double rho = HYLO_DI_PRIOR_RHO, d = 0.2;
+	const double T = pow(36 * d * d / rho, 0.25), want = 12 * d * d / (T * T * T) + rho * T;
+	const double a[2] = { -0.5, 0 }, b[2] = { -0.5 + d, 0 };
+	const double still[2] = { 0.3, 0 };
+	const double c[2] = { 0.2, 0.5 }, coast[2] = { 0.2 + 0.5 * (1 - exp(-1.0)), 0.5 * exp(-1.0) };
+	double got;
+
+	(void)state;
+	got = di_prior(HYLO_MODE_DI_NEG, a, b);
+	if (!(fabs(got - want) <= 1e-9 * want))
+		fail_msg("di_neg rest to rest over %g: prior %.17g, closed form %.17g", d, got, want);
+	assert_true(fabs(di_prior(HYLO_MODE_DI_NEG, still, still) - rho * HYLO_DI_PRIOR_T_MIN) < 1e-15);
+	assert_true(fabs(di_prior(HYLO_MODE_DI_POS, still, still) - rho * HYLO_DI_PRIOR_T_MIN) < 1e-15);
+	got = di_prior(HYLO_MODE_DI_POS, c, coast);
+	if (!(got > 0 && got <= rho * 1.0 + 1e-12))
+		fail_msg("di_pos coasting 1 s: prior %.17g above rho * 1 s", got);
+	got = di_prior(HYLO_MODE_DI_NEG, c, coast);
+	if (!(fabs(got - 0.200468) < 1e-5))
+		fail_msg("di_neg, the same move: prior %.17g, want 0.200468", got);
+}
+
 static void test_split(void **state)
 {
 	static const hylo_mode modes[] = { HYLO_MODE_GROUND, HYLO_MODE_MARINE, HYLO_MODE_FLIGHT,
@@ -254,6 +293,7 @@ int main(void)
 		cmocka_unit_test(test_wrap_bits),
 		cmocka_unit_test(test_planar_invariance),
 		cmocka_unit_test(test_planar_known_poses),
+		cmocka_unit_test(test_di_prior),
 		cmocka_unit_test(test_split),
 		cmocka_unit_test(test_mode_layouts),
 	};

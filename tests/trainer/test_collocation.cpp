@@ -10,6 +10,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "hylo/features.h"
 #include "tests/tap.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
@@ -98,6 +99,24 @@ int main(int argc, char **argv)
 	check(f.replay_ok && f.replay_error < 1e-6 && std::fabs(f.replay_cost - f.cost) < 1e-6,
 	      "double integrator: the CVODE replay reproduces end state and cost",
 	      std::to_string(f.replay_error));
+
+	// The models' prior feature (hylo/features.h) is the optimum where the
+	// bounds on u and p are inactive, in both modes: the same dynamics.
+	const struct {
+		hylo_mode mode;
+		double a[2], b[2];
+	} moves[] = {{HYLO_MODE_DI_NEG, {-0.5, 0.1}, {-0.35, -0.1}},
+		     {HYLO_MODE_DI_NEG, {-0.8, 0.3}, {-0.5, 0.2}},
+		     {HYLO_MODE_DI_POS, {0.3, 0.2}, {0.5, 0.1}},
+		     {HYLO_MODE_DI_POS, {0.6, -0.3}, {0.4, 0.0}}};
+	for (const auto &mv : moves) {
+		Solution o = solve_bvp(mv.mode, di, mv.a, mv.b, SolveOptions());
+		double feat[HYLO_MAX_FEATURES];
+		hylo_features(mv.mode, mv.a, mv.b, feat);
+		check(o.converged && std::fabs(std::exp(feat[4]) - o.cost) <= 1e-5 * o.cost,
+		      std::string(hylo_mode_str(mv.mode)) + ": the features' prior is the optimum (bounds inactive) to 1e-5",
+		      std::to_string(std::exp(feat[4])) + " vs " + std::to_string(o.cost));
+	}
 
 	// Training options: the three starts reach one optimum on the coarse
 	// mesh (to 1e-6), so only one is refined, to the same cost.

@@ -20,8 +20,17 @@
  *   di_neg, di_pos: (p1, v1, p2, v2), absolute: the domain bound
  *                   p = 0 breaks translation invariance            (4)
  *
- * 2. Features, from the relative coordinates. Flight and the double
- *    integrator use them as they are. Ground and marine (8):
+ * 2. Features, from the relative coordinates. Flight uses them as they
+ *    are. The double integrator (5): (p1, v1, p2, v2, log prior), the
+ *    prior being the least cost of the move without the bounds on u and p,
+ *      prior = min over T in [T_MIN, T_MAX] of
+ *              (x2 - Phi x1)' W^-1 (x2 - Phi x1) + rho T,
+ *    Phi(T) and W(T) the transition and controllability Gramian of
+ *    p' = v, v' = u (di_pos: v' = u - v), rho = HYLO_DI_PRIOR_RHO. Where
+ *    the bounds are inactive (most short edges) it is the optimal cost
+ *    itself, so the model learns the bounds' effect, not the whole cost
+ *    (docs/decisions.md, "The double integrator's prior feature").
+ *    Ground and marine (8):
  *      (dx', |dy'|, s*dtheta, vx1, vx2, d, turn, arc)
  *    with s = -1 when dy' < 0, else 1: the robots are left-right symmetric,
  *    so a goal on the right costs what its mirror image on the left does
@@ -47,7 +56,15 @@ extern "C" {
 #define HYLO_RELATIVE_PLANAR 5
 #define HYLO_FEATURES_PLANAR 8
 #define HYLO_FEATURES_FLIGHT 9
-#define HYLO_FEATURES_DI 4
+#define HYLO_RELATIVE_DI 4
+#define HYLO_FEATURES_DI 5
+
+/* The double integrator's prior feature: the time weight and the bounds of
+ * T of docs/models.md section 2 (the defaults; a model trained with another
+ * rho still sees a faithful shape, learned from its labels). */
+#define HYLO_DI_PRIOR_RHO 0.1
+#define HYLO_DI_PRIOR_T_MIN 0.05
+#define HYLO_DI_PRIOR_T_MAX 20.0
 
 /* How close to pi a heading change is a half turn (hylo_half_turn_towards):
  * well above a grid's rounding (3.141593 - pi = 3.5e-7), well below any two

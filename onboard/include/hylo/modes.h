@@ -29,7 +29,7 @@ typedef enum {
 	HYLO_LAYOUT_NONE = 0,
 	HYLO_LAYOUT_PLANAR = 1,   /* (px, py, vx, theta): 5 relative coordinates, 8 features */
 	HYLO_LAYOUT_SPATIAL = 2,  /* (px, py, pz, vx, vy, vz): 9, taken in the horizontal heading */
-	HYLO_LAYOUT_PHASE = 3,    /* (p, v), absolute: 4 */
+	HYLO_LAYOUT_PHASE = 3,    /* (p, v), absolute, and the prior: 5 */
 	HYLO_LAYOUT_COUNT = 4
 } hylo_layout_kind;
 
@@ -76,6 +76,7 @@ typedef struct {
 	uint8_t air;                  /* airborne: 3-D positions, the air spacing and radius */
 	hylo_domain_kind domain;
 	int8_t side;                  /* HYLO_DOMAIN_PHASE: -1 p <= 0, +1 p >= 0 */
+	uint8_t damped;               /* double integrator: v' = u - v, else v' = u (its features' prior) */
 	hylo_layout_kind layout;
 	uint8_t nx, nu;               /* the trainer's full state and input (trainer/models.hpp) */
 } hylo_mode_desc;
