@@ -64,7 +64,7 @@ decltype(auto) with_model(const ModeParams &p, double g, F &&f)
 		return f(FlightModel(p, g));
 	case HYLO_MODE_DI_NEG:
 	case HYLO_MODE_DI_POS:
-		return f(DiModel(p, hylo_mode_describe(p.id)->side > 0));
+		return f(DiModel(p, *hylo_mode_describe(p.id)));
 #ifdef HYLO_EXTRA_MODEL_CASES
 		HYLO_EXTRA_MODEL_CASES
 #endif

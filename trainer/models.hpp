@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "hylo/modes.h"
 #include "trainer/robot_params.hpp"
 
 namespace hylo::trainer {
@@ -80,9 +81,11 @@ struct DiModel {
 	static constexpr bool kSmoothed = false;   // nothing to relax: no continuation
 	static constexpr bool kReplayFromKnots = false;
 	double rho = 0.1;
-	bool positive = false;   // di_pos: p >= 0, v' = u - v
+	bool positive = false;   // the mode record's side: p >= 0 (di_pos), else p <= 0
+	bool damped = false;     // the mode record's damped: v' = u - v (di_pos), else v' = u
 
-	DiModel(const ModeParams &p, bool pos) : rho(p.at("rho")), positive(pos) {}
+	DiModel(const ModeParams &p, const hylo_mode_desc &d)
+		: rho(p.at("rho")), positive(d.side > 0), damped(d.damped != 0) {}
 
 	static std::vector<std::string> param_keys() { return {"rho"}; }
 	static SolverHints solver_hints() { return {}; }
@@ -95,7 +98,7 @@ struct DiModel {
 	void eval(const S *x, const S *u, S *f, S &L, S *) const
 	{
 		f[0] = x[1];
-		f[1] = positive ? S(u[0] - x[1]) : S(u[0]);
+		f[1] = damped ? S(u[0] - x[1]) : S(u[0]);
 		L = u[0] * u[0] + rho;
 	}
 	Bounds bounds() const

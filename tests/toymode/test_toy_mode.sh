@@ -31,13 +31,13 @@ if HYLO_PARAMS_DIR="$T/params" "$TR" --robot toy --mode toy --samples 60 --jobs 
 rows=$(($(wc -l < "$T/data/toy.csv" 2>/dev/null || echo 1) - 1))
 conv=$(awk -F, 'NR > 1 && $12 == 1' "$T/data/toy.csv" 2>/dev/null | wc -l)
 if [ "$rows" -eq 60 ] && [ "$conv" -ge 30 ] && head -1 "$T/data/toy.csv" | grep -q '^index,f0,f1,f2,f3,x1_0,x1_1,x2_0,x2_1,cost_j'; then
-  tap_ok "the dataset has 60 rows of 4 features and 2 + 2 coordinates ($conv converged)"; else
-  tap_not_ok "the dataset has 60 rows of 4 features and 2 + 2 coordinates" "rows $rows, converged $conv"; fi
+  tap_ok "the dataset has 60 rows of 4 relative coordinates and 2 + 2 coordinates ($conv converged)"; else
+  tap_not_ok "the dataset has 60 rows of 4 relative coordinates and 2 + 2 coordinates" "rows $rows, converged $conv"; fi
 H=$T/models/toy_toy.h
 if grep -q '^#define HYLO_MODEL_TOY_TOY_MODE HYLO_MODE_TOY$' "$H" 2>/dev/null &&
-   grep -q '^#define HYLO_MODEL_TOY_TOY_N_FEATURES 4$' "$H"; then
-  tap_ok "the exported header names HYLO_MODE_TOY and the phase layout's 4 features"; else
-  tap_not_ok "the exported header names HYLO_MODE_TOY and the phase layout's 4 features" "$(grep '^#define' "$H" 2>&1 | head -5)"; fi
+   grep -q '^#define HYLO_MODEL_TOY_TOY_N_FEATURES 5$' "$H"; then
+  tap_ok "the exported header names HYLO_MODE_TOY and the phase layout's 5 features"; else
+  tap_not_ok "the exported header names HYLO_MODE_TOY and the phase layout's 5 features" "$(grep '^#define' "$H" 2>&1 | head -5)"; fi
 
 # Registry: the generator knows no list of modes.
 if tools/gen-model-registry "$T/registry.c" --params "$T/params" "$T/models" > "$T/gen.log" 2>&1 &&
@@ -52,7 +52,7 @@ if gcc -std=c99 -DHYLO_EXTRA_MODES_H='"toymode/toy_mode.h"' -Itests -Ionboard/in
   tap_ok "a planner program compiles with the toy registry"; else
   tap_not_ok "a planner program compiles with the toy registry" "$(tail -8 "$T/cc.log")"; fi
 if "$T/toy_plan" > "$T/plan.txt" 2>&1 &&
-   grep -q '^registry: robot toy, mode toy (6), model toy_toy, 4 features$' "$T/plan.txt" &&
+   grep -q '^registry: robot toy, mode toy (6), model toy_toy, 5 features$' "$T/plan.txt" &&
    grep -q '^plan: ' "$T/plan.txt" && ! grep '^  ' "$T/plan.txt" | grep -qv '^  toy '; then
   tap_ok "the registry gives robot toy its mode and model, and the planner plans in mode toy"; else
   tap_not_ok "the registry gives robot toy its mode and model, and the planner plans in mode toy" "$(head -8 "$T/plan.txt")"; fi

@@ -35,7 +35,7 @@ namespace hylo::trainer {
 // The double integrator's dynamics and cost (v' = u, u^2 + rho: di_neg's),
 // on the whole plane.
 struct ToyModel : DiModel {
-	ToyModel(const ModeParams &p, double) : DiModel(p, false) {}
+	ToyModel(const ModeParams &p, double) : DiModel(p, *hylo_mode_describe(p.id)) {}
 
 	static constexpr uint64_t kDefaultSamples = 200;
 	Bounds bounds() const

@@ -76,7 +76,7 @@ typedef struct {
 	uint8_t air;                  /* airborne: 3-D positions, the air spacing and radius */
 	hylo_domain_kind domain;
 	int8_t side;                  /* HYLO_DOMAIN_PHASE: -1 p <= 0, +1 p >= 0 */
-	uint8_t damped;               /* double integrator: v' = u - v, else v' = u (its features' prior) */
+	uint8_t damped;               /* double integrator: v' = u - v, else v' = u (the trainer's dynamics, the features' prior) */
 	hylo_layout_kind layout;
 	uint8_t nx, nu;               /* the trainer's full state and input (trainer/models.hpp) */
 } hylo_mode_desc;
