@@ -11,10 +11,16 @@ $(CHASM_OBJ): tools/casestudies/chasm.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) -c $< -o $@
 
+# The Drivocopter study's solve log is keyed by a hash of the sources its
+# solves depend on (the trainer, the planning library, the models, the
+# study), so a rerun never takes a record made by other code.
+CASESTUDY_SOURCES := $(sort $(wildcard trainer/*.cpp trainer/*.hpp onboard/src/*.c onboard/src/*.h \
+	onboard/include/hylo/*.h onboard/models/*.h tools/casestudies/*.cpp tools/casestudies/*.hpp))
+CASESTUDY_SOURCES_SHA = $(shell cat $(CASESTUDY_SOURCES) | sha256sum | cut -c1-16)
 $(HYLO_CASESTUDIES): tools/casestudies/casestudies.cpp trainer/cli.hpp $(CHASM_OBJ) tools/scene/planner_view.hpp $(BUILD)/obj/tools/scene/scene.o \
-		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB)
+		$(BUILD)/obj/node/registry.o $(BUILD)/obj/node/registry_models.o $(TRAINER_LIB) $(ONBOARD_LIB) $(CASESTUDY_SOURCES)
 	@mkdir -p $(@D)
-	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $(NODE_INC) -DHYLO_SOURCES_SHA='"$(CASESTUDY_SOURCES_SHA)"' $< $(filter %.o %.a,$^) $(TRAINER_LIBS) -lm -o $@
 
 ALL_TARGETS += $(HYLO_CASESTUDIES)
 

@@ -94,8 +94,10 @@ const char *kUsage =
 	"  The Drivocopter study ends by locating the crossover from flying over to driving\n"
 	"  through to the metre (the two sequences solved on chasms widened in between).\n"
 	"  It logs each finished solve to DIR/results/drivocopter.solves\n"
-	"  and a rerun takes them from there (an interrupted run resumes); delete that\n"
-	"  file to solve again after changing the solver.\n";
+	"  and a rerun takes them from there (an interrupted run resumes) when they were\n"
+	"  made by the same sources (a hash of the trainer, the library, the models and\n"
+	"  the study is part of each record's key); others are solved again.\n"
+	"  --sources-sha  print that hash and exit\n";
 
 struct Options {
 	std::string study = "all", out = "docs";
@@ -744,15 +746,22 @@ std::vector<double> smooth_record(const RobotParams &robot, const std::vector<Wa
 	return r;
 }
 
+// The hash of the sources this build's solves depend on (mk/casestudies.mk).
+#ifndef HYLO_SOURCES_SHA
+#define HYLO_SOURCES_SHA "unknown"
+#endif
+
 // Finished solves survive an interruption: each appends a line "<key>\t<record>"
 // to a log (OUT/results/drivocopter.solves) and a rerun takes its records from
-// there. Keys name the robot file's hash, the scene (chasm_030; two chasms
-// chasm_030_020_030), the sequence (hylo's plan by its predicted cost) and the
-// placement; delete the log after changing the solver.
+// there. Keys name the robot file's hash, the hash of the sources
+// (HYLO_SOURCES_SHA: a record made by other code is solved again), the scene
+// (chasm_030; two chasms chasm_030_020_030), the sequence (hylo's plan by its
+// predicted cost) and the placement.
 class SolveLog {
 public:
 	explicit SolveLog(std::string path) : path_(std::move(path))
 	{
+		size_t other = 0;
 		std::ifstream f(path_);
 		std::string line;
 		while (std::getline(f, line)) {
@@ -764,9 +773,17 @@ public:
 			std::string v;
 			while (in >> v)
 				r.push_back(std::strtod(v.c_str(), nullptr));
-			if (r.size() >= 5)
-				done_[line.substr(0, tab)] = r;
+			const std::string key = line.substr(0, tab);
+			if (r.size() < 5)
+				continue;
+			if (sources().size() == 16 && key.compare(17, 16, sources()) == 0)
+				done_[key] = r;
+			else
+				other++;
 		}
+		if (other)
+			std::fprintf(stderr, "  %s: %zu solves made by other code (sources %s now): solving them again\n",
+				     path_.c_str(), other, sources().c_str());
 	}
 	const std::vector<double> *find(const std::string &key) const
 	{
@@ -794,7 +811,7 @@ public:
 	{
 		char placement[32];
 		std::snprintf(placement, sizeof placement, " placement %.3f", lambda);
-		const std::string key = robot_sha.substr(0, 16) + " " + scene + " " + what + placement;
+		const std::string key = robot_sha.substr(0, 16) + " " + sources() + " " + scene + " " + what + placement;
 		if (const std::vector<double> *old = find(key)) {
 			std::fprintf(stderr, "  %s: from %s\n", key.c_str(), path_.c_str());
 			return *old;
@@ -807,6 +824,9 @@ public:
 	}
 
 private:
+	// 16 hex digits; a build without them ("unknown") reuses nothing.
+	static std::string sources() { return HYLO_SOURCES_SHA; }
+
 	std::string path_;
 	std::map<std::string, std::vector<double>> done_;
 };
@@ -1059,7 +1079,8 @@ std::string drivocopter_study(const Options &opt, std::string &md,
 	}
 	const std::string log_path = opt.out + "/results/drivocopter.solves", robot_sha = sha256_file(robot.path);
 	const SolveLog log(log_path);
-	std::fprintf(stderr, "drivocopter: %zu multi-phase solves on %d workers\n", items.size(), opt.jobs);
+	std::fprintf(stderr, "drivocopter: %zu multi-phase solves on %d workers (sources %s)\n", items.size(), opt.jobs,
+		     HYLO_SOURCES_SHA);
 	const bool two = !opt.two_chasms.empty();
 	const std::string intro = two ? two_chasms_intro(tl) : table_one_intro(lambdas.size(), tl);
 	// One chasm at a time, its results written as they come (hours in all).
@@ -1291,6 +1312,9 @@ int run(int argc, char **argv)
 		auto value = [&] { return option_value(argc, argv, i); };
 		if (a == "--help" || a == "-h") {
 			std::fputs(kUsage, stdout);
+			return 0;
+		} else if (a == "--sources-sha") {
+			std::puts(HYLO_SOURCES_SHA);
 			return 0;
 		} else if (a == "--study") {
 			opt.study = value();
