@@ -224,16 +224,12 @@ unsigned hylo_features_of_relative(hylo_mode mode, const hylo_real *r, hylo_real
 		f[7] = fabs(hylo_wrap_angle(dth - 2 * b));
 		return HYLO_FEATURES_PLANAR;
 	}
-	if (layout_kind(mode) == HYLO_LAYOUT_PHASE) {
-		for (k = 0; k < 4; k++)
-			f[k] = r[k];
-		f[4] = log(di_prior(hylo_mode_describe(mode)->damped, r));
-		return HYLO_FEATURES_DI;
-	}
-	n = hylo_feature_count(mode);
+	n = hylo_relative_count(mode);
 	for (k = 0; k < n; k++)
 		f[k] = r[k];
-	return n;
+	if (layout_kind(mode) == HYLO_LAYOUT_PHASE)
+		f[n] = log(di_prior(hylo_mode_describe(mode)->damped, r));
+	return hylo_feature_count(mode);
 }
 
 unsigned hylo_features(hylo_mode mode, const hylo_real *tail, const hylo_real *head,
