@@ -776,7 +776,7 @@ public:
 			const std::string key = line.substr(0, tab);
 			if (r.size() < 5)
 				continue;
-			if (sources().size() == 16 && key.compare(17, 16, sources()) == 0)
+			if (sources().size() == 16 && made_by(key, sources()))
 				done_[key] = r;
 			else
 				other++;
@@ -826,6 +826,13 @@ public:
 private:
 	// 16 hex digits; a build without them ("unknown") reuses nothing.
 	static std::string sources() { return HYLO_SOURCES_SHA; }
+	// Whether a key's second word (after the robot's hash) is sha: a
+	// malformed line's short key is simply not.
+	static bool made_by(const std::string &key, const std::string &sha)
+	{
+		const size_t a = key.find(' ');
+		return a != std::string::npos && key.compare(a + 1, sha.size() + 1, sha + " ") == 0;
+	}
 
 	std::string path_;
 	std::map<std::string, std::vector<double>> done_;
