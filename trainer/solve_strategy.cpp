@@ -86,14 +86,16 @@ std::unique_ptr<StackedNlp> stacked_nlp(const Stacked &p, double relax)
 
 // A phase's coarse mesh: its own segments, at least its mode's, and with a
 // step length, segments of at most that (opt.max_step_s replacing the
-// mode's). The derivative checker needs no fine mesh, only exact derivatives.
+// mode's); a piece of a phase, its share of the mode's least segments.
+// The derivative checker needs no fine mesh, only exact derivatives.
 int coarse_segments(const PhaseSetup &s, const ModeInfo &i, double T, const SolveOptions &opt)
 {
 	if (!opt.derivative_test_file.empty())
 		return s.segments;
 	double step = i.max_step_s > 0 && opt.max_step_s > 0 ? opt.max_step_s : i.max_step_s;
 	int by_step = step > 0 ? static_cast<int>(std::ceil(T / step)) : 0;
-	return std::max({s.segments, i.min_segments, by_step});
+	const int least = static_cast<int>(std::ceil(i.min_segments * s.mesh_share));
+	return std::max({s.segments, least, by_step});
 }
 
 // A start after its continuation on the coarse mesh: its problem and last
@@ -169,7 +171,7 @@ private:
 			s.segments = coarse_segments(s, i, st.T[k], opt_);
 			if (i.path_guess && s.guess.size() == 2) {
 				s.guess = i.path_guess(s.guess[0], s.guess[1], st.T[k]);
-				s.guess_by_arc_length = false;
+				s.guess_at.clear();
 			}
 		}
 		return p;

@@ -196,7 +196,8 @@ void l_bounds(const RobotParams &ambot)
 
 // Ambot drives (0.5, 0.5) -> (4.5, 4.5) through the L: up the column
 // x in [0, 1], then along the row y in [4, 5]; every knot and midpoint of
-// the solution lies in the boxes of its time.
+// the solution lies in a box (the boxes' windows time the guess; where the
+// way hands over from one to the other is free, trainer/hand_overs.hpp).
 void l_shaped_phase(const RobotParams &ambot)
 {
 	double a[4] = {0.5, 0.5, 0, 1.5708}, c[4] = {0.5, 4.5, 0, 0}, b[4] = {4.5, 4.5, 0, 0};
@@ -214,16 +215,20 @@ void l_shaped_phase(const RobotParams &ambot)
 		const Trajectory &tr = m.phases[0].traj;
 		for (size_t i = 0; i < tr.t.size() && in; i++) {
 			double x = tr.x[i * 6], y = tr.x[i * 6 + 1];
-			std::array<double, 4> r = l_room(tr.t[i] / m.phases[0].T);
-			if (x < r[0] - 1e-7 || x > r[2] + 1e-7 || y < r[1] - 1e-7 || y > r[3] + 1e-7) {
+			bool held = false;
+			for (const CorridorBox &b : kL)
+				held = held || (x >= b.lo[0] - 1e-7 && x <= b.hi[0] + 1e-7 && y >= b.lo[1] - 1e-7 &&
+						y <= b.hi[1] + 1e-7);
+			if (!held) {
 				in = false;
-				why = "point " + std::to_string(i) + ": (" + fmt(x) + ", " + fmt(y) + ") outside its boxes";
+				why = "point " + std::to_string(i) + ": (" + fmt(x) + ", " + fmt(y) + ") outside the boxes";
 			}
 		}
 	}
 	std::printf("# L-shaped corridor: %.6g J, %d segments, %.2f s\n", m.cost,
 		    m.phases.empty() ? 0 : m.phases[0].segments, m.solve_seconds);
-	check(in, "an L-shaped corridor: the solution's knots and midpoints keep to the boxes of their time", why);
+	check(in, "an L-shaped corridor: the solution's knots and midpoints keep to its boxes (the hand-over between "
+		  "them free)", why);
 	PhaseSpec bad = s;
 	bad.corridor[1].lo = {2, 4};
 	bad.corridor[1].hi = {5, 5};
@@ -391,15 +396,18 @@ void chasm_gate(const RobotParams &drivo)
 		std::printf("# note: %s\n", n.c_str());
 	check(a.converged && w.empty(), "chasm with a 1.5 m gate, margin 0.25 m: every flight knot and midpoint keeps "
 					"body + margin from the terrain's columns, the map's edge and the ceiling", w);
-	// The corridors built along the plan's path held the flights back: the
-	// ones rebuilt along each solution let the optimum move (by more than 5%
-	// here), and the check above holds for the last.
-	double first = 0;
+	// With each hand-over between boxes at a fixed time, the corridors
+	// built along the plan's path held the flights back and rounds of
+	// rebuilding crept towards the optimum, to 1,322.0 J (docs/decisions.md,
+	// "Table I at 70 m"). With free hand-overs the first solve is there, and
+	// a rebuild has little left to save.
+	double first = a.cost;
 	for (const std::string &n : a.notes)
-		if (first == 0 && std::sscanf(n.c_str(), "flight corridors rebuilt along the solution: %lf", &first) != 1)
-			first = 0;
-	check(first > 0 && a.cost < 0.95 * first, "chasm gate: corridors rebuilt along the solution, 5% cheaper than "
-						   "along the plan's path",
+		if (std::sscanf(n.c_str(), "flight corridors rebuilt along the solution: %lf", &first) == 1)
+			break;
+	check(a.converged && a.cost < 1310 && first < 1.005 * a.cost,
+	      "chasm gate: free hand-overs between boxes: below 1,310 J from the corridors along the plan's path, "
+	      "a rebuild saving under 0.5%",
 	      "along the plan's path " + fmt(first) + " J, smoothed " + fmt(a.cost) + " J");
 }
 
