@@ -55,7 +55,7 @@ Bvp bvp(hylo_mode mode, const RobotParams &robot, const double *x1s, const doubl
 	s.guess = {v.a, v.b};
 	s.first_lo = s.first_hi = v.a;
 	s.last_lo = s.last_hi = v.b;
-	v.p = Stacked{{mode}, {v.info}, {s}, {}};
+	v.p = Stacked{{mode}, {v.info}, {s}, {}, {}};
 	return v;
 }
 
@@ -224,9 +224,8 @@ void check_rows(const std::vector<LinearRow> &rows, const Stacked &p)
 }
 
 // The problem as the strategy sees it, checked: each phase as its pieces
-// between hand-overs (hand_overs.hpp), joined by full-state continuity;
-// owner[k] is the phase of piece k.
-Stacked stacked(const RobotParams &robot, const MultiPhaseProblem &prob, std::vector<size_t> &owner)
+// between hand-overs (hand_overs.hpp), joined by full-state continuity.
+Stacked stacked(const RobotParams &robot, const MultiPhaseProblem &prob)
 {
 	if (prob.phases.empty())
 		throw std::invalid_argument("a multi-phase problem needs at least one phase");
@@ -246,7 +245,7 @@ Stacked stacked(const RobotParams &robot, const MultiPhaseProblem &prob, std::ve
 			p.setups.push_back(std::move(piece));
 			p.modes.push_back(ps.mode);
 			p.info.push_back(info);
-			owner.push_back(k);
+			p.owner.push_back(k);
 		}
 		last[k] = static_cast<int>(p.setups.size()) - 1;
 		given.setups.push_back(s);
@@ -328,8 +327,7 @@ std::string solve_options_text(const SolveOptions &opt)
 MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhaseProblem &prob,
 				    const SolveOptions &opt)
 {
-	std::vector<size_t> owner;
-	Stacked p = stacked(robot, prob, owner);
+	Stacked p = stacked(robot, prob);
 	std::vector<Bounds> bounds;
 	std::vector<double> T_guesses;
 	for (size_t k = 0; k < p.setups.size(); k++) {
@@ -339,7 +337,7 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 	MultiPhaseSolution out = internal::joined_pieces(
 		internal::solve_stacked(robot, p, internal::scaled_starts(bounds, T_guesses, prob.T_scales),
 					prob.switch_cost, opt),
-		owner);
+		p.owner);
 	out.notes = prob.notes;
 	return out;
 }
