@@ -75,9 +75,10 @@ tap_check "the quick Drivocopter study takes all $n logged records made by these
 rekey "0123456789abcdef" > "$T/dc2/results/drivocopter.solves"
 printf 'short\t1 2 3 4 5\n' >> "$T/dc2/results/drivocopter.solves"   # a malformed key is no one's
 timeout 20 "$CS" --study drivocopter --quick --out "$T/dc2" > "$T/dc2.log" 2>&1
-tap_check "and takes none made by other sources (nor a malformed line): it says so and solves them again" \
+tap_check "and takes none made by other sources (nor a malformed line): it says so, solves them again and drops them from the log" \
   test -n "$(grep "$((n + 1)) solves made by other code (sources $H now)" "$T/dc2.log")" \
-       -a -z "$(grep ": from $T/dc2" "$T/dc2.log")"
+       -a -z "$(grep ": from $T/dc2" "$T/dc2.log")" \
+       -a -z "$(grep -e 0123456789abcdef -e '^short' "$T/dc2/results/drivocopter.solves")"
 
 if [ "$rc" = 0 ]; then
   python3 - "$T/results.json" > "$T/checks" <<'PY'

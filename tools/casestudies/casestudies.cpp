@@ -96,7 +96,8 @@ const char *kUsage =
 	"  It logs each finished solve to DIR/results/drivocopter.solves\n"
 	"  and a rerun takes them from there (an interrupted run resumes) when they were\n"
 	"  made by the same sources (a hash of the trainer, the library, the models and\n"
-	"  the study is part of each record's key); others are solved again.\n"
+	"  the study is part of each record's key); others are solved again and dropped\n"
+	"  from the log.\n"
 	"  --sources-sha  print that hash and exit\n";
 
 struct Options {
@@ -762,6 +763,7 @@ public:
 	explicit SolveLog(std::string path) : path_(std::move(path))
 	{
 		size_t other = 0;
+		std::string kept;   // the lines of these sources, in order
 		std::ifstream f(path_);
 		std::string line;
 		while (std::getline(f, line)) {
@@ -776,14 +778,21 @@ public:
 			const std::string key = line.substr(0, tab);
 			if (r.size() < 5)
 				continue;
-			if (sources().size() == 16 && made_by(key, sources()))
+			if (sources().size() == 16 && made_by(key, sources())) {
 				done_[key] = r;
-			else
+				kept += line + "\n";
+			} else {
 				other++;
+			}
 		}
-		if (other)
-			std::fprintf(stderr, "  %s: %zu solves made by other code (sources %s now): solving them again\n",
-				     path_.c_str(), other, sources().c_str());
+		// A record of other code is never taken again: the log keeps only
+		// these sources' (the committed one, the committed tables' solves).
+		if (other) {
+			std::fprintf(stderr, "  %s: %zu solves made by other code (sources %s now): solving them again, "
+				     "dropped from the log\n", path_.c_str(), other, sources().c_str());
+			f.close();
+			write_file_atomically(path_, kept);
+		}
 	}
 	const std::vector<double> *find(const std::string &key) const
 	{
