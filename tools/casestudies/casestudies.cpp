@@ -787,11 +787,14 @@ public:
 		}
 		// A record of other code is never taken again: the log keeps only
 		// these sources' (the committed one, the committed tables' solves).
+		// A build without the hash knows no sources and drops nothing.
+		const bool drop = sources().size() == 16;
 		if (other) {
-			std::fprintf(stderr, "  %s: %zu solves made by other code (sources %s now): solving them again, "
-				     "dropped from the log\n", path_.c_str(), other, sources().c_str());
+			std::fprintf(stderr, "  %s: %zu solves made by other code (sources %s now): solving them again%s\n",
+				     path_.c_str(), other, sources().c_str(), drop ? ", dropped from the log" : "");
 			f.close();
-			write_file_atomically(path_, kept);
+			if (drop)
+				write_file_atomically(path_, kept);
 		}
 	}
 	const std::vector<double> *find(const std::string &key) const
