@@ -22,14 +22,13 @@
 namespace hylo::trainer {
 
 // The solver's options for training pairs (and `trainer --solve`, so that it
-// reproduces a row): a start is refined only if its coarse cost is within 5%
-// of the best refined one (40% less solve time, docs/decisions.md, "Training
-// labels"). Ground and marine pairs also get the strategy guesses
+// reproduces a row): every start is refined (refine_within infinite: pruning
+// by the coarse cost lost basins, docs/decisions.md, "Labels that are the
+// best optimum found"). Ground and marine pairs also get the strategy guesses
 // (solve_bvp_strategies: backing up, facing the goal, and issue #35's three).
 inline SolveOptions training_solve_options()
 {
 	SolveOptions o;
-	o.refine_within = 0.05;
 	o.strategy_starts = true;
 	return o;
 }

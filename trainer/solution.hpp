@@ -60,8 +60,8 @@ struct SolveOptions {
 					  // objective scaling, 1 / max(1, 10 T_guess) (see smoothing_solve_options)
 	// Finite: every start is first solved on the coarse mesh; only starts
 	// that reached a solution of their own and whose coarse cost is within
-	// this fraction of the best refined result are refined (training data
-	// generation, training_solve_options). Infinite: each start is refined.
+	// this fraction of the best refined result are refined (`trainer
+	// --refine-within`). Infinite (training_solve_options): each start is refined.
 	// Modes that keep their first accepted start (flight) ignore it.
 	double refine_within = std::numeric_limits<double>::infinity();
 	// solve_bvp also tries the mode's other initial guesses

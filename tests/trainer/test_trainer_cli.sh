@@ -125,7 +125,7 @@ if cmp -s "$T/kill/di_neg.csv" "$T/full/di_neg.csv" && [ "$before" -lt 200 ]; th
 "$TR" --mode di_neg --robot di --stage gen --quiet --samples 4 --seed 3 --out "$T/opt" --ipopt-option mu_init=0.1 \
   --ipopt-option tol=1e-9 > /dev/null
 if grep -q "^ipopt_options: mu_init=0.1 tol=1e-9$" "$T/opt/di_neg.csv.meta" && grep -q "^tol: 1e-08$" "$T/opt/di_neg.csv.meta" &&
-   grep -q "^refine_within: 0.05$" "$T/opt/di_neg.csv.meta" && grep -q "^blas: " "$T/opt/di_neg.csv.meta"; then
+   grep -q "^refine_within: inf$" "$T/opt/di_neg.csv.meta" && grep -q "^blas: " "$T/opt/di_neg.csv.meta"; then
   tap_ok "the .meta records the solver settings, the --ipopt-option list and the numerics"; else
   tap_not_ok "the .meta records the solver settings, the --ipopt-option list and the numerics" "$(cat "$T/opt/di_neg.csv.meta")"; fi
 expect_fail "extending it without those Ipopt options is refused, naming the line" 1 \
@@ -244,10 +244,10 @@ expect_fail "repair of more rows than the dataset has: clear error (exit 2)" 2 "
   "$TR" --mode di_neg --robot di --stage repair --samples 20 --seed 3 --out "$T/rep" --quiet
 expect_fail "--refine-within x: clear error (exit 2)" 2 "fraction >= 0 or inf" \
   "$TR" --mode di_neg --robot di --refine-within x --solve -0.5,0 -0.3,0
-"$TR" --mode di_neg --robot di --stage gen --quiet --samples 2 --seed 3 --refine-within inf --out "$T/rwinf" > /dev/null
-if grep -q "^refine_within: inf$" "$T/rwinf/di_neg.csv.meta" && grep -A3 -- "--refine-within F" "$T/help" | grep -q "default: 0.05"; then
-  tap_ok "--refine-within inf is recorded in the .meta; --help gives its default"
-else tap_not_ok "--refine-within inf is recorded in the .meta; --help gives its default" "$(grep refine "$T/rwinf/di_neg.csv.meta")"; fi
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 2 --seed 3 --refine-within 0.05 --out "$T/rwinf" > /dev/null
+if grep -q "^refine_within: 0.05$" "$T/rwinf/di_neg.csv.meta" && grep -A3 -- "--refine-within F" "$T/help" | grep -q "default: inf"; then
+  tap_ok "--refine-within 0.05 is recorded in the .meta; --help gives its default"
+else tap_not_ok "--refine-within 0.05 is recorded in the .meta; --help gives its default" "$(grep refine "$T/rwinf/di_neg.csv.meta")"; fi
 
 # --mode switch: the robot's switches (docs/models.md section 6).
 if "$TR" --mode switch --robot ambot --json > "$T/sw.json" &&
