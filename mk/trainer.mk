@@ -1,7 +1,7 @@
 # Trainer (C++17): robot parameter files, dynamics, Hermite-Simpson
 # collocation with Ipopt, CVODE replay, datasets, SVR fit and export.
 #   build/bin/trainer
-TRAINER_SRCS := trainer/params.cpp trainer/robot_params.cpp trainer/collocation.cpp trainer/ipopt_nlp.cpp trainer/mode_config.cpp trainer/modes.cpp \
+TRAINER_SRCS := trainer/params.cpp trainer/robot_params.cpp trainer/collocation.cpp trainer/hand_overs.cpp trainer/ipopt_nlp.cpp trainer/mode_config.cpp trainer/modes.cpp \
 	trainer/solve_strategy.cpp trainer/starts.cpp trainer/replay.cpp \
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
 	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/smoothing_problem.cpp trainer/map_guards.cpp \

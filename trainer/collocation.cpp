@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "trainer/hand_overs.hpp"
 #include "trainer/hs_phase.hpp"
 #include "trainer/mode_config.hpp"
 #include "trainer/models.hpp"
@@ -54,7 +55,7 @@ Bvp bvp(hylo_mode mode, const RobotParams &robot, const double *x1s, const doubl
 	s.guess = {v.a, v.b};
 	s.first_lo = s.first_hi = v.a;
 	s.last_lo = s.last_hi = v.b;
-	v.p = Stacked{{mode}, {v.info}, {s}, {}};
+	v.p = Stacked{{mode}, {v.info}, {s}, {}, {}};
 	return v;
 }
 
@@ -146,6 +147,35 @@ void check_guess(const PhaseSpec &ps, size_t nx, const std::string &where)
 						    " components, the mode has " + std::to_string(nx));
 }
 
+// The normalized times of ps's guess states: as given (checked), else with a
+// corridor proportional to their positions' arc length (its boxes are timed
+// so), else none (uniform).
+std::vector<double> guess_times(const PhaseSpec &ps, const std::string &where)
+{
+	const size_t n = ps.guess.size();
+	if (!ps.guess_at.empty()) {
+		bool ok = ps.guess_at.size() == n && ps.guess_at.front() == 0 && ps.guess_at.back() == 1;
+		for (size_t i = 1; ok && i < n; i++)
+			ok = ps.guess_at[i] >= ps.guess_at[i - 1];
+		if (!ok)
+			throw std::invalid_argument(where + ": the guess's times must be one per state, increasing from 0 to 1");
+		return ps.guess_at;
+	}
+	if (ps.corridor.empty())
+		return {};
+	std::vector<double> at(n, 0.0);
+	const size_t dims = ps.corridor[0].lo.size();
+	for (size_t w = 1; w < n; w++) {
+		double d = 0;
+		for (size_t k = 0; k < dims; k++)
+			d += std::pow(ps.guess[w][k] - ps.guess[w - 1][k], 2);
+		at[w] = at[w - 1] + std::sqrt(d);
+	}
+	for (size_t w = 0; w < n; w++)
+		at[w] = at.back() > 0 ? at[w] / at.back() : static_cast<double>(w) / static_cast<double>(n - 1);
+	return at;
+}
+
 // A knot's bounds as given (nx components) or, empty, the mode's.
 std::vector<double> knot_bounds(const std::vector<double> &v, const std::vector<double> &mode_bounds, size_t nx,
 				const char *what, const std::string &where)
@@ -177,7 +207,7 @@ PhaseSetup phase_setup(const PhaseSpec &ps, const ModeInfo &info, const std::str
 	check_corridor(ps, static_cast<size_t>(info.position_dims), where);
 	s.corridor = ps.corridor;
 	s.corridor_inset_m = ps.corridor_inset_m;
-	s.guess_by_arc_length = !ps.corridor.empty() && !ps.guess_timed;
+	s.guess_at = guess_times(ps, where);
 	return s;
 }
 
@@ -193,21 +223,41 @@ void check_rows(const std::vector<LinearRow> &rows, const Stacked &p)
 							    ", which does not exist");
 }
 
-// The problem as the strategy sees it, checked.
+// The problem as the strategy sees it, checked: each phase as its pieces
+// between hand-overs (hand_overs.hpp), joined by full-state continuity.
 Stacked stacked(const RobotParams &robot, const MultiPhaseProblem &prob)
 {
 	if (prob.phases.empty())
 		throw std::invalid_argument("a multi-phase problem needs at least one phase");
-	Stacked p;
+	Stacked given, p;
+	std::vector<int> first(prob.phases.size()), last(prob.phases.size());
 	for (size_t k = 0; k < prob.phases.size(); k++) {
 		const PhaseSpec &ps = prob.phases[k];
 		ModeInfo info = internal::mode_info(ps.mode, robot);
-		p.setups.push_back(phase_setup(ps, info, "phase " + std::to_string(k) + " (" + hylo_mode_str(ps.mode) + ")"));
-		p.modes.push_back(ps.mode);
-		p.info.push_back(std::move(info));
+		const PhaseSetup s = phase_setup(ps, info, "phase " + std::to_string(k) + " (" + hylo_mode_str(ps.mode) + ")");
+		first[k] = static_cast<int>(p.setups.size());
+		for (PhaseSetup &piece : internal::hand_over_pieces(s, info)) {
+			if (p.setups.size() > static_cast<size_t>(first[k]))
+				for (int c = 0; c < info.nx; c++) {
+					const int b = static_cast<int>(p.setups.size());
+					p.rows.push_back({{{KnotRef{b, false, c}, 1.0}, {KnotRef{b - 1, true, c}, -1.0}}, 0, 0});
+				}
+			p.setups.push_back(std::move(piece));
+			p.modes.push_back(ps.mode);
+			p.info.push_back(info);
+			p.owner.push_back(k);
+		}
+		last[k] = static_cast<int>(p.setups.size()) - 1;
+		given.setups.push_back(s);
+		given.info.push_back(std::move(info));
 	}
-	check_rows(prob.rows, p);
-	p.rows = prob.rows;
+	check_rows(prob.rows, given);
+	for (LinearRow r : prob.rows) {
+		for (auto &t : r.terms)
+			t.first.phase = t.first.last ? last[static_cast<size_t>(t.first.phase)]
+						     : first[static_cast<size_t>(t.first.phase)];
+		p.rows.push_back(std::move(r));
+	}
 	return p;
 }
 
@@ -284,8 +334,10 @@ MultiPhaseSolution solve_multiphase(const RobotParams &robot, const MultiPhasePr
 		bounds.push_back(p.info[k].bounds);
 		T_guesses.push_back(p.setups[k].T_guess);
 	}
-	MultiPhaseSolution out = internal::solve_stacked(robot, p, internal::scaled_starts(bounds, T_guesses, prob.T_scales),
-							 prob.switch_cost, opt);
+	MultiPhaseSolution out = internal::joined_pieces(
+		internal::solve_stacked(robot, p, internal::scaled_starts(bounds, T_guesses, prob.T_scales),
+					prob.switch_cost, opt),
+		p.owner);
 	out.notes = prob.notes;
 	return out;
 }

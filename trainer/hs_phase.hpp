@@ -47,10 +47,16 @@ struct PhaseSetup {
 	std::vector<double> last_lo, last_hi;      // bounds of the last knot's state
 	std::vector<CorridorBox> corridor;         // PhaseSpec::corridor (checked by solve_multiphase)
 	double corridor_inset_m = 0;               // PhaseSpec::corridor_inset_m
-	// The guess states are at times proportional to their arc length, not
-	// uniform (a corridor's boxes are timed so; a mode's own path guess is
-	// timed uniformly).
-	bool guess_by_arc_length = false;
+	// The first (last) knot is kept inside its boxes by the inset too: it is
+	// a hand-over inside a phase (hand_overs.hpp), not an end of the phase.
+	bool inset_first = false, inset_last = false;
+	// The normalized times of the guess states (increasing, 0 to 1); empty:
+	// uniform.
+	std::vector<double> guess_at;
+	double T_min = 0;                          // > 0: replaces the mode's least duration
+	// The phase's share of a longer phase's time (hand_overs.hpp): its mode's
+	// least number of segments is scaled by it.
+	double mesh_share = 1;
 };
 
 // A sparsity structure written entry by entry, as Ipopt's triplet arrays
@@ -144,12 +150,13 @@ public:
 				xu[zi(p) + NX + k] = b_.u_hi[static_cast<size_t>(k)];
 			}
 		}
-		for (int p = 0; p < npts_ && !s_.corridor.empty(); p++)
-			in_corridor(time_of(p), p == knot(0) || p == knot(N_) ? 0 : s_.corridor_inset_m, xl + zi(p),
-				    xu + zi(p));
+		for (int p = 0; p < npts_ && !s_.corridor.empty(); p++) {
+			const bool end = (p == knot(0) && !s_.inset_first) || (p == knot(N_) && !s_.inset_last);
+			in_corridor(time_of(p), end ? 0 : s_.corridor_inset_m, xl + zi(p), xu + zi(p));
+		}
 		end_bounds(knot(0), s_.first_lo, s_.first_hi, xl, xu);
 		end_bounds(knot(N_), s_.last_lo, s_.last_hi, xl, xu);
-		xl[Ti()] = s_.T_fixed > 0 ? s_.T_fixed : b_.T_min;
+		xl[Ti()] = s_.T_fixed > 0 ? s_.T_fixed : s_.T_min > 0 ? s_.T_min : b_.T_min;
 		xu[Ti()] = s_.T_fixed > 0 ? s_.T_fixed : b_.T_max;
 		for (int r = 0; r < 2 * N_ * NX; r++)
 			gl[r] = gu[r] = 0;
@@ -162,20 +169,18 @@ public:
 			gl[r] = gu[r] = 0;
 	}
 
-	// Piecewise linear through the guess states, uniformly in time, clamped to
-	// the bounds; inputs at the model's guess.
-	// At times proportional to the guess's arc length (guess_by_arc_length),
-	// else uniformly.
+	// Piecewise linear through the guess states, at their times (guess_at)
+	// or uniformly in time, clamped to the bounds; inputs at the model's guess.
 	void start(Number *z) const override
 	{
 		auto ug = m_.input_guess();
 		const int nw = static_cast<int>(s_.guess.size()) - 1;
-		const std::vector<double> at = guess_times();
+		const std::vector<double> &at = s_.guess_at;
 		for (int p = 0; p < npts_; p++) {
 			double s = time_of(p);
 			int w = std::min(nw - 1, static_cast<int>(s * nw));
 			double local = s * nw - w;
-			if (s_.guess_by_arc_length) {
+			if (!at.empty()) {
 				for (w = 0; w + 1 < nw && at[static_cast<size_t>(w + 1)] <= s;)
 					w++;
 				double span = at[static_cast<size_t>(w + 1)] - at[static_cast<size_t>(w)];
@@ -451,26 +456,6 @@ private:
 		}
 	}
 
-	// Normalized times of the guess states with guess_by_arc_length:
-	// proportional to the arc length of their positions (uniform if it is 0).
-	// Empty without.
-	std::vector<double> guess_times() const
-	{
-		if (!s_.guess_by_arc_length || s_.corridor.empty())
-			return {};
-		const size_t n = s_.guess.size();
-		std::vector<double> at(n, 0.0);
-		const size_t dims = s_.corridor[0].lo.size();
-		for (size_t w = 1; w < n; w++) {
-			double d = 0;
-			for (size_t k = 0; k < dims; k++)
-				d += std::pow(s_.guess[w][k] - s_.guess[w - 1][k], 2);
-			at[w] = at[w - 1] + std::sqrt(d);
-		}
-		for (size_t w = 0; w < n; w++)
-			at[w] = at.back() > 0 ? at[w] / at.back() : static_cast<double>(w) / static_cast<double>(n - 1);
-		return at;
-	}
 	double F(int p, int r) const { return f_[static_cast<size_t>(p * NX + r)]; }
 	double JF(int p, int r, int j) const { return jf_[static_cast<size_t>((p * NX + r) * NZ + j)]; }
 	// Simpson weight of point p in the cost.

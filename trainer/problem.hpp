@@ -38,17 +38,19 @@ struct PhaseSpec {
 	int segments = 20;
 	double T_guess = 0;                       // [s]; 0: guess path length / typical speed
 	std::vector<std::vector<double>> guess;   // full states the initial guess runs through (>= 2)
-	// The guess states lie uniformly in time (a solution's knots and
-	// midpoints), with a corridor too; else, with one, by arc length.
-	bool guess_timed = false;
+	// The normalized times of the guess states (increasing, 0 to 1: a
+	// solution's knots and midpoints). Empty: with a corridor, proportional
+	// to arc length; else uniform.
+	std::vector<double> guess_at;
 	// Bounds of the first and last knot's state (the record's nx each; empty: the
 	// mode's bounds). Equal bounds fix a component.
 	std::vector<double> first_lo, first_hi, last_lo, last_hi;
 	// Empty: none. Else every knot and midpoint whose normalized time lies in
 	// a box's interval is bounded to that box (to the intersection of
 	// several); the first and last knots to their own bounds intersected
-	// with it (their own alone where that is empty). The initial guess then
-	// runs through the guess states at times proportional to arc length.
+	// with it (their own alone where that is empty). Where the intervals of
+	// consecutive boxes overlap, the phase is solved as pieces, one per box,
+	// with a free time for each hand-over (hand_overs.hpp).
 	std::vector<CorridorBox> corridor;
 	// Every point but the first and last knot kept this far inside each box
 	// (in a direction where the boxes it lies in leave room for it): the

@@ -87,9 +87,11 @@ bool start_from(MultiPhaseProblem &q, const MultiPhaseSolution &s)
 		if (n < 2 || s.phases[k].T <= 0)
 			return false;
 		ps.guess.clear();
-		for (size_t i = 0; i < n; i++)
+		ps.guess_at.clear();
+		for (size_t i = 0; i < n; i++) {
 			ps.guess.emplace_back(&tr.x[i * nx], &tr.x[i * nx] + nx);
-		ps.guess_timed = true;
+			ps.guess_at.push_back(i + 1 < n ? std::min(1.0, tr.t[i] / tr.t.back()) : 1.0);
+		}
 		ps.T_guess = s.phases[k].T;
 		ps.segments = s.phases[k].segments;
 	}

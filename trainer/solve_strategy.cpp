@@ -84,16 +84,32 @@ std::unique_ptr<StackedNlp> stacked_nlp(const Stacked &p, double relax)
 	return std::make_unique<StackedNlp>(std::move(blocks), std::move(rows));
 }
 
+// "phase N (mode" of stacked phase k, with its piece's number when the
+// phase is solved as pieces ("phase 1 (flight, piece 2 of 3").
+std::string phase_name(const Stacked &p, size_t k)
+{
+	std::string name = "phase " + std::to_string(k < p.owner.size() ? p.owner[k] : k) + " (" + hylo_mode_str(p.modes[k]);
+	if (k >= p.owner.size())
+		return name;
+	const auto [first, last] = std::equal_range(p.owner.begin(), p.owner.end(), p.owner[k]);
+	if (last - first > 1)
+		name += ", piece " + std::to_string(k - static_cast<size_t>(first - p.owner.begin()) + 1) + " of " +
+			std::to_string(last - first);
+	return name;
+}
+
 // A phase's coarse mesh: its own segments, at least its mode's, and with a
 // step length, segments of at most that (opt.max_step_s replacing the
-// mode's). The derivative checker needs no fine mesh, only exact derivatives.
+// mode's); a piece of a phase, its share of the mode's least segments.
+// The derivative checker needs no fine mesh, only exact derivatives.
 int coarse_segments(const PhaseSetup &s, const ModeInfo &i, double T, const SolveOptions &opt)
 {
 	if (!opt.derivative_test_file.empty())
 		return s.segments;
 	double step = i.max_step_s > 0 && opt.max_step_s > 0 ? opt.max_step_s : i.max_step_s;
 	int by_step = step > 0 ? static_cast<int>(std::ceil(T / step)) : 0;
-	return std::max({s.segments, i.min_segments, by_step});
+	const int least = static_cast<int>(std::ceil(i.min_segments * s.mesh_share));
+	return std::max({s.segments, least, by_step});
 }
 
 // A start after its continuation on the coarse mesh: its problem and last
@@ -169,7 +185,7 @@ private:
 			s.segments = coarse_segments(s, i, st.T[k], opt_);
 			if (i.path_guess && s.guess.size() == 2) {
 				s.guess = i.path_guess(s.guess[0], s.guess[1], st.T[k]);
-				s.guess_by_arc_length = false;
+				s.guess_at.clear();
 			}
 		}
 		return p;
@@ -244,8 +260,8 @@ private:
 			std::fprintf(stderr, "  replay %s: error %.3g, cost %.6g vs %.6g: %s\n", hylo_mode_str(mode),
 				     ph.replay_error, ph.replay_cost, ph.cost, replay_verdict(ph).c_str());
 		if (!ph.replay_ok && note_rejection)
-			rejection_ = "phase " + std::to_string(k) + " (" + hylo_mode_str(mode) + ", " +
-				     std::to_string(c.p.setups[k].segments) + " segments): " + replay_verdict(ph);
+			rejection_ = phase_name(c.p, k) + ", " + std::to_string(c.p.setups[k].segments) +
+				     " segments): " + replay_verdict(ph);
 		return ph.replay_ok;
 	}
 

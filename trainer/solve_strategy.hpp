@@ -27,6 +27,9 @@ struct Stacked {
 	std::vector<ModeInfo> info;
 	std::vector<PhaseSetup> setups;
 	std::vector<LinearRow> rows;
+	// The problem's phase each stacked phase is a piece of (hand_overs.hpp;
+	// empty: each its own).
+	std::vector<size_t> owner;
 };
 
 // Solves from each start and keeps the cheapest solution whose replays all

@@ -1,6 +1,7 @@
 // Safe corridors (trainer/corridor.hpp, docs/smoothing.md "Clearance"):
 // corridor boxes as knot bounds of a collocation phase, through mesh
-// refinement (the bounds of a finer mesh); the builder's boxes on a staircase shore; and two smoothed
+// refinement (the bounds of a finer mesh); a phase cut into pieces at its
+// boxes' hand-overs and joined back; the builder's boxes on a staircase shore; and two smoothed
 // plans checked point by point against the hazards of docs/smoothing.md,
 // written out here from that definition (not the corridor's cell test):
 //   (a) Ambot driving to a staircase shoreline and paddling on: with
@@ -10,7 +11,8 @@
 //   (b) Drivocopter hopping over a wall under a low ceiling, margin 0.25 m:
 //       every flight knot and midpoint keeps body + margin from the
 //       terrain's columns (the wall gates alone keep 0.18 m), and the
-//       flights' corridors rebuilt along the solution let it get cheaper.
+//       free hand-overs between boxes let the first solve reach the cost
+//       that rebuilding the corridors crept towards.
 // Prints TAP.
 #include <algorithm>
 #include <array>
@@ -24,6 +26,8 @@
 #include "tests/trainer/grids.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/corridor.hpp"
+#include "trainer/hand_overs.hpp"
+#include "trainer/mode_config.hpp"
 #include "trainer/hs_phase.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
@@ -196,7 +200,8 @@ void l_bounds(const RobotParams &ambot)
 
 // Ambot drives (0.5, 0.5) -> (4.5, 4.5) through the L: up the column
 // x in [0, 1], then along the row y in [4, 5]; every knot and midpoint of
-// the solution lies in the boxes of its time.
+// the solution lies in a box (the boxes' windows time the guess; where the
+// way hands over from one to the other is free, trainer/hand_overs.hpp).
 void l_shaped_phase(const RobotParams &ambot)
 {
 	double a[4] = {0.5, 0.5, 0, 1.5708}, c[4] = {0.5, 4.5, 0, 0}, b[4] = {4.5, 4.5, 0, 0};
@@ -214,22 +219,128 @@ void l_shaped_phase(const RobotParams &ambot)
 		const Trajectory &tr = m.phases[0].traj;
 		for (size_t i = 0; i < tr.t.size() && in; i++) {
 			double x = tr.x[i * 6], y = tr.x[i * 6 + 1];
-			std::array<double, 4> r = l_room(tr.t[i] / m.phases[0].T);
-			if (x < r[0] - 1e-7 || x > r[2] + 1e-7 || y < r[1] - 1e-7 || y > r[3] + 1e-7) {
+			bool held = false;
+			for (const CorridorBox &b : kL)
+				held = held || (x >= b.lo[0] - 1e-7 && x <= b.hi[0] + 1e-7 && y >= b.lo[1] - 1e-7 &&
+						y <= b.hi[1] + 1e-7);
+			if (!held) {
 				in = false;
-				why = "point " + std::to_string(i) + ": (" + fmt(x) + ", " + fmt(y) + ") outside its boxes";
+				why = "point " + std::to_string(i) + ": (" + fmt(x) + ", " + fmt(y) + ") outside the boxes";
 			}
 		}
 	}
 	std::printf("# L-shaped corridor: %.6g J, %d segments, %.2f s\n", m.cost,
 		    m.phases.empty() ? 0 : m.phases[0].segments, m.solve_seconds);
-	check(in, "an L-shaped corridor: the solution's knots and midpoints keep to the boxes of their time", why);
+	check(in, "an L-shaped corridor: the solution's knots and midpoints keep to its boxes (the hand-over between "
+		  "them free)", why);
 	PhaseSpec bad = s;
 	bad.corridor[1].lo = {2, 4};
 	bad.corridor[1].hi = {5, 5};
 	p.phases = {bad};
 	check_throws([&] { solve_multiphase(ambot, p, SolveOptions()); }, "overlap in time but not in space",
 		     "boxes that overlap in time but not in space are refused");
+}
+
+// A ground phase of 20 segments through three boxes whose windows overlap
+// ([0, 0.4], [0.3, 0.7], [0.6, 1]): three pieces, cut in the middle of each
+// overlap (0.35, 0.65), each with its box re-timed to its own time, its
+// share of the segments and of the duration guess, its slice of the guess
+// at its times, the mode's bounds and the inset at its inner ends; a fixed
+// duration, or boxes with a stretch between them, is not cut, nor a piece
+// shorter than four segments. And the
+// pieces' solutions joined back: one knot at each hand-over, durations,
+// costs and segments summed, the replay failed if one piece's did.
+void hand_over_pieces_split(const RobotParams &ambot)
+{
+	const internal::ModeInfo info = internal::mode_info(HYLO_MODE_GROUND, ambot);
+	double a[4] = {0, 0, 0, 0}, m[4] = {3, 0, 0, 0}, b[4] = {10, 0, 0, 0};
+	internal::PhaseSetup s;
+	s.segments = 20;
+	s.T_guess = 10;
+	s.guess = {full_state(HYLO_MODE_GROUND, ambot, a), full_state(HYLO_MODE_GROUND, ambot, m),
+		   full_state(HYLO_MODE_GROUND, ambot, b)};
+	s.guess_at = {0, 0.3, 1};
+	s.first_lo = s.first_hi = s.guess[0];
+	s.last_lo = s.last_hi = s.guess[2];
+	s.corridor = {CorridorBox{0, 0.4, {-1, -1}, {4.5, 1}}, CorridorBox{0.3, 0.7, {2.5, -1}, {7.5, 1}},
+		      CorridorBox{0.6, 1, {5.5, -1}, {11, 1}}};
+	const std::vector<internal::PhaseSetup> p = internal::hand_over_pieces(s, info);
+	std::string why;
+	auto expect = [&](bool ok, const std::string &what) {
+		if (!ok && why.empty())
+			why = what;
+	};
+	expect(p.size() == 3, std::to_string(p.size()) + " pieces");
+	if (p.size() == 3) {
+		const double share[3] = {0.35, 0.3, 0.35};
+		for (size_t k = 0; k < 3; k++) {
+			const std::string n = "piece " + std::to_string(k) + ": ";
+			expect(p[k].corridor.size() == 1 && p[k].corridor[0].lo[0] == s.corridor[k].lo[0] &&
+				       p[k].corridor[0].tau0 == 0 && p[k].corridor[0].tau1 == 1,
+			       n + "its box");
+			expect(std::fabs(p[k].T_guess - 10 * share[k]) < 1e-12 && std::fabs(p[k].mesh_share - share[k]) < 1e-12,
+			       n + "T guess " + fmt(p[k].T_guess) + ", mesh share " + fmt(p[k].mesh_share));
+			expect(p[k].segments == static_cast<int>(std::lround(20 * share[k])), n + std::to_string(p[k].segments) + " segments");
+			expect(p[k].inset_first == (k > 0) && p[k].inset_last == (k < 2), n + "insets");
+			expect(k == 0 ? p[k].first_lo == s.first_lo : p[k].first_lo == info.bounds.x_lo, n + "first bounds");
+			expect(k == 2 ? p[k].last_hi == s.last_hi : p[k].last_hi == info.bounds.x_hi, n + "last bounds");
+			expect(p[k].guess.size() == p[k].guess_at.size() && p[k].guess_at.front() == 0 && p[k].guess_at.back() == 1,
+			       n + "guess times");
+		}
+		// Piece 0: the start, the middle state at 0.3 / 0.35 of it, then x at
+		// 0.35 of the phase (3 + 0.05 / 0.7 * 7 = 3.5).
+		expect(p[0].guess.size() == 3 && std::fabs(p[0].guess_at[1] - 0.3 / 0.35) < 1e-12 &&
+			       std::fabs(p[0].guess[2][0] - 3.5) < 1e-12,
+		       "piece 0's guess slice");
+		expect(p[1].guess.size() == 2 && std::fabs(p[1].guess[0][0] - 3.5) < 1e-12 && std::fabs(p[1].guess[1][0] - 6.5) < 1e-12,
+		       "piece 1's guess slice");
+	}
+	internal::PhaseSetup fixed = s;
+	fixed.T_fixed = 10;
+	expect(internal::hand_over_pieces(fixed, info).size() == 1, "a fixed duration was cut");
+	internal::PhaseSetup apart = s;
+	apart.corridor[1].tau0 = 0.45;
+	apart.corridor[2].tau0 = 0.75;
+	expect(internal::hand_over_pieces(apart, info).size() == 1, "boxes with a stretch between them were cut");
+	// A piece shorter than four of the phase's segments (here 2) stays in
+	// its neighbour's: box 1 over 0.35..0.45 goes with box 2.
+	internal::PhaseSetup short_box = s;
+	short_box.corridor[1].tau1 = 0.5;
+	short_box.corridor[2].tau0 = 0.4;
+	const std::vector<internal::PhaseSetup> merged = internal::hand_over_pieces(short_box, info);
+	expect(merged.size() == 2 && merged[0].corridor.size() == 1 && merged[1].corridor.size() == 2 &&
+		       std::fabs(merged[1].T_guess - 6.5) < 1e-12,
+	       "a piece of 2 segments was not merged into its neighbour's: " + std::to_string(merged.size()) + " pieces");
+
+	MultiPhaseSolution m3;
+	for (int k = 0; k < 3; k++) {
+		Solution ph;
+		ph.T = 1 + k;
+		ph.cost = 10;
+		ph.segments = 2;
+		ph.replayed = ph.replay_ok = k != 1;
+		ph.replay_error = 0.1 * k;
+		ph.traj.nx = 1;
+		ph.traj.nu = 1;
+		ph.traj.t = {0, 0.5 * ph.T, ph.T};
+		ph.traj.x = {10.0 * k, 10.0 * k + 5, 10.0 * k + 10};
+		ph.traj.u = {0, 0, 0};
+		m3.phases.push_back(ph);
+		m3.modes.push_back(HYLO_MODE_GROUND);
+	}
+	const MultiPhaseSolution j = internal::joined_pieces(m3, {0, 0, 0});
+	const bool one = j.phases.size() == 1 && j.modes.size() == 1;
+	expect(one, std::to_string(j.phases.size()) + " phases joined");
+	if (one) {
+		const Solution &ph = j.phases[0];
+		expect(ph.traj.t == std::vector<double>{0, 0.5, 1, 2, 3, 4.5, 6} &&
+			       ph.traj.x == std::vector<double>{0, 5, 10, 15, 20, 25, 30},
+		       "joined trajectory");
+		expect(ph.T == 6 && ph.cost == 30 && ph.segments == 6 && !ph.replay_ok && ph.replay_error == 0.2,
+		       "joined sums and replay");
+	}
+	check(why.empty(), "hand-overs: a phase through three overlapping boxes is three pieces with their shares "
+			   "(a short one merged), joined back into one", why);
 }
 
 // ---- the builder and the smoother -------------------------------------------
@@ -391,15 +502,18 @@ void chasm_gate(const RobotParams &drivo)
 		std::printf("# note: %s\n", n.c_str());
 	check(a.converged && w.empty(), "chasm with a 1.5 m gate, margin 0.25 m: every flight knot and midpoint keeps "
 					"body + margin from the terrain's columns, the map's edge and the ceiling", w);
-	// The corridors built along the plan's path held the flights back: the
-	// ones rebuilt along each solution let the optimum move (by more than 5%
-	// here), and the check above holds for the last.
-	double first = 0;
+	// With each hand-over between boxes at a fixed time, the corridors
+	// built along the plan's path held the flights back and rounds of
+	// rebuilding crept towards the optimum, to 1,322.0 J (docs/decisions.md,
+	// "Table I at 70 m"). With free hand-overs the first solve is there, and
+	// a rebuild has little left to save.
+	double first = a.cost;
 	for (const std::string &n : a.notes)
-		if (first == 0 && std::sscanf(n.c_str(), "flight corridors rebuilt along the solution: %lf", &first) != 1)
-			first = 0;
-	check(first > 0 && a.cost < 0.95 * first, "chasm gate: corridors rebuilt along the solution, 5% cheaper than "
-						   "along the plan's path",
+		if (std::sscanf(n.c_str(), "flight corridors rebuilt along the solution: %lf", &first) == 1)
+			break;
+	check(a.converged && a.cost < 1310 && first < 1.005 * a.cost,
+	      "chasm gate: free hand-overs between boxes: below 1,310 J from the corridors along the plan's path, "
+	      "a rebuild saving under 0.5%",
 	      "along the plan's path " + fmt(first) + " J, smoothed " + fmt(a.cost) + " J");
 }
 
@@ -416,6 +530,7 @@ int main(int argc, char **argv)
 	staircase_corridor(ambot);
 	too_wide();
 	corner_pass(ambot);
+	hand_over_pieces_split(ambot);
 	staircase_smoothing(ambot);
 	chasm_gate(drivo);
 	return tap_finish();

@@ -331,20 +331,24 @@ void corridor_inset(const RobotParams &ambot)
 	join_phases(p, 0, ambot, SwitchGuard{4, -4, 4, 6, 0});
 	p.phases[0].corridor = {{0, 0.5, {-1, -1}, {1, 3}}, {0.5, 1, {0, 2}, {4, 3}}};
 	p.phases[1].corridor = {{0, 1, {4, -4}, {9, 6}}};
-	// The least distance of a phase-interior point to a face of a box that holds it.
+	// The least depth of a phase-interior point in its boxes: how far inside
+	// the box that holds it deepest (the hand-over between boxes is free, so
+	// which box holds a point is not fixed by its time).
 	auto nearest_face = [&](const MultiPhaseSolution &m) {
 		double d = INFINITY;
 		for (size_t k = 0; k < 2 && m.converged; k++) {
 			const Trajectory &tr = m.phases[k].traj;
 			const size_t nx = static_cast<size_t>(tr.nx), n = tr.t.size();
-			for (size_t i = 1; i + 1 < n; i++)
+			for (size_t i = 1; i + 1 < n; i++) {
+				double depth = -INFINITY;
 				for (const CorridorBox &box : p.phases[k].corridor) {
-					const double tau = tr.t[i] / m.phases[k].T;
-					if (tau < box.tau0 - 1e-9 || tau > box.tau1 + 1e-9)
-						continue;
+					double in = INFINITY;
 					for (size_t c = 0; c < 2; c++)
-						d = std::min({d, tr.x[i * nx + c] - box.lo[c], box.hi[c] - tr.x[i * nx + c]});
+						in = std::min({in, tr.x[i * nx + c] - box.lo[c], box.hi[c] - tr.x[i * nx + c]});
+					depth = std::max(depth, in);
 				}
+				d = std::min(d, depth);
+			}
 		}
 		return d;
 	};
