@@ -244,10 +244,10 @@ expect_fail "repair of more rows than the dataset has: clear error (exit 2)" 2 "
   "$TR" --mode di_neg --robot di --stage repair --samples 20 --seed 3 --out "$T/rep" --quiet
 expect_fail "--refine-within x: clear error (exit 2)" 2 "fraction >= 0 or inf" \
   "$TR" --mode di_neg --robot di --refine-within x --solve -0.5,0 -0.3,0
-"$TR" --mode di_neg --robot di --stage gen --quiet --samples 2 --seed 3 --refine-within 0.05 --out "$T/rwinf" > /dev/null
-if grep -q "^refine_within: 0.05$" "$T/rwinf/di_neg.csv.meta" && grep -A3 -- "--refine-within F" "$T/help" | grep -q "default: inf"; then
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 2 --seed 3 --refine-within 0.05 --out "$T/rw005" > /dev/null
+if grep -q "^refine_within: 0.05$" "$T/rw005/di_neg.csv.meta" && grep -A3 -- "--refine-within F" "$T/help" | grep -q "default: inf"; then
   tap_ok "--refine-within 0.05 is recorded in the .meta; --help gives its default"
-else tap_not_ok "--refine-within 0.05 is recorded in the .meta; --help gives its default" "$(grep refine "$T/rwinf/di_neg.csv.meta")"; fi
+else tap_not_ok "--refine-within 0.05 is recorded in the .meta; --help gives its default" "$(grep refine "$T/rw005/di_neg.csv.meta")"; fi
 
 # --mode switch: the robot's switches (docs/models.md section 6).
 if "$TR" --mode switch --robot ambot --json > "$T/sw.json" &&
