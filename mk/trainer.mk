@@ -6,7 +6,7 @@ TRAINER_SRCS := trainer/params.cpp trainer/robot_params.cpp trainer/collocation.
 	trainer/dataset.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/envelope.cpp trainer/sha256.cpp \
 	trainer/pipeline.cpp trainer/switching.cpp trainer/smoother.cpp trainer/smoothing_problem.cpp trainer/map_guards.cpp \
 	trainer/fallbacks.cpp trainer/domain_check.cpp trainer/smooth_alternatives.cpp trainer/processes.cpp \
-	trainer/numerics.cpp trainer/repair.cpp trainer/gather.cpp trainer/clearance.cpp trainer/files.cpp trainer/corridor.cpp
+	trainer/numerics.cpp trainer/memory.cpp trainer/frame.cpp trainer/repair.cpp trainer/gather.cpp trainer/clearance.cpp trainer/files.cpp trainer/corridor.cpp
 TRAINER_OBJS := $(TRAINER_SRCS:%.cpp=$(BUILD)/obj/%.o)
 TRAINER_CFLAGS := $(CXX17_FLAGS) $(DEP_FLAGS) -I. -Ionboard/include $(IPOPT_CFLAGS) $(EIGEN_CFLAGS) $(YAML_CFLAGS)
 TRAINER_LIBS := $(IPOPT_LIBS) $(SUNDIALS_LIBS) $(YAML_LIBS) $(SVM_LIBS) -lpthread
@@ -52,6 +52,10 @@ REPAIR_TEST := $(BUILD)/test/trainer/test_repair
 $(REPAIR_TEST): tests/trainer/test_repair.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+MEMORY_TEST := $(BUILD)/test/trainer/test_memory
+$(MEMORY_TEST): tests/trainer/test_memory.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 CLEARANCE_CHECK_TEST := $(BUILD)/test/trainer/test_clearance_check
 $(CLEARANCE_CHECK_TEST): tests/trainer/test_clearance_check.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
@@ -65,13 +69,14 @@ $(WALL_CROSSINGS_TEST): tests/trainer/test_wall_crossings.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 tests/trainer/test_trainer_cli.sh: $(TRAINER)
+tests/trainer/test_solve_memory.sh: $(TRAINER)
 # Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
 # test_collocation under several OpenBLAS kernel settings and hwcaps masks.
 tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
-ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(MEMORY_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
 	$(WALL_CROSSINGS_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
-	$(WALL_CROSSINGS_TEST) tests/trainer/test_trainer_cli.sh \
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(MEMORY_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
+	$(WALL_CROSSINGS_TEST) tests/trainer/test_trainer_cli.sh tests/trainer/test_solve_memory.sh \
 	tests/trainer/test_numerics.sh
 
 # make models: regenerates every committed model (datasets resume; see

@@ -59,6 +59,15 @@ std::string read_file(const std::string &path)
 	return ss.str();
 }
 
+std::vector<std::string> complete_lines(const std::string &text)
+{
+	std::vector<std::string> out;
+	size_t pos = 0;
+	for (size_t nl; (nl = text.find('\n', pos)) != std::string::npos; pos = nl + 1)
+		out.push_back(text.substr(pos, nl - pos));
+	return out;
+}
+
 void write_file_atomically(const std::string &path, const std::string &text)
 {
 	const std::string tmp = path + ".tmp";

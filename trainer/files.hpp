@@ -4,11 +4,16 @@
 #define HYLO_TRAINER_FILES_HPP
 
 #include <string>
+#include <vector>
 
 namespace hylo::trainer {
 
 // The file's bytes ("" if it cannot be read).
 std::string read_file(const std::string &path);
+
+// The complete lines of text, without their newlines (a torn last line,
+// one without its newline, dropped).
+std::vector<std::string> complete_lines(const std::string &text);
 
 // Writes all of s to fd; throws std::runtime_error naming what.
 void write_all(int fd, const std::string &s, const std::string &what);

@@ -23,7 +23,8 @@ namespace hylo::trainer::internal {
 
 // The phase s (of a mode with info) as its pieces, in time order: one per
 // run of boxes between two hand-overs (where the windows of consecutive
-// boxes overlap; the hand-over starts in the middle of the overlap). Each
+// boxes overlap and both pieces it leaves span at least four of the
+// phase's segments; the hand-over starts in the middle of the overlap). Each
 // piece has the boxes of its run, re-timed to its own normalized time, its
 // share of the guess (states at their times), of the duration guess and of
 // the segments, and the mode's bounds at its inner ends. A phase without

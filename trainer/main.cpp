@@ -4,6 +4,7 @@
 // (unknown mode or robot, malformed vector, a state out of bounds, an unusable
 // output directory or dataset).
 #include <malloc.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include "trainer/cli.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/memory.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/params.hpp"
 #include "trainer/pipeline.hpp"
@@ -61,7 +63,7 @@ void usage(FILE *f)
 {
 	std::fprintf(f,
 		"usage: trainer --mode M --robot R [options]\n"
-		"       trainer --mode M --robot R --solve X1 X2 [--json] [--trajectory]\n"
+		"       trainer --mode M --robot R --solve X1 X2 [--memory DIR] [--json] [--trajectory]\n"
 		"       trainer --mode switch --robot R [--json]\n"
 		"Generates training data by trajectory optimization (Hermite-Simpson\n"
 		"collocation with Ipopt, checked by a CVODE replay), fits the SVR cost model\n"
@@ -89,8 +91,8 @@ void usage(FILE *f)
 		"                    and fit use its first N (default: ground and marine 14400,\n"
 		"                    11520 under --draws 1 or 2; flight 17016; di 4000, 2000\n"
 		"                    under --draws 1)\n"
-		"  --neighbours K    repair: warm starts per row from the K nearest rows' solutions\n"
-		"                    (default: 4)\n"
+		"  --neighbours K    repair, --solve: warm starts from the K nearest rows' solutions\n"
+		"                    (default: 8)\n"
 		"  --solutions       gen: also keep each row's solution in <out>/<mode>.solutions.csv\n"
 		"                    as it is solved, so that repair need not solve the rows again\n"
 		"                    (unsharded runs; default: off)\n"
@@ -128,6 +130,11 @@ void usage(FILE *f)
 		"  --models-dir DIR  where export writes headers (default: onboard/models)\n"
 		"  --solve X1 X2     solve one BVP between sampled states (comma-separated,\n"
 		"                    docs/models.md section 7 order) and print the result\n"
+		"  --memory DIR      --solve: also start from the solutions of the K nearest rows\n"
+		"                    of the dataset DIR/<mode>.csv, kept in DIR/<mode>.solutions.csv\n"
+		"                    (gen --solutions), moved into the pair's frame: the basins\n"
+		"                    its labels reached; none: the pair's own starts only\n"
+		"                    (default: trainer/datasets/<robot> if it has the sidecar)\n"
 		"  --json            --solve: print JSON\n"
 		"  --trajectory      --solve --json: include time, state and input samples\n"
 		"  --quiet           no progress output\n"
@@ -167,8 +174,10 @@ std::vector<double> parse_vector(const std::string &text, int dim, const std::st
 	return v;
 }
 
+// memory: the sidecar the memory starts came from ("" without a memory).
 void print_solution(const Solution &s, const std::string &mode, const std::string &robot,
-		    const std::vector<double> &a, const std::vector<double> &b, bool json, bool traj)
+		    const std::vector<double> &a, const std::vector<double> &b, bool json, bool traj,
+		    const std::string &memory, size_t memory_starts)
 {
 	auto arr = [](const double *v, size_t n) {
 		std::string o = "[";
@@ -185,18 +194,20 @@ void print_solution(const Solution &s, const std::string &mode, const std::strin
 			    robot.c_str(), mode.c_str(), s.converged ? "converged" : s.status_text.c_str(),
 			    s.cost, s.T, s.iterations, s.segments, s.replay_error, s.replay_cost,
 			    s.solve_seconds);
+		if (!memory.empty())
+			std::printf("  with %zu starts from %s\n", memory_starts, memory.c_str());
 		return;
 	}
 	std::printf("{\"robot\":\"%s\",\"mode\":\"%s\",\"x1\":%s,\"x2\":%s,\"converged\":%s,"
 		    "\"status\":\"%s\",\"cost_j\":%.17g,\"T_s\":%.17g,\"iterations\":%d,\"segments\":%d,"
 		    "\"starts\":%d,\"converged_starts\":%d,\"refined_starts\":%d,\"replay_error\":%s,\"replay_cost_j\":%s,"
-		    "\"solve_s\":%.6f",
+		    "\"solve_s\":%.6f,\"memory\":%s,\"memory_starts\":%zu",
 		    robot.c_str(), mode.c_str(), arr(a.data(), a.size()).c_str(),
 		    arr(b.data(), b.size()).c_str(), s.converged ? "true" : "false", s.status_text.c_str(),
 		    s.cost, s.T, s.iterations, s.segments, s.starts, s.converged_starts, s.refined_starts,
 		    arr(&s.replay_error, 1).substr(1, arr(&s.replay_error, 1).size() - 2).c_str(),
 		    arr(&s.replay_cost, 1).substr(1, arr(&s.replay_cost, 1).size() - 2).c_str(),
-		    s.solve_seconds);
+		    s.solve_seconds, memory.empty() ? "null" : ("\"" + memory + "\"").c_str(), memory_starts);
 	if (traj && s.converged) {
 		const Trajectory &t = s.traj;
 		std::printf(",\"trajectory\":{\"t_s\":%s,\"x\":[", arr(t.t.data(), t.t.size()).c_str());
@@ -272,7 +283,7 @@ std::string missing_mode_or_robot(const std::string &mode, const std::string &ro
 int run(int argc, char **argv)
 {
 	PipelineOptions po;
-	std::string mode, robot_name, solve1, solve2, stage;
+	std::string mode, robot_name, solve1, solve2, stage, memory_dir;
 	int gather_shards = 0;
 	bool solve = false, json = false, traj = false;
 	po.gen.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -350,6 +361,8 @@ int run(int argc, char **argv)
 			solve = true;
 			solve1 = val();
 			solve2 = val();
+		} else if (a == "--memory") {
+			memory_dir = val();
 		} else if (a == "--json") {
 			json = true;
 		} else if (a == "--trajectory") {
@@ -379,14 +392,28 @@ int run(int argc, char **argv)
 		int d = mode_desc(id).xs_dim;
 		std::vector<double> a = parse_vector(solve1, d, "--solve X1"), b = parse_vector(solve2, d, "--solve X2");
 		Solution s;
+		std::string memory;
+		std::vector<Guess> guesses;
+		const std::string committed = "trainer/datasets/" + robot_name;
+		if (memory_dir.empty() && access((committed + "/" + mode + ".solutions.csv").c_str(), F_OK) == 0)
+			memory_dir = committed;
 		try {
+			if (!memory_dir.empty() && memory_dir != "none") {
+				Memory m(robot, id, memory_dir);
+				memory = m.sidecar();
+				guesses = m.guesses(robot, a.data(), b.data(), po.neighbours);
+			}
 			s = solve_bvp(id, robot, a.data(), b.data(), po.gen.solve);
+			if (!guesses.empty())
+				s = solve_bvp_guesses(id, robot, a.data(), b.data(), po.gen.solve, guesses, s);
 		} catch (const std::invalid_argument &e) {
 			throw Usage(e.what());
 		}
-		print_solution(s, mode, robot_name, a, b, json, traj);
+		print_solution(s, mode, robot_name, a, b, json, traj, memory, guesses.size());
 		return 0;
 	}
+	if (!memory_dir.empty())
+		throw Usage("--memory is for --solve (a dataset's stages read no memory)");
 	po.gen.mode = id;
 	if (po.gen.out_dir.empty())
 		po.gen.out_dir = "build/datasets/" + robot_name;

@@ -17,7 +17,7 @@ constexpr const char *kHyloVersion = HYLO_VERSION;
 struct PipelineOptions {
 	GenOptions gen;
 	std::string models_dir = "onboard/models";
-	int neighbours = 4;   // --stage repair: warm starts per row (RepairOptions)
+	int neighbours = 8;   // --stage repair, --solve: warm starts (RepairOptions, Memory)
 	bool solutions = false;   // gen: also keep each row's solution for the repair (--solutions)
 };
 

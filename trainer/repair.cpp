@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "trainer/collocation.hpp"
+#include "trainer/files.hpp"
+#include "trainer/memory.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
@@ -53,70 +55,6 @@ std::string join(const std::vector<std::string> &v, const std::string &sep)
 	return out;
 }
 
-// Lines of text (without their newlines); a torn last line dropped.
-std::vector<std::string> lines_of(const std::string &text)
-{
-	std::vector<std::string> out;
-	size_t pos = 0;
-	for (size_t nl; (nl = text.find('\n', pos)) != std::string::npos; pos = nl + 1)
-		out.push_back(text.substr(pos, nl - pos));
-	return out;
-}
-
-// A row's result columns (csv_columns' cost_j ... replay_cost_j) as a
-// Solution: what csv_row prints of it.
-Solution result_of(const std::vector<std::string> &f, size_t first, const std::string &where)
-{
-	Solution s;
-	try {
-		s.cost = std::stod(f.at(first));
-		s.T = std::stod(f.at(first + 1));
-		s.converged = f.at(first + 2) == "1";
-		s.status_text = f.at(first + 3);
-		s.iterations = std::stoi(f.at(first + 4));
-		s.segments = std::stoi(f.at(first + 5));
-		s.replay_error = std::stod(f.at(first + 6));
-		s.replay_cost = std::stod(f.at(first + 7));
-	} catch (const std::exception &) {
-		throw std::invalid_argument(where + ": a result column is missing or not a number");
-	}
-	return s;
-}
-
-// One solved row of the sidecar: its result and path.
-struct Stored {
-	Solution s;
-	std::vector<std::vector<double>> path;   // path_points full states (converged rows)
-};
-
-std::vector<std::string> sidecar_columns(hylo_mode mode, int points)
-{
-	std::vector<std::string> c = {"index", "cost_j", "T_s", "converged", "status", "iterations",
-				      "segments", "replay_error", "replay_cost_j"};
-	for (int p = 0; p < points; p++)
-		for (int k = 0; k < mode_desc(mode).nx; k++)
-			c.push_back("p" + std::to_string(p) + "_x" + std::to_string(k));
-	return c;
-}
-
-// Sample i's sidecar line from its pair and solution: the result columns
-// of its dataset row, then the path.
-std::string solution_line(const RobotParams &robot, hylo_mode mode, int points, uint64_t i,
-			  const double *a, const double *b, const Solution &s)
-{
-	std::vector<std::string> f = csv_fields(csv_row(mode, i, a, b, s));
-	std::vector<std::string> out = {std::to_string(i)};
-	out.insert(out.end(), f.end() - 8, f.end());
-	const size_t nx = static_cast<size_t>(mode_desc(mode).nx);
-	std::vector<std::vector<double>> path;
-	if (s.converged)
-		path = transplanted_guess(s.traj, s.T, full_state(mode, robot, a), full_state(mode, robot, b), points).path;
-	for (int p = 0; p < points; p++)
-		for (size_t k = 0; k < nx; k++)
-			out.push_back(s.converged ? format_double(path[static_cast<size_t>(p)][k]) : "0");
-	return join(out, ",");
-}
-
 // Sample i's sidecar line: the current solver's result and its path.
 std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uint64_t i)
 {
@@ -131,25 +69,6 @@ std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uin
 		s.status_text = kErrorStatus + std::string(e.what());
 	}
 	return solution_line(robot, mode, opt.path_points, i, a, b, s);
-}
-
-Stored parse_sidecar_line(hylo_mode mode, const std::string &line, uint64_t i, int points,
-			  const std::string &where)
-{
-	std::vector<std::string> f = csv_fields(line);
-	const size_t nx = static_cast<size_t>(mode_desc(mode).nx);
-	if (f.size() != 9 + nx * static_cast<size_t>(points) || f[0] != std::to_string(i))
-		throw std::runtime_error(where + ": not the sidecar row of sample " + std::to_string(i));
-	Stored st;
-	st.s = result_of(f, 1, where);
-	if (st.s.converged)
-		for (int p = 0; p < points; p++) {
-			std::vector<double> x(nx);
-			for (size_t k = 0; k < nx; k++)
-				x[k] = std::stod(f[9 + static_cast<size_t>(p) * nx + k]);
-			st.path.push_back(std::move(x));
-		}
-	return st;
 }
 
 // Extends the sidecar to the first n rows (resumable, a chunk at a time; a
@@ -236,55 +155,17 @@ private:
 	AppendFile out_;
 };
 
-std::vector<Stored> read_sidecar(const RepairOptions &opt, uint64_t n)
+std::vector<StoredSolution> read_sidecar(const RepairOptions &opt, uint64_t n)
 {
 	const std::string path = solutions_path(opt.gen);
-	std::vector<std::string> lines = lines_of(read_file(path));
+	std::vector<std::string> lines = complete_lines(read_file(path));
 	if (lines.size() < n + 1)
 		throw std::runtime_error(path + " has " + std::to_string(lines.empty() ? 0 : lines.size() - 1) +
 					 " rows, not " + std::to_string(n));
-	std::vector<Stored> out;
+	std::vector<StoredSolution> out;
 	for (uint64_t i = 0; i < n; i++)
-		out.push_back(parse_sidecar_line(opt.gen.mode, lines[i + 1], i, opt.path_points,
+		out.push_back(parse_solution_line(opt.gen.mode, lines[i + 1], i, opt.path_points,
 						 path + " line " + std::to_string(i + 2)));
-	return out;
-}
-
-// The k nearest rows of each row with a converged sidecar solution, in the
-// sampled coordinates (x1 and x2), each scaled by its range over the rows
-// (a coordinate with none left out); ties by index.
-std::vector<std::vector<uint64_t>> nearest(const std::vector<std::vector<double>> &coords,
-					   const std::vector<Stored> &sol, int k)
-{
-	const size_t n = coords.size(), d = n ? coords[0].size() : 0;
-	std::vector<double> scale(d, 0);
-	for (size_t c = 0; c < d; c++) {
-		double lo = coords[0][c], hi = coords[0][c];
-		for (const auto &x : coords) {
-			lo = std::min(lo, x[c]);
-			hi = std::max(hi, x[c]);
-		}
-		scale[c] = hi > lo ? 1.0 / (hi - lo) : 0.0;
-	}
-	std::vector<std::vector<uint64_t>> out(n);
-	std::vector<std::pair<double, uint64_t>> cand;
-	for (size_t i = 0; i < n; i++) {
-		cand.clear();
-		for (size_t j = 0; j < n; j++) {
-			if (j == i || !sol[j].s.converged)
-				continue;
-			double s = 0;
-			for (size_t c = 0; c < d; c++) {
-				double v = (coords[i][c] - coords[j][c]) * scale[c];
-				s += v * v;
-			}
-			cand.emplace_back(s, j);
-		}
-		size_t m = std::min(cand.size(), static_cast<size_t>(std::max(0, k)));
-		std::partial_sort(cand.begin(), cand.begin() + static_cast<std::ptrdiff_t>(m), cand.end());
-		for (size_t q = 0; q < m; q++)
-			out[i].push_back(cand[q].second);
-	}
 	return out;
 }
 
@@ -376,7 +257,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		sum.already = true;
 		return sum;
 	}
-	std::vector<std::string> lines = lines_of(input);
+	std::vector<std::string> lines = complete_lines(input);
 	const std::string header = join(csv_columns(mode), ",");
 	if (lines.empty() || lines[0] != header)
 		throw std::invalid_argument(sum.path + ": line 1 is not the header of a " + hylo_mode_str(mode) + " dataset");
@@ -401,7 +282,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			throw std::invalid_argument(where + ": not sample " + std::to_string(i) + " of this stream");
 		coords[i].assign(a, a + d);
 		coords[i].insert(coords[i].end(), b, b + d);
-		stored[i] = result_of(f, ic, where);
+		stored[i] = row_result(f, ic, where);
 	}
 	std::string input_rows;
 	for (uint64_t i = 0; i <= n; i++)
@@ -439,8 +320,8 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	sum.solved_again = extend_sidecar(robot, opt, n);
 	sum.solve_cpu_s = children_cpu_s() - cpu0;
 	cpu0 = children_cpu_s();
-	std::vector<Stored> sol = read_sidecar(opt, n);
-	std::vector<std::vector<uint64_t>> near = nearest(coords, sol, opt.neighbours);
+	std::vector<StoredSolution> sol = read_sidecar(opt, n);
+	std::vector<std::vector<uint64_t>> near = nearest_rows(coords, sol, opt.neighbours);
 	// Each row's incumbent: the cheaper converged of the stored label and the
 	// current solver's, and the row text it stands for (the input's own
 	// bytes where the stored label is kept).
@@ -471,16 +352,8 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 			std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
 			std::vector<Guess> guesses;
-			for (uint64_t j : near[i]) {
-				Trajectory tr;
-				tr.nx = mode_desc(mode).nx;
-				const auto &path = sol[j].path;
-				for (size_t p = 0; p < path.size(); p++) {
-					tr.t.push_back(sol[j].s.T * static_cast<double>(p) / static_cast<double>(path.size() - 1));
-					tr.x.insert(tr.x.end(), path[p].begin(), path[p].end());
-				}
-				guesses.push_back(transplanted_guess(tr, sol[j].s.T, a, b, opt.path_points));
-			}
+			for (uint64_t j : near[i])
+				guesses.push_back(stored_guess(mode, sol[j], a, b, opt.path_points));
 			try {
 				Solution s = solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve, guesses, inc);
 				if (better(s, inc))
@@ -504,7 +377,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	sum.warm_cpu_s = children_cpu_s() - cpu0;
 
 	// Done: the repaired rows, then the input's past n, replace the dataset.
-	std::vector<std::string> repaired = lines_of(read_file(work));
+	std::vector<std::string> repaired = complete_lines(read_file(work));
 	if (repaired.size() != n + 1)
 		throw std::runtime_error(work + " has " + std::to_string(repaired.size() - 1) + " rows, not " +
 					 std::to_string(n));

@@ -43,7 +43,7 @@ struct RepairOptions {
 	// mode, out_dir, samples (N: the rows repaired, the first N), seed, jobs,
 	// chunk, solve (the solver's options), progress.
 	GenOptions gen;
-	int neighbours = 4;      // K: warm starts per row
+	int neighbours = 8;      // K: warm starts per row
 	int path_points = 21;    // states per stored path (a 20-segment coarse mesh's knots)
 };
 

@@ -236,7 +236,7 @@ expect_fail "repair without a dataset: clear error (exit 2)" 2 "run --stage gen 
 "$TR" --mode di_neg --robot di --stage repair --quiet --samples 8 --seed 3 --jobs 2 --neighbours 2 --out "$T/rep" > "$T/rep.out"; rc=$?
 if [ "$rc" -eq 0 ] && grep -q "^repair di di_neg: 8 rows of .*labels lowered by more than 0.5%" "$T/rep.out" &&
    grep -q "^repaired_rows: 8$" "$T/rep/di_neg.csv.meta" && grep -q "^repair_neighbours: 2$" "$T/rep/di_neg.csv.meta" &&
-   [ "$(grep -c . "$T/rep/di_neg.csv")" -eq 11 ] && grep -A1 -- "--neighbours K" "$T/help" | grep -q "default: 4"; then
+   [ "$(grep -c . "$T/rep/di_neg.csv")" -eq 11 ] && grep -A1 -- "--neighbours K" "$T/help" | grep -q "default: 8"; then
   tap_ok "--stage repair --neighbours 2: repairs the first N rows, says how many it lowered, the .meta records it"
 else tap_not_ok "--stage repair --neighbours 2: repairs the first N rows, says how many it lowered, the .meta records it" \
   "exit $rc" "$(cat "$T/rep.out")"; fi

@@ -762,6 +762,9 @@ class SolveLog {
 public:
 	explicit SolveLog(std::string path) : path_(std::move(path))
 	{
+		// A build without the hash knows no sources: it takes no record and
+		// drops nothing.
+		const bool keyed = sources().size() == 16;
 		size_t other = 0;
 		std::string kept;   // the lines of these sources, in order
 		std::ifstream f(path_);
@@ -778,7 +781,7 @@ public:
 			const std::string key = line.substr(0, tab);
 			if (r.size() < 5)
 				continue;
-			if (sources().size() == 16 && made_by(key, sources())) {
+			if (keyed && made_by(key, sources())) {
 				done_[key] = r;
 				kept += line + "\n";
 			} else {
@@ -787,13 +790,11 @@ public:
 		}
 		// A record of other code is never taken again: the log keeps only
 		// these sources' (the committed one, the committed tables' solves).
-		// A build without the hash knows no sources and drops nothing.
-		const bool drop = sources().size() == 16;
 		if (other) {
 			std::fprintf(stderr, "  %s: %zu solves made by other code (sources %s now): solving them again%s\n",
-				     path_.c_str(), other, sources().c_str(), drop ? ", dropped from the log" : "");
+				     path_.c_str(), other, sources().c_str(), keyed ? ", dropped from the log" : "");
 			f.close();
-			if (drop)
+			if (keyed)
 				write_file_atomically(path_, kept);
 		}
 	}

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# trainer --solve --memory (trainer/memory.hpp): an Ambot marine pair
+# (regeneration row 58) whose own starts end at 487.5 J reaches the basin
+# 31% lower (334.5 J) from the solution of its neighbour row 94, kept in the
+# memory tests/trainer/memory; a dataset directory trainer/datasets/<robot>
+# with a sidecar is the memory by default, --memory none turns it off; a
+# missing memory and --memory without --solve are usage errors (exit 2).
+set -u
+cd "$(dirname "$0")/../.."
+. tests/tap.sh
+B=${BUILD:-build}
+TR=$(pwd)/$B/bin/trainer
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+
+A=0,0,0.86799138502896156,0
+Z=-1.9253079989130777,-3.9534500931621914,0,-2.6574456804180704
+mkdir -p "$T/cwd/trainer/datasets"
+cp -r tests/trainer/memory "$T/cwd/trainer/datasets/ambot"
+"$TR" --mode marine --robot ambot --solve $A $Z --memory none --json > "$T/none.json" 2> "$T/none.err" &
+(cd "$T/cwd" && HYLO_PARAMS_DIR="$OLDPWD/trainer/params" "$TR" --mode marine --robot ambot --solve $A $Z --json) \
+  > "$T/mem.json" 2> "$T/mem.err"
+wait
+field() { sed -n "s/.*\"$2\":\([^,}]*\).*/\1/p" "$1"; }
+c0=$(field "$T/none.json" cost_j); c1=$(field "$T/mem.json" cost_j)
+if [ "$(field "$T/none.json" converged)" = true ] && [ "$(field "$T/none.json" memory)" = null ] &&
+   [ "$(field "$T/none.json" memory_starts)" = 0 ] && [ "$(field "$T/mem.json" converged)" = true ] &&
+   [ "$(field "$T/mem.json" memory)" = '"trainer/datasets/ambot/marine.solutions.csv"' ] &&
+   [ "$(field "$T/mem.json" memory_starts)" = 2 ] && awk -v a="$c0" -v b="$c1" 'BEGIN { exit !(b <= 0.75 * a) }'; then
+  tap_ok "the memory's neighbour leads the pair into a basin at least 25% lower ($c0 J -> $c1 J); the dataset directory is the default memory"
+else tap_not_ok "the memory's neighbour leads the pair into a basin at least 25% lower" \
+  "$(head -c 400 "$T/none.json")" "$(head -c 400 "$T/mem.json")" "$(tail -3 "$T/none.err" "$T/mem.err")"; fi
+
+"$TR" --mode marine --robot ambot --solve $A $Z --memory "$T/nowhere" > "$T/out" 2> "$T/err"; rc=$?
+if [ $rc -eq 2 ] && grep -q "memory: no $T/nowhere/marine.csv.meta" "$T/err"; then
+  tap_ok "a missing memory: exit 2 naming the file"; else tap_not_ok "a missing memory: exit 2 naming the file" "exit $rc" "$(cat "$T/err")"; fi
+"$TR" --mode marine --robot ambot --stage gen --samples 1 --out "$T/gen" --memory tests/trainer/memory > "$T/out" 2> "$T/err"; rc=$?
+if [ $rc -eq 2 ] && grep -q -- "--memory is for --solve" "$T/err" && [ ! -e "$T/gen" ]; then
+  tap_ok "--memory without --solve: exit 2, nothing written"; else tap_not_ok "--memory without --solve: exit 2, nothing written" "exit $rc" "$(cat "$T/err")"; fi
+"$TR" --help > "$T/help"
+if grep -q -- "--memory DIR" "$T/help" && grep -A5 -- "--memory DIR" "$T/help" | grep -q "default: trainer/datasets/<robot>"; then
+  tap_ok "--help describes --memory and its default"; else tap_not_ok "--help describes --memory and its default"; fi
+tap_finish
