@@ -1,7 +1,8 @@
 // A memory of motion: the solutions a dataset's rows reached, kept beside it
 // in its sidecar <mode>.solutions.csv (one line per row: the row's result
-// columns and its path, path_points full states uniformly in time), used as
-// warm starts for other pairs of the mode. The repair stage warms each row
+// columns and its path, path_points full states uniformly in time; after a
+// repair, a row whose label a neighbour's path lowered has that solution's),
+// used as warm starts for other pairs of the mode. The repair stage warms each row
 // with its nearest rows' paths (repair.hpp); trainer --solve warms a new
 // pair with the paths of the dataset's rows nearest to it (Memory), so that
 // a solve reaches the basins its labels reached.

@@ -384,15 +384,16 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 		} else {
 			std::printf("repair %s %s: %llu rows of %s (%llu solved again, %llu repaired now), %llu labels "
 				    "lowered by more than 0.5%% (%llu by the solver alone, %llu by a neighbour's "
-				    "warm start; median %.2f%%, largest %.2f%%), %llu newly converged; CPU %.1f s solving again, "
-				    "%.1f s warm-started; %.1f s\n",
+				    "warm start; median %.2f%%, largest %.2f%%), %llu newly converged, %llu sidecar paths "
+				    "replaced by a neighbour's; CPU %.1f s solving again, %.1f s warm-started; %.1f s\n",
 				    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), static_cast<unsigned long long>(s.rows),
 				    s.path.c_str(), static_cast<unsigned long long>(s.solved_again),
 				    static_cast<unsigned long long>(s.repaired_now),
 				    static_cast<unsigned long long>(s.lowered),
 				    static_cast<unsigned long long>(s.lowered_by_solver),
 				    static_cast<unsigned long long>(s.lowered_by_neighbours), 100 * s.median_drop,
-				    100 * s.max_drop, static_cast<unsigned long long>(s.newly_converged), s.solve_cpu_s,
+				    100 * s.max_drop, static_cast<unsigned long long>(s.newly_converged),
+				    static_cast<unsigned long long>(s.solutions_replaced), s.solve_cpu_s,
 				    s.warm_cpu_s, s.seconds);
 		}
 	}

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <sstream>
@@ -291,6 +292,9 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 
 	// The in-progress file: resumed if it is this repair's of these rows.
 	const std::string work = sum.path + ".repair", work_meta_path = work + ".meta";
+	// Beside it: the sidecar lines of the rows whose label a neighbour's
+	// path lowered (their new solutions), written before their rows.
+	const std::string side_work = solutions_path(opt.gen) + ".repair";
 	const std::string work_meta = "repair_of_sha256: " + input_sha + "\n" + lines_meta;
 	std::string existing = read_file(work);
 	uint64_t next = 0;
@@ -302,6 +306,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			write_file_atomically(meta_path, repaired_meta(input_meta, lines_meta));
 			std::remove(work.c_str());
 			std::remove(work_meta_path.c_str());
+			std::remove(side_work.c_str());
 			sum.already = true;
 			return sum;
 		}
@@ -315,6 +320,16 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	} else {
 		write_file_atomically(work_meta_path, work_meta);
 	}
+
+	// The sidecar lines of the rows done, each once (a chunk's lines written
+	// before an interruption kept its rows out are solved again).
+	std::string side_done;
+	for (const std::string &l : complete_lines(read_file(side_work))) {
+		const uint64_t i = std::strtoull(l.c_str(), nullptr, 10);
+		if (i < next)
+			side_done += l + "\n";
+	}
+	write_file_atomically(side_work, side_done);
 
 	double cpu0 = children_cpu_s();
 	sum.solved_again = extend_sidecar(robot, opt, n);
@@ -337,7 +352,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		return a;
 	};
 
-	AppendFile work_file(work);
+	AppendFile work_file(work), side_file(side_work);
 	if (next == 0) {
 		struct stat fs;
 		if (fstat(work_file.fd(), &fs) == 0 && fs.st_size == 0)
@@ -356,16 +371,23 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				guesses.push_back(stored_guess(mode, sol[j], a, b, opt.path_points));
 			try {
 				Solution s = solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve, guesses, inc);
-				if (better(s, inc))
-					text = csv_row(mode, i, x1, x2, s);
+				if (better(s, inc))   // the row's line, then its sidecar line
+					return csv_row(mode, i, x1, x2, s) + "\n" +
+					       solution_line(robot, mode, opt.path_points, i, x1, x2, s);
 			} catch (const std::exception &) {
 				// keep the incumbent
 			}
 			return text;
 		}, "repairing");
-		std::string text;
-		for (const std::string &r : rows)
-			text += r + "\n";
+		std::string text, side;
+		for (const std::string &r : rows) {
+			const size_t nl = r.find('\n');
+			text += r.substr(0, nl) + "\n";
+			if (nl != std::string::npos)
+				side += r.substr(nl + 1) + "\n";
+		}
+		side_file.write(side);
+		side_file.sync();
 		work_file.write(text);
 		work_file.sync();
 		sum.repaired_now += e - c;
@@ -374,6 +396,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
 	}
 	work_file.close();
+	side_file.close();
 	sum.warm_cpu_s = children_cpu_s() - cpu0;
 
 	// Done: the repaired rows, then the input's past n, replace the dataset.
@@ -411,10 +434,29 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		sum.median_drop = m % 2 ? drops[m / 2] : 0.5 * (drops[m / 2 - 1] + drops[m / 2]);
 		sum.max_drop = drops.back();
 	}
+	// The sidecar first: interrupted before the dataset, a re-run finds every
+	// row done and writes the same sidecar again.
+	const std::vector<std::string> new_lines = complete_lines(read_file(side_work));
+	if (!new_lines.empty()) {
+		std::vector<std::string> side_lines = complete_lines(read_file(solutions_path(opt.gen)));
+		for (const std::string &l : new_lines) {
+			const uint64_t i = std::strtoull(l.c_str(), nullptr, 10);
+			if (i >= n || i + 1 >= side_lines.size())
+				throw std::runtime_error(side_work + ": a line of sample " + std::to_string(i) +
+							 ", not one of the " + std::to_string(n) + " rows repaired");
+			side_lines[i + 1] = l;
+		}
+		std::string side;
+		for (const auto &l : side_lines)
+			side += l + "\n";
+		write_file_atomically(solutions_path(opt.gen), side);
+		sum.solutions_replaced = new_lines.size();
+	}
 	write_file_atomically(sum.path, out);   // atomic: a temporary file, fsync'd, renamed
 	write_file_atomically(meta_path, repaired_meta(input_meta, lines_meta));
 	std::remove(work.c_str());
 	std::remove(work_meta_path.c_str());
+	std::remove(side_work.c_str());
 	sum.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 	return sum;
 }

@@ -8,23 +8,27 @@
 // more than 1e-6 relative (less is a tie, Ipopt's tolerance), or a row that
 // did not converge gets one; the rows are otherwise the input's bytes.
 //
-// The datasets store no trajectories, so the neighbours' solutions come from
-// a sidecar, <out>/<mode>.solutions.csv: every row solved again by the
-// current solver (solve_bvp, training options), its result and its path
-// (path_points states uniformly in time). Solving again is the only way to
-// a path for the committed rows and costs about one generation of the rows;
-// a stored path is 21 x 6-16 numbers, 1.5-3 kB a row, too much to commit
-// with every dataset. The sidecar is resumable and reused by later runs;
-// the repair reads only it (Jacobi: row i's warm starts do not depend on
+// The neighbours' solutions come from the dataset's sidecar,
+// <out>/<mode>.solutions.csv (memory.hpp): each row's result and path
+// (path_points states uniformly in time), written by gen --solutions as it
+// labels, or here, for rows it lacks, by solving them again with the current
+// solver (solve_bvp, training options). The repair reads only the sidecar as
+// it was when it started (Jacobi: row i's warm starts do not depend on
 // whether row j < i was repaired already), so the result does not depend on
-// --jobs, on chunking or on an interruption.
+// --jobs, on chunking or on an interruption. When it is done, the sidecar
+// line of each row whose label a neighbour's path lowered becomes that
+// solution, so the sidecar holds the paths of the labels (the memory
+// trainer --solve starts from).
 //
 // Files in <out>: <mode>.csv (the dataset, at least N rows, its .meta of
 // this stream), <mode>.solutions.csv(.meta) (the sidecar), <mode>.csv.repair
 // (.meta) (the repaired rows while in progress, appended a chunk at a time,
-// fsync'd; a re-run resumes). When every row is done the dataset is
-// replaced atomically (a temporary file renamed over it): the repaired rows,
-// then the input's rows past N unchanged; its .meta gets the repair's lines
+// fsync'd; a re-run resumes) and <mode>.solutions.csv.repair (the new
+// sidecar lines, each chunk's synced before its rows). When every row is
+// done the sidecar, then the dataset, are replaced atomically (a temporary
+// file renamed over each): the sidecar with the new lines in place; the
+// dataset as the repaired rows, then the input's rows past N unchanged, and
+// its .meta gets the repair's lines
 // (repaired_rows, repair_neighbours, repair_path_points and the repairing
 // solver's settings and numerics as repair_<line>), so generation refuses
 // to extend it, and a second repair with the same settings does nothing.
@@ -55,6 +59,7 @@ struct RepairSummary {
 	uint64_t lowered_by_solver = 0;     // of those, by the current solver alone
 	uint64_t lowered_by_neighbours = 0; // of those, by a neighbour's warm start
 	uint64_t newly_converged = 0;  // rows without a label before that have one now
+	uint64_t solutions_replaced = 0;   // sidecar lines now a neighbour's warm start's solution
 	double median_drop = 0, max_drop = 0;   // relative drops of the lowered rows
 	bool already = false;          // the dataset's meta records this repair already: nothing done
 	double solve_cpu_s = 0;        // CPU time of this run's sidecar solves (its worker processes)

@@ -5,9 +5,11 @@
 // labels made dearer, cheaper and removed by hand: the dear label is lowered
 // back, the impossibly cheap one is kept byte for byte (a repair never
 // raises a label), the removed one converges again, the rows past N are
-// untouched; --jobs does not change a byte; a repair killed part-way and
-// resumed (a torn row appended) gives the same bytes; a second repair does
-// nothing; generation refuses to extend a repaired dataset. Prints TAP.
+// untouched, the sidecar line of the row a neighbour's path solved becomes
+// that solution; --jobs does not change a byte; a repair killed part-way
+// (solving the sidecar, or repairing) and resumed (torn rows appended) gives
+// the same bytes; a second repair does nothing; generation refuses to extend
+// a repaired dataset. Prints TAP.
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -189,6 +191,7 @@ int main(int argc, char **argv)
 	r1.gen.jobs = 1;
 	RepairSummary s1 = repair(di, r1);
 	const std::string out1 = read_file(r1.gen.out_dir + "/di_neg.csv");
+	const std::string side1 = read_file(solutions_path(r1.gen));
 	std::vector<std::string> got = lines_of(out1);
 	bool never_raised = got.size() == edited.size();
 	for (size_t i = 0; never_raised && i < 12; i++) {
@@ -220,13 +223,30 @@ int main(int argc, char **argv)
 		      !fs::exists(r1.gen.out_dir + "/di_neg.csv.repair") &&
 		      !fs::exists(r1.gen.out_dir + "/di_neg.csv.repair.meta"),
 	      "the .meta keeps the input's lines and records the repair; no in-progress file is left");
+	// The row a neighbour's path solved: its sidecar line is that solution
+	// (the dataset row's result columns and a path), so the memory holds it.
+	{
+		std::vector<std::string> side_lines = lines_of(side1);
+		bool same = side_lines.size() == 13 && !fs::exists(solutions_path(r1.gen) + ".repair");
+		size_t replaced = 0;   // rows solved now that neither label nor sidecar had
+		for (size_t i = 0; same && i < 12; i++) {
+			std::vector<std::string> row = csv_fields(got[i + 1]), line = csv_fields(side_lines[i + 1]);
+			if (i == gone || csv_fields(edited[i + 1])[iv] == "1" || row[iv] != "1")
+				continue;
+			replaced++;
+			same = line.size() > 9 && std::equal(row.end() - 8, row.end(), line.begin() + 1);
+		}
+		check(same && s1.solutions_replaced == 1 && replaced == 1,
+		      "the sidecar line of the row only a neighbour's path solved is now that solution; no in-progress file is left",
+		      std::to_string(s1.solutions_replaced) + " replaced, " + std::to_string(replaced) + " found");
+	}
 
 	RepairOptions r2 = setup("two");
 	r2.gen.jobs = 2;
 	repair(di, r2);
 	check(read_file(r2.gen.out_dir + "/di_neg.csv") == out1 &&
-		      read_file(r2.gen.out_dir + "/di_neg.csv.meta") == meta1,
-	      "--jobs 1 and 2: the same bytes");
+		      read_file(r2.gen.out_dir + "/di_neg.csv.meta") == meta1 && read_file(solutions_path(r2.gen)) == side1,
+	      "--jobs 1 and 2: the same bytes (dataset, .meta, sidecar)");
 
 	// Killed part-way (a child process running the repair, SIGKILL once the
 	// sidecar has rows), a torn row appended, resumed.
@@ -241,10 +261,25 @@ int main(int argc, char **argv)
 		std::ofstream(work, std::ios::app) << "3,-0.2";
 	RepairSummary s3 = repair(di, r3);
 	check(partial && read_file(r3.gen.out_dir + "/di_neg.csv") == out1 &&
-		      read_file(r3.gen.out_dir + "/di_neg.csv.meta") == meta1,
-	      "a repair killed part-way and resumed (torn rows appended) gives the same bytes",
+		      read_file(r3.gen.out_dir + "/di_neg.csv.meta") == meta1 && read_file(side) == side1,
+	      "a repair killed while solving the sidecar and resumed (torn rows appended) gives the same bytes",
 	      "killed with " + std::to_string(side_rows) + " sidecar and " + std::to_string(work_rows) +
 		      " repair lines; resumed " + std::to_string(s3.solved_again) + " solves");
+	// Killed while repairing (the work file has rows), torn lines appended
+	// to the work file and to the new sidecar lines' file, resumed.
+	RepairOptions r5 = setup("killed_repairing");
+	r5.gen.jobs = 1;
+	const std::string work5 = r5.gen.out_dir + "/di_neg.csv.repair", side5 = solutions_path(r5.gen) + ".repair";
+	kill_part_way([&] { repair(di, r5); }, work5, 6);
+	const size_t work5_rows = count_lines(work5);
+	std::ofstream(work5, std::ios::app) << "9,-0.2";
+	std::ofstream(side5, std::ios::app) << "11,0.5";
+	RepairSummary s5 = repair(di, r5);
+	check(work5_rows >= 6 && work5_rows < 13 && read_file(dataset_path(r5.gen)) == out1 &&
+		      read_file(solutions_path(r5.gen)) == side1 && s5.repaired_now < 12 && !fs::exists(side5),
+	      "a repair killed while repairing and resumed (torn lines appended) gives the same bytes",
+	      "killed with " + std::to_string(work5_rows) + " repair lines; resumed " + std::to_string(s5.repaired_now) +
+		      " rows");
 
 	// Generation that keeps each row's solution (--solutions) writes the
 	// sidecar a repair would solve again, byte for byte, so the repair
@@ -259,11 +294,17 @@ int main(int argc, char **argv)
 		w.gen.chunk = 2;
 		generate_with_solutions(di, w);
 		const std::string side_with = read_file(solutions_path(w.gen)), data_with = read_file(dataset_path(w.gen));
-		check(side_with == read_file(solutions_path(r1.gen)) &&
+		std::vector<std::string> lw = lines_of(side_with), l1 = lines_of(side1);
+		size_t differ = lw.size() == l1.size() ? 0 : lw.size();
+		for (size_t i = 0; i < lw.size() && i < l1.size(); i++)
+			differ += lw[i] != l1[i];
+		check(differ == s1.solutions_replaced &&
 			      read_file(solutions_path(w.gen) + ".meta") == read_file(solutions_path(r1.gen) + ".meta"),
-		      "gen --solutions writes the sidecar the repair solves again, byte for byte");
+		      "gen --solutions writes the sidecar the repair solves again, byte for byte but the line the repair replaced",
+		      std::to_string(differ) + " lines differ");
 		RepairSummary sw = repair(di, w);
-		check(sw.solved_again == 0 && sw.rows == 12, "then the repair solves no row again",
+		check(sw.solved_again == 0 && sw.rows == 12 && read_file(solutions_path(w.gen)) == side1,
+		      "then the repair solves no row again, and replaces the same line",
 		      std::to_string(sw.solved_again) + " solved again");
 		RepairOptions k = w;
 		k.gen.out_dir = (dir / "with_killed").string();
