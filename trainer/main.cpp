@@ -404,8 +404,19 @@ int run(int argc, char **argv)
 				guesses = m.guesses(robot, a.data(), b.data(), po.neighbours);
 			}
 			s = solve_bvp(id, robot, a.data(), b.data(), po.gen.solve);
-			if (!guesses.empty())
-				s = solve_bvp_guesses(id, robot, a.data(), b.data(), po.gen.solve, guesses, s);
+			if (!guesses.empty()) {
+				Solution m = solve_bvp_guesses(id, robot, a.data(), b.data(), po.gen.solve, guesses, s);
+				// A tie keeps the pair's own solution, as the repair keeps a
+				// label; the starts and seconds add up either way.
+				if (improves_on(m, s)) {
+					s = m;
+				} else {
+					s.starts = m.starts;
+					s.converged_starts = m.converged_starts;
+					s.refined_starts = m.refined_starts;
+					s.solve_seconds = m.solve_seconds;
+				}
+			}
 		} catch (const std::invalid_argument &e) {
 			throw Usage(e.what());
 		}

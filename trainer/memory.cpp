@@ -53,6 +53,11 @@ double scaled_distance2(const std::vector<double> &a, const std::vector<double> 
 
 }  // namespace
 
+bool improves_on(const Solution &b, const Solution &a)
+{
+	return b.converged && (!a.converged || b.cost < (1 - 1e-6) * a.cost);
+}
+
 std::vector<std::string> sidecar_columns(hylo_mode mode, int points)
 {
 	std::vector<std::string> c = {"index", "cost_j", "T_s", "converged", "status", "iterations",

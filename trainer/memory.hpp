@@ -25,6 +25,12 @@ struct StoredSolution {
 	std::vector<std::vector<double>> path;   // path_points full states
 };
 
+// Whether b is converged and a better result than a: a has none, or b is
+// cheaper by more than 1e-6 relative. Starts that reach the same optimum
+// agree to about 1e-8 (Ipopt's tol); such a tie keeps a, so a label or a
+// --solve result changes only for another basin, not in its last bits.
+bool improves_on(const Solution &b, const Solution &a);
+
 // The sidecar's header fields for paths of `points` states.
 std::vector<std::string> sidecar_columns(hylo_mode mode, int points);
 

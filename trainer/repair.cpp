@@ -27,10 +27,6 @@ namespace {
 
 // A label lowered by more than this fraction counts as lowered.
 constexpr double kLowered = 0.005;
-// A solution replaces a label only if cheaper by more than this fraction:
-// starts that reach the same optimum agree to about 1e-8 (Ipopt's tol), and
-// such a tie would only churn the row's bytes.
-constexpr double kMinImprovement = 1e-6;
 
 // CPU seconds of the waited-for worker processes so far.
 double children_cpu_s()
@@ -40,12 +36,6 @@ double children_cpu_s()
 		return 0;
 	return static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
 	       1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-}
-
-// Whether b (converged) is a better label than a.
-bool better(const Solution &b, const Solution &a)
-{
-	return b.converged && (!a.converged || b.cost < (1 - kMinImprovement) * a.cost);
 }
 
 std::string join(const std::vector<std::string> &v, const std::string &sep)
@@ -342,7 +332,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	// bytes where the stored label is kept).
 	auto incumbent = [&](uint64_t i, std::string &text) {
 		const Solution &a = stored[i], &b = sol[i].s;
-		if (better(b, a)) {
+		if (improves_on(b, a)) {
 			double x1[6] = {0}, x2[6] = {0};
 			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 			text = csv_row(mode, i, x1, x2, b);
@@ -371,7 +361,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 				guesses.push_back(stored_guess(mode, sol[j], a, b, opt.path_points));
 			try {
 				Solution s = solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve, guesses, inc);
-				if (better(s, inc))   // the row's line, then its sidecar line
+				if (improves_on(s, inc))   // the row's line, then its sidecar line
 					return csv_row(mode, i, x1, x2, s) + "\n" +
 					       solution_line(robot, mode, opt.path_points, i, x1, x2, s);
 			} catch (const std::exception &) {

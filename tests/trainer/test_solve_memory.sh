@@ -4,7 +4,9 @@
 # 31% lower (334.5 J) from the solution of its neighbour row 94, kept in the
 # memory tests/trainer/memory; a dataset directory trainer/datasets/<robot>
 # with a sidecar is the memory by default, --memory none turns it off; a
-# missing memory and --memory without --solve are usage errors (exit 2).
+# pair of the memory's own rows (94) gets its label to the last bit (its own
+# path only ties); a missing memory and --memory without --solve are usage
+# errors (exit 2).
 set -u
 cd "$(dirname "$0")/../.."
 . tests/tap.sh
@@ -18,6 +20,9 @@ Z=-1.9253079989130777,-3.9534500931621914,0,-2.6574456804180704
 mkdir -p "$T/cwd/trainer/datasets"
 cp -r tests/trainer/memory "$T/cwd/trainer/datasets/ambot"
 "$TR" --mode marine --robot ambot --solve $A $Z --memory none --json > "$T/none.json" 2> "$T/none.err" &
+row94=$(awk -F, 'NR == 2 { print $7 "," $8 "," $9 "," $10, $11 "," $12 "," $13 "," $14, $15 }' tests/trainer/memory/marine.csv)
+set -- $row94
+"$TR" --mode marine --robot ambot --solve "$1" "$2" --memory tests/trainer/memory --json > "$T/own.json" 2> "$T/own.err" &
 (cd "$T/cwd" && HYLO_PARAMS_DIR="$OLDPWD/trainer/params" "$TR" --mode marine --robot ambot --solve $A $Z --json) \
   > "$T/mem.json" 2> "$T/mem.err"
 wait
@@ -30,6 +35,10 @@ if [ "$(field "$T/none.json" converged)" = true ] && [ "$(field "$T/none.json" m
   tap_ok "the memory's neighbour leads the pair into a basin at least 25% lower ($c0 J -> $c1 J); the dataset directory is the default memory"
 else tap_not_ok "the memory's neighbour leads the pair into a basin at least 25% lower" \
   "$(head -c 400 "$T/none.json")" "$(head -c 400 "$T/mem.json")" "$(tail -3 "$T/none.err" "$T/mem.err")"; fi
+
+if [ "$(field "$T/own.json" cost_j)" = "$3" ] && [ "$(field "$T/own.json" memory_starts)" = 2 ]; then
+  tap_ok "a row of the memory solved again: its label to the last bit ($3 J)"
+else tap_not_ok "a row of the memory solved again: its label to the last bit" "label $3" "$(head -c 400 "$T/own.json")"; fi
 
 "$TR" --mode marine --robot ambot --solve $A $Z --memory "$T/nowhere" > "$T/out" 2> "$T/err"; rc=$?
 if [ $rc -eq 2 ] && grep -q "memory: no $T/nowhere/marine.csv.meta" "$T/err"; then
