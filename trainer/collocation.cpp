@@ -321,6 +321,7 @@ std::string solve_options_text(const SolveOptions &opt)
 	       "\nstep_max_iter: " + std::to_string(opt.step_max_iter) +
 	       "\nobjective_scale: " + num(opt.objective_scale) + "\nrefine_within: " + num(opt.refine_within) +
 	       "\nreplay: " + (opt.replay ? "on" : "off") + "\ncontinuation: " + (opt.continuation ? "on" : "off") +
+	       "\nrefine_retry: " + (opt.refine_retry ? "on" : "off") +
 	       "\nipopt_options: " + (ipopt.empty() ? "none" : ipopt) + "\n";
 }
 

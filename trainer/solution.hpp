@@ -69,6 +69,10 @@ struct SolveOptions {
 	bool strategy_starts = false;
 	bool replay = true;               // check every solution with CVODE
 	bool continuation = true;         // smoothed modes: solve with relaxed smoothing first
+	// A ground or marine BVP whose finer mesh fails from the coarse solution
+	// solves it again through the continuation's last smoothed level
+	// (docs/decisions.md, "A memory of solutions for `--solve`").
+	bool refine_retry = true;
 	std::vector<IpoptOption> ipopt_options;  // set on every solve, in order (parse_ipopt_option)
 	bool debug = false;               // a line per Ipopt solve and per replay on stderr
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here

@@ -1,7 +1,10 @@
 // The start's frame (trainer/frame.hpp) and the memory of solutions
 // (trainer/memory.hpp). The memory in tests/trainer/memory (two Ambot marine
 // rows of the regeneration, 94 and 97, and their sidecar) gives a turned and
-// moved query the same guesses, turned and moved, as the query itself; a
+// moved query the same guesses, turned and moved, as the query itself; the
+// path of row 94 leads row 58 into the basin 31% below the one its own
+// starts reach without the refinement's retry (SolveOptions::refine_retry,
+// which finds it too); a
 // memory of another robot file, mode or stream, or with a malformed line,
 // is refused naming the file and line. trainer --solve --memory on the
 // command line: test_solve_memory.sh. Prints TAP.
@@ -15,7 +18,8 @@
 #include <unistd.h>
 
 #include "tests/tap.hpp"
-#include "trainer/collocation.hpp"   // full_state
+#include "trainer/collocation.hpp"
+#include "trainer/dataset.hpp"   // training_solve_options
 #include "trainer/files.hpp"
 #include "trainer/frame.hpp"
 #include "trainer/memory.hpp"
@@ -120,6 +124,13 @@ int main(int argc, char **argv)
 		      "largest difference " + tap_num(d, 3));
 		check(m.guesses(ambot, a58, b58, 8).size() == 2 && m.guesses(ambot, a58, b58, 0).empty(),
 		      "K beyond the rows gives every row; K = 0 none");
+		SolveOptions o = training_solve_options();
+		o.refine_retry = false;
+		Solution own = solve_bvp(HYLO_MODE_MARINE, ambot, a58, b58, o);
+		Solution warm = solve_bvp_guesses(HYLO_MODE_MARINE, ambot, a58, b58, o, m.guesses(ambot, a58, b58, 8), own);
+		check(own.converged && warm.converged && warm.cost <= 0.75 * own.cost && improves_on(warm, own),
+		      "row 58: a neighbour's path leads into a basin at least 25% below its own starts' (no refinement retry)",
+		      tap_num(own.cost, 7) + " J -> " + tap_num(warm.cost, 7) + " J");
 	} catch (const std::exception &e) {
 		check(false, "the fixture loads", e.what());
 	}
