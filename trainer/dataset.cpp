@@ -88,6 +88,14 @@ std::vector<std::pair<std::string, std::string>> meta_lines(const std::string &m
 	return out;
 }
 
+std::string meta_value(const std::string &meta, const std::string &key)
+{
+	for (const auto &kv : meta_lines(meta))
+		if (kv.first == key)
+			return kv.second.substr(std::min(kv.second.size(), key.size() + 2));
+	return "";
+}
+
 // The lines in which two metas differ: "old vs new; ...", a line one of them
 // lacks shown as "key: (not recorded)".
 std::string meta_differences(const std::string &old_meta, const std::string &new_meta)
@@ -333,10 +341,8 @@ int existing_draws(const GenOptions &opt)
 	const std::string meta = opt.out_dir + "/" + hylo_mode_str(opt.mode) + ".csv.meta";
 	if (!std::filesystem::exists(meta))
 		return 0;
-	for (const auto &kv : internal::meta_lines(read_file(meta)))
-		if (kv.first == "draws")
-			return std::atoi(kv.second.c_str() + 7);
-	return 1;
+	const std::string draws = internal::meta_value(read_file(meta), "draws");
+	return draws.empty() ? 1 : std::atoi(draws.c_str());
 }
 
 void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b, int draws)
@@ -506,6 +512,14 @@ std::vector<std::string> csv_fields(const std::string &row)
 	return f;
 }
 
+std::string csv_join(const std::vector<std::string> &fields)
+{
+	std::string row;
+	for (size_t k = 0; k < fields.size(); k++)
+		row += (k ? "," : "") + fields[k];
+	return row;
+}
+
 std::string csv_row(hylo_mode mode, uint64_t i, const double *a, const double *b,
 		    const Solution &s)
 {
@@ -571,13 +585,7 @@ GenOptions relabel_in_place(const RobotParams &robot, const GenOptions &opt, con
 // The CSV header line, written by the first shard only.
 std::string csv_header(const GenOptions &opt)
 {
-	std::string header;
-	if (opt.shard == 1) {
-		for (const auto &c : csv_columns(opt.mode))
-			header += (header.empty() ? "" : ",") + c;
-		header += "\n";
-	}
-	return header;
+	return opt.shard == 1 ? csv_join(csv_columns(opt.mode)) + "\n" : "";
 }
 
 // Resume: the metadata must match; keeps complete rows, drops a torn tail.

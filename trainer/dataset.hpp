@@ -160,6 +160,10 @@ size_t csv_column(hylo_mode mode, const std::string &name);
 // The comma-separated fields of one CSV row.
 std::vector<std::string> csv_fields(const std::string &row);
 
+// One CSV row (without the newline) of fields that hold no comma; the
+// header line is csv_join(csv_columns(mode)).
+std::string csv_join(const std::vector<std::string> &fields);
+
 // One CSV row (without the newline) for sample i.
 std::string csv_row(hylo_mode mode, uint64_t i, const double *x1s, const double *x2s,
 		    const Solution &s);
@@ -178,6 +182,8 @@ namespace internal {
 // The .meta of a dataset generated with opt: the stream (robot, mode, seed,
 // robot file, draws, shard) and what its labels depend on.
 std::string meta_text(const RobotParams &robot, const GenOptions &opt);
+// The value of a meta's "key: value" line ("" if it has none).
+std::string meta_value(const std::string &meta, const std::string &key);
 // The lines in which two metas differ, "old vs new; ...".
 std::string meta_differences(const std::string &old_meta, const std::string &new_meta);
 // Whether two metas describe the same stream of pairs, whatever labelled them.

@@ -9,10 +9,7 @@ namespace {
 
 std::string header_line(hylo_mode mode)
 {
-	std::string h;
-	for (const auto &c : csv_columns(mode))
-		h += (h.empty() ? "" : ",") + c;
-	return h + "\n";
+	return csv_join(csv_columns(mode)) + "\n";
 }
 
 bool exists(const std::string &path) { return access(path.c_str(), F_OK) == 0; }

@@ -15,16 +15,6 @@
 namespace hylo::trainer {
 namespace {
 
-// The value of a .meta's "key: value" line ("" if it has none).
-std::string meta_value(const std::string &meta, const std::string &key)
-{
-	std::istringstream in(meta);
-	for (std::string line; std::getline(in, line);)
-		if (line.rfind(key + ": ", 0) == 0)
-			return line.substr(key.size() + 2);
-	return "";
-}
-
 // Each coordinate's 1 / range over the rows (0 where it has none).
 std::vector<double> inverse_ranges(const std::vector<std::vector<double>> &coords)
 {
@@ -177,28 +167,22 @@ Memory::Memory(const RobotParams &robot, hylo_mode mode, const std::string &dir)
 		const std::pair<const char *, std::string> want[] = {
 			{"robot", robot.robot}, {"mode", name}, {"params_sha256", robot.labels_sha256}};
 		for (const auto &w : want)
-			if (meta_value(m.second, w.first) != w.second)
+			if (internal::meta_value(m.second, w.first) != w.second)
 				throw std::invalid_argument("memory: " + m.first + ".meta has " + w.first + " '" +
-							    meta_value(m.second, w.first) + "', not this robot file's '" +
+							    internal::meta_value(m.second, w.first) + "', not this robot file's '" +
 							    w.second + "'");
 	}
 	if (!internal::same_stream(data_meta, side_meta))
 		throw std::invalid_argument("memory: " + sidecar_ + " is not " + data + "'s stream (" +
 					    internal::meta_differences(data_meta, side_meta) + ")");
-	points_ = std::atoi(meta_value(side_meta, "path_points").c_str());
+	points_ = std::atoi(internal::meta_value(side_meta, "path_points").c_str());
 	if (points_ < 2)
 		throw std::invalid_argument("memory: " + sidecar_ + ".meta has no path_points of at least 2");
 
 	const std::vector<std::string> rows = complete_lines(file(data)), sides = complete_lines(file(sidecar_));
-	std::string header;
-	for (const std::string &c : csv_columns(mode))
-		header += (header.empty() ? "" : ",") + c;
-	if (rows.empty() || rows[0] != header)
+	if (rows.empty() || rows[0] != csv_join(csv_columns(mode)))
 		throw std::invalid_argument("memory: " + data + " line 1 is not the header of a " + name + " dataset");
-	std::string side_header;
-	for (const std::string &c : sidecar_columns(mode, points_))
-		side_header += (side_header.empty() ? "" : ",") + c;
-	if (sides.empty() || sides[0] != side_header)
+	if (sides.empty() || sides[0] != csv_join(sidecar_columns(mode, points_)))
 		throw std::invalid_argument("memory: " + sidecar_ + " line 1 is not the header of " +
 					    std::to_string(points_) + "-point " + name + " solutions");
 	const size_t ix = csv_column(mode, "x1_0"), d = mode_desc(mode).xs_dim;

@@ -55,10 +55,7 @@ Rows read_dataset(const std::string &path, hylo_mode mode, uint64_t max_rows)
 	std::vector<std::string> cols = csv_columns(mode);
 	if (!std::getline(in, line))
 		throw std::invalid_argument(path + " is empty");
-	std::string expect;
-	for (const auto &c : cols)
-		expect += (expect.empty() ? "" : ",") + c;
-	if (line != expect)
+	if (line != csv_join(cols))
 		throw std::invalid_argument(path + ":1: not a " + hylo_mode_str(mode) + " dataset (unexpected header)");
 	size_t nr = 0;   // relative coordinates, f0, f1, ...
 	for (const auto &c : cols)

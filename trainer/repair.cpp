@@ -38,14 +38,6 @@ double children_cpu_s()
 	       1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
 }
 
-std::string join(const std::vector<std::string> &v, const std::string &sep)
-{
-	std::string out;
-	for (size_t k = 0; k < v.size(); k++)
-		out += (k ? sep : "") + v[k];
-	return out;
-}
-
 // Sample i's sidecar line: the current solver's result and its path.
 std::string sidecar_line(const RobotParams &robot, const RepairOptions &opt, uint64_t i)
 {
@@ -70,7 +62,7 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 	const std::string path = solutions_path(opt.gen), meta_path = path + ".meta";
 	const std::string meta =
 		internal::meta_text(robot, opt.gen) + "path_points: " + std::to_string(opt.path_points) + "\n";
-	const std::string header = join(sidecar_columns(opt.gen.mode, opt.path_points), ",") + "\n";
+	const std::string header = csv_join(sidecar_columns(opt.gen.mode, opt.path_points)) + "\n";
 	std::string existing = read_file(path);
 	uint64_t next = 0;
 	if (!existing.empty() || access(meta_path.c_str(), F_OK) == 0) {
@@ -215,7 +207,7 @@ GenSummary generate_with_solutions(const RobotParams &robot, const RepairOptions
 	// dataset); then in step with it.
 	const std::string rows = read_file(dataset_path(opt.gen));
 	const uint64_t have =
-		rows.empty() ? 0 : internal::resume_point(rows, join(csv_columns(opt.gen.mode), ",") + "\n").rows;
+		rows.empty() ? 0 : internal::resume_point(rows, csv_join(csv_columns(opt.gen.mode)) + "\n").rows;
 	uint64_t held = 0;
 	extend_sidecar(robot, opt, have, &held);
 	SolutionsSink sink(robot, opt, held);
@@ -249,7 +241,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		return sum;
 	}
 	std::vector<std::string> lines = complete_lines(input);
-	const std::string header = join(csv_columns(mode), ",");
+	const std::string header = csv_join(csv_columns(mode));
 	if (lines.empty() || lines[0] != header)
 		throw std::invalid_argument(sum.path + ": line 1 is not the header of a " + hylo_mode_str(mode) + " dataset");
 	if (lines.size() < n + 1)
