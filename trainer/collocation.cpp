@@ -319,6 +319,8 @@ std::string solve_options_text(const SolveOptions &opt)
 	       "\nrefinements: " + std::to_string(opt.refinements) +
 	       "\nreplay_state_tol: " + num(opt.replay_state_tol) + "\nmax_step_s: " + num(opt.max_step_s) +
 	       "\nstep_max_iter: " + std::to_string(opt.step_max_iter) +
+	       // Only where set (the smoother's rebuild rounds): metas made before it stay valid.
+	       (opt.iteration_budget > 0 ? "\niteration_budget: " + std::to_string(opt.iteration_budget) : "") +
 	       "\nobjective_scale: " + num(opt.objective_scale) + "\nrefine_within: " + num(opt.refine_within) +
 	       "\nreplay: " + (opt.replay ? "on" : "off") + "\ncontinuation: " + (opt.continuation ? "on" : "off") +
 	       "\nrefine_retry: " + (opt.refine_retry ? "on" : "off") +

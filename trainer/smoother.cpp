@@ -136,6 +136,11 @@ bool around_solution(MultiPhaseProblem &q, const MultiPhaseSolution &s, const Co
 	return changed;
 }
 
+// A rebuild round starts from a converged solution; one that has not
+// converged in this many Ipopt iterations is given up (the test's chasm
+// gate ran to 1,927 and failed: 5 of its 7 minutes).
+constexpr int kRebuildIterations = 400;
+
 // Rounds of around_solution while each converges and saves more than 0.1%
 // (at most 8; on chasm_070 each saved about 20 J, 0.45%, for 20-30 s):
 // prob and s become the better ones.
@@ -152,7 +157,9 @@ void refine_corridors(const RobotParams &robot, const TerrainGrid &map, const Sm
 		try {
 			if (!around_solution(q, s, *maps))
 				return;
-			r = solve_multiphase(robot, q, smoothing_solve_options(opt, true));
+			SolveOptions so = smoothing_solve_options(opt, true);
+			so.iteration_budget = kRebuildIterations;
+			r = solve_multiphase(robot, q, so);
 		} catch (const std::invalid_argument &) {   // s stands
 			return;
 		}

@@ -56,6 +56,8 @@ struct SolveOptions {
 					  // (flight's 20 ms; see smoothing_solve_options)
 	int step_max_iter = 0;            // > 0: the iteration limit of every step (cold start,
 					  // continuation, refinement) instead of its modes' limits
+	int iteration_budget = 0;         // > 0: Ipopt iterations a start may take over all its
+					  // steps, each step's limit cut to what is left of it
 	double objective_scale = 1;       // Ipopt's obj_scaling_factor: on top of the problem's own
 					  // objective scaling, 1 / max(1, 10 T_guess) (see smoothing_solve_options)
 	// Finite: every start is first solved on the coarse mesh; only starts

@@ -126,6 +126,7 @@ struct Coarse {
 	std::unique_ptr<StackedNlp> nlp;
 	NlpStatus res;   // a success of no iterations until a solve
 	double cost = 0, T = 0;
+	int iterations = 0;   // Ipopt's, over every step of the start
 };
 
 // A start reached an earlier one's solution: cost and duration to 1e-6.
@@ -165,13 +166,18 @@ private:
 		return (!set_.smoothed || !opt_.continuation || checking_derivatives()) && relax != 1.0;
 	}
 
-	// One Ipopt solve of p at the smoothing multiplier, from start (empty:
-	// the phases' guesses), into a new nlp.
-	NlpStatus step(const Stacked &p, double relax, const std::vector<double> &start,
-		       std::unique_ptr<StackedNlp> &nlp, bool warm)
+	// One Ipopt solve of c's problem at the smoothing multiplier, from start
+	// (empty: the phases' guesses), into a new c.nlp; its iterations count
+	// against the start's budget.
+	NlpStatus step(Coarse &c, double relax, const std::vector<double> &start, bool warm)
 	{
-		nlp = stacked_nlp(p, relax);
-		NlpStatus st = nlp->solve(set_.step_opt, start, NlpSettings{warm, set_.permuting_scaling});
+		const Stacked &p = c.p;
+		c.nlp = stacked_nlp(p, relax);
+		SolveOptions so = set_.step_opt;
+		if (opt_.iteration_budget > 0)
+			so.max_iter = std::max(0, std::min(so.max_iter, opt_.iteration_budget - c.iterations));
+		NlpStatus st = c.nlp->solve(so, start, NlpSettings{warm, set_.permuting_scaling});
+		c.iterations += st.iterations;
 		if (opt_.debug)
 			std::fprintf(stderr, "start T=%g N=%d relax %g: %s, %d iterations\n",
 				     p.setups[0].T_guess, p.setups[0].segments, relax, st.text(), st.iterations);
@@ -209,7 +215,7 @@ private:
 		for (double relax : set_.levels) {
 			if (continuation_skips(relax))
 				continue;
-			c.res = step(c.p, relax, start, c.nlp, !start.empty());
+			c.res = step(c, relax, start, !start.empty());
 			if (c.res.succeeded())
 				start = c.nlp->solution();
 			else if (set_.give_up)
@@ -298,15 +304,15 @@ private:
 		for (size_t k = 0; k < c.p.setups.size(); k++)
 			if (failed[k])
 				c.p.setups[k].segments *= 2;
-		NlpStatus st = step(c.p, 1.0, fine, c.nlp, true);
+		NlpStatus st = step(c, 1.0, fine, true);
 		if (st.succeeded() || set_.retry_relax <= 0)
 			return st;
 		int iterations = st.iterations;
-		st = step(c.p, set_.retry_relax, fine, c.nlp, true);
+		st = step(c, set_.retry_relax, fine, true);
 		iterations += st.iterations;
 		if (st.succeeded()) {
 			std::vector<double> smoothed = c.nlp->solution();
-			st = step(c.p, 1.0, smoothed, c.nlp, true);
+			st = step(c, 1.0, smoothed, true);
 			iterations += st.iterations;
 		}
 		st.iterations = iterations;
