@@ -304,18 +304,16 @@ private:
 		for (size_t k = 0; k < c.p.setups.size(); k++)
 			if (failed[k])
 				c.p.setups[k].segments *= 2;
+		const int before = c.iterations;
 		NlpStatus st = step(c, 1.0, fine, true);
 		if (st.succeeded() || set_.retry_relax <= 0)
 			return st;
-		int iterations = st.iterations;
 		st = step(c, set_.retry_relax, fine, true);
-		iterations += st.iterations;
 		if (st.succeeded()) {
 			std::vector<double> smoothed = c.nlp->solution();
 			st = step(c, 1.0, smoothed, true);
-			iterations += st.iterations;
 		}
-		st.iterations = iterations;
+		st.iterations = c.iterations - before;   // every step of this refinement
 		return st;
 	}
 
