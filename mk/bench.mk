@@ -6,9 +6,9 @@
 SYNTH_GEN := $(BUILD)/bench/tools/make_synthetic_model
 SYNTH_HEADER := $(BUILD)/gen/bench/synthetic_ground.h
 
-$(SYNTH_GEN): tools/bench/make_synthetic_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp trainer/files.cpp trainer/files.hpp $(ONBOARD_LIB)
+$(SYNTH_GEN): tools/bench/make_synthetic_model.cpp $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) $(EIGEN_CFLAGS) -I. $(ONBOARD_INC) tools/bench/make_synthetic_model.cpp trainer/svr_export.cpp trainer/files.cpp $(ONBOARD_LIB) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) $(EIGEN_CFLAGS) -I. $(ONBOARD_INC) $< $(TRAINER_LIB) $(ONBOARD_LIB) -lm -o $@
 
 $(SYNTH_HEADER): $(SYNTH_GEN)
 	@mkdir -p $(@D)

@@ -8,9 +8,11 @@ EXPORT_HEADER := $(EXPORT_DIR)/testbot_ground.h
 EXPORT_TEST := $(BUILD)/test/export/test_export
 EXPORT_TEST_SAN := $(BUILD)/san/test/export/test_export
 
-$(EXPORT_GEN): tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/svr_export.hpp trainer/files.cpp trainer/files.hpp trainer/envelope.cpp trainer/envelope.hpp $(ONBOARD_LIB)
+# These programs link the trainer's own objects (its archive) rather than
+# compiling its sources again.
+$(EXPORT_GEN): tests/export/make_test_model.cpp $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) $(EIGEN_CFLAGS) tests/export/make_test_model.cpp trainer/svr_export.cpp trainer/files.cpp trainer/envelope.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) $(EIGEN_CFLAGS) $< $(TRAINER_LIB) $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -lm -o $@
 
 $(EXPORT_HEADER): $(EXPORT_GEN)
 	@mkdir -p $(@D)
@@ -31,18 +33,18 @@ TESTS_SAN += $(EXPORT_TEST_SAN)
 
 # The model fit (trainer/svr_fit.cpp) on synthetic data (tests/export/test_fit.cpp).
 FIT_TEST := $(BUILD)/test/export/test_fit
-$(FIT_TEST): tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_fit.hpp trainer/svr_export.cpp trainer/svr_export.hpp trainer/files.cpp trainer/files.hpp $(ONBOARD_LIB)
+$(FIT_TEST): tests/export/test_fit.cpp $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) tests/export/test_fit.cpp trainer/svr_fit.cpp trainer/svr_export.cpp trainer/files.cpp $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) $< $(TRAINER_LIB) $(ONBOARD_LIB) $(SVM_LIBS) -lpthread -lm -o $@
 ALL_TARGETS += $(FIT_TEST)
 TESTS += $(FIT_TEST)
 
 # Headers read back (tests/export/test_header_parse.cpp): the export stage
 # reads the fit stage's header before it adds the envelope.
 HEADER_PARSE_TEST := $(BUILD)/test/export/test_header_parse
-$(HEADER_PARSE_TEST): tests/export/test_header_parse.cpp trainer/svr_export.cpp trainer/svr_export.hpp trainer/files.cpp trainer/files.hpp $(ONBOARD_LIB)
+$(HEADER_PARSE_TEST): tests/export/test_header_parse.cpp $(TRAINER_LIB) $(ONBOARD_LIB)
 	@mkdir -p $(@D)
-	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) tests/export/test_header_parse.cpp trainer/svr_export.cpp trainer/files.cpp $(ONBOARD_LIB) -lm -o $@
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) $< $(TRAINER_LIB) $(ONBOARD_LIB) -lm -o $@
 ALL_TARGETS += $(HEADER_PARSE_TEST)
 TESTS += $(HEADER_PARSE_TEST)
 

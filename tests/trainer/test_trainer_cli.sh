@@ -108,7 +108,7 @@ cat "$T/sh/di_neg.shard-1-of-3.csv" "$T/sh/di_neg.shard-2-of-3.csv" "$T/sh/di_ne
 tap_check "shards 1/3, 2/3, 3/3 concatenate to the unsharded file" cmp "$T/sh/all.csv" "$T/j1/di_neg.csv"
 
 # Interrupted: killed after its first chunks, then run again.
-"$TR" --mode di_neg --robot di --stage gen --quiet --samples 200 --seed 3 --jobs 2 --out "$T/kill" > /dev/null &
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 96 --seed 3 --jobs 2 --out "$T/kill" > /dev/null &
 pid=$!
 for i in $(seq 1 100); do
   [ -f "$T/kill/di_neg.csv" ] && [ "$(wc -l < "$T/kill/di_neg.csv")" -gt 40 ] && break
@@ -117,9 +117,9 @@ done
 kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 printf '17,0.1,0.2,garbage' >> "$T/kill/di_neg.csv"    # a torn last row
 before=$(($(wc -l < "$T/kill/di_neg.csv") - 1))
-gen --samples 200 --jobs 2 --out "$T/kill" > "$T/resume.out"
-gen --samples 200 --jobs 1 --out "$T/full" > /dev/null
-if cmp -s "$T/kill/di_neg.csv" "$T/full/di_neg.csv" && [ "$before" -lt 200 ]; then
+gen --samples 96 --jobs 2 --out "$T/kill" > "$T/resume.out"
+gen --samples 96 --jobs 1 --out "$T/full" > /dev/null
+if cmp -s "$T/kill/di_neg.csv" "$T/full/di_neg.csv" && [ "$before" -lt 96 ]; then
   tap_ok "killed after $before rows and re-run: the same file as an uninterrupted run"; else
   tap_not_ok "killed and re-run: the same file as an uninterrupted run" "$before rows before; $(cat "$T/resume.out")"; fi
 "$TR" --mode di_neg --robot di --stage gen --quiet --samples 4 --seed 3 --out "$T/opt" --ipopt-option mu_init=0.1 \
@@ -136,7 +136,7 @@ expect_fail "a dataset made with other arguments is not silently extended" 1 "ma
 
 # A small pipeline: gen -> fit -> export, and the header compiles into the planner.
 mkdir -p "$T/models"
-if "$TR" --mode di_neg --robot di --samples 300 --seed 5 --jobs 2 --quiet --out "$T/pipe" --models-dir "$T/models" > "$T/pipe.out" 2>&1 &&
+if "$TR" --mode di_neg --robot di --samples 150 --seed 5 --jobs 2 --quiet --out "$T/pipe" --models-dir "$T/models" > "$T/pipe.out" 2>&1 &&
    gcc -std=c99 -Wall -Wextra -Werror -pedantic -Ionboard/include -I"$T/models" -x c - -x none -o "$T/use" $B/lib/libhylo.a -lm <<'C'
 #include "di_di_neg.h"
 #include "hylo/features.h"
@@ -152,27 +152,27 @@ C
 then
   pred=$("$T/use")
   if python3 -c "import sys; p=float(sys.argv[1]); assert abs(p - 0.2597) < 0.25 * 0.2597, p" "$pred"; then
-    tap_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 25% (a 300-sample model) ($pred)"; else
-    tap_not_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 25% (a 300-sample model)" "predicted $pred"; fi
+    tap_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 25% (a 150-sample model) ($pred)"; else
+    tap_not_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 25% (a 150-sample model)" "predicted $pred"; fi
 else
-  tap_not_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 25% (a 300-sample model)" "$(tail -5 "$T/pipe.out")"
+  tap_not_ok "gen -> fit -> export: the header compiles and predicts the 0.2597 optimum within 25% (a 150-sample model)" "$(tail -5 "$T/pipe.out")"
 fi
 grep "^fit" "$T/pipe.out" | sed 's/^/# /'
 
 # Fitting on a dataset's first rows (a dataset grows at its end): --samples
-# 200 on the 300-row file gives the bytes of a fit on a 200-row copy, and
+# 100 on the 150-row file gives the bytes of a fit on a 100-row copy, and
 # the header names the hash of those rows.
 mkdir -p "$T/first" "$T/cut"
 cp "$T/pipe/di_neg.csv" "$T/pipe/di_neg.csv.meta" "$T/first/"
-head -n 201 "$T/pipe/di_neg.csv" > "$T/cut/di_neg.csv"
+head -n 101 "$T/pipe/di_neg.csv" > "$T/cut/di_neg.csv"
 cp "$T/pipe/di_neg.csv.meta" "$T/cut/"
-"$TR" --mode di_neg --robot di --stage fit --samples 200 --seed 5 --quiet --out "$T/first" > /dev/null 2>&1
+"$TR" --mode di_neg --robot di --stage fit --samples 100 --seed 5 --quiet --out "$T/first" > /dev/null 2>&1
 "$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/cut" > /dev/null 2>&1
 if [ -s "$T/first/di_di_neg.h" ] && cmp -s "$T/first/di_di_neg.h" "$T/cut/di_di_neg.h" &&
-   grep -q "samples: 200 " "$T/first/di_di_neg.h" &&
+   grep -q "samples: 100 " "$T/first/di_di_neg.h" &&
    grep -q "dataset sha256: $(sha256sum < "$T/cut/di_neg.csv" | cut -d' ' -f1)" "$T/first/di_di_neg.h"; then
-  tap_ok "--stage fit --samples 200 fits the first 200 rows and names their hash"; else
-  tap_not_ok "--stage fit --samples 200 fits the first 200 rows and names their hash" "$(grep -E 'samples|dataset' "$T/first/di_di_neg.h" | head -2)"; fi
+  tap_ok "--stage fit --samples 100 fits the first 100 rows and names their hash"; else
+  tap_not_ok "--stage fit --samples 100 fits the first 100 rows and names their hash" "$(grep -E 'samples|dataset' "$T/first/di_di_neg.h" | head -2)"; fi
 
 # Rows whose solve threw (status "error: ..."): read, never labels. A fit
 # with three such rows gives the model of a fit on a copy without them.
@@ -198,7 +198,7 @@ PY
 strip() { grep -v -E 'dataset sha256|samples:' "$1"; }
 if [ -s "$T/errrows/di_di_neg.h" ] && [ -s "$T/noerrrows/di_di_neg.h" ] &&
    cmp -s <(strip "$T/errrows/di_di_neg.h") <(strip "$T/noerrrows/di_di_neg.h") &&
-   grep -q "samples: 300 (.* converged, 3 errors left out)" "$T/errrows/di_di_neg.h" &&
+   grep -q "samples: 150 (.* converged, 3 errors left out)" "$T/errrows/di_di_neg.h" &&
    grep -q "3 rows whose solve ended in an error" "$T/errrows.log"; then
   tap_ok "rows whose solve ended in an error are left out of the fit (regression and classifier), and said so"; else
   tap_not_ok "rows whose solve ended in an error are left out of the fit (regression and classifier), and said so" \
