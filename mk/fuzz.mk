@@ -13,11 +13,13 @@ FUZZ_REPLAY := $(BUILD)/san/test/fuzz/fuzz_replay
 FUZZ_BIN := $(BUILD)/fuzz/fuzz_plan
 FUZZ_CORPUS := $(sort $(wildcard tests/fuzz/corpus/*))
 
-# Generated lcm-gen code is exempt from the nonnull check (see mk/msgs.mk).
-$(FUZZ_REPLAY): $(FUZZ_SRCS) $(LCM_STAMP) tests/onboard/testutil_planner.h
+# The replay links the sanitizer build's objects (the generated lcm-gen code
+# among them is exempt from the nonnull check, see mk/msgs.mk).
+$(FUZZ_REPLAY): tests/fuzz/fuzz_plan.c $(MSG_NOPUBSUB_OBJS_SAN) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) \
+		tests/onboard/testutil_planner.h
 	@mkdir -p $(@D)
 	$(CC) -std=c99 -ffp-contract=off $(CPPFLAGS) $(CFLAGS) $(LDFLAGS) -O1 -g -DFUZZ_REPLAY $(SAN_FLAGS) \
-		-fno-sanitize=nonnull-attribute $(FUZZ_INC) $(filter %.c,$^) -lm -o $@
+		$(FUZZ_INC) $< $(MSG_NOPUBSUB_OBJS_SAN) $(MSG_ADAPT_LIB_SAN) $(ONBOARD_LIB_SAN) -lm -o $@
 
 $(FUZZ_BIN): $(FUZZ_SRCS) $(LCM_STAMP) tests/onboard/testutil_planner.h
 	@mkdir -p $(@D)
