@@ -62,7 +62,8 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 	if (opt.shards > 1)
 		m << "samples: " << opt.samples << "\nshard: " << opt.shard << "/" << opt.shards << "\n";
 	// Flight pairs have been drawn two ways (v2: with cruise pairs), ground
-	// and marine ones three (v2: speeds at rest; v3: then cruise pairs), the
+	// and marine ones four (v2: speeds at rest; v3: then cruise pairs; v4: the
+	// cruise pairs from half the paper's count), the
 	// double integrator's two (v2: then short pairs); a file of one draw is
 	// not extended with another's. Draw 1 has no line.
 	if (draws_for(opt.mode, opt.draws) > 1)
@@ -315,13 +316,13 @@ int draws_for(hylo_mode mode, int requested)
 	const hylo_mode_desc &d = mode_desc(mode);
 	const bool planar = d.planar;
 	const bool spatial = d.layout == HYLO_LAYOUT_SPATIAL;
-	const int newest = planar ? 3 : 2;
+	const int newest = planar ? 4 : 2;
 	if (requested == 0)
 		return newest;
 	if (requested == newest || (!spatial && requested >= 1 && requested <= newest))
 		return requested;
 	throw std::invalid_argument("--draws " + std::to_string(requested) + ": " + hylo_mode_str(mode) + " pairs are drawn " +
-				    (planar ? "as 1, 2 or 3" : spatial ? "as 2 only" : "as 1 or 2"));
+				    (planar ? "as 1, 2, 3 or 4" : spatial ? "as 2 only" : "as 1 or 2"));
 }
 
 Supplement supplement(hylo_mode mode, int draws)
@@ -329,7 +330,9 @@ Supplement supplement(hylo_mode mode, int draws)
 	const hylo_mode_desc &d = mode_desc(mode);
 	const int draw = draws_for(mode, draws);
 	const uint64_t paper = with_model_type(mode, [](auto t) { return decltype(t)::type::kDefaultSamples; });
-	if (d.planar && draw >= 3)
+	if (d.planar && draw >= 4)
+		return {paper / 2, paper / 4, true};   // 5,760 and 2,880
+	if (d.planar && draw == 3)
 		return {paper, paper / 4};   // 11,520 and 2,880
 	if (d.layout == HYLO_LAYOUT_PHASE && draw >= 2)
 		return {paper, paper};       // 2,000 and 2,000
@@ -359,7 +362,7 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 		};
 		a[0] = 0, a[1] = 0, a[3] = 0;
 		const Supplement sup = supplement(m, draw);
-		if (sup.pairs && i >= sup.from) {
+		if (sup.holds(i)) {
 			// Cruise: the goal on an arc from the start (the turn twice
 			// the goal's bearing, as a path of constant curvature), half
 			// of them exactly, half within 0.3 rad of it; each speed at
@@ -437,7 +440,7 @@ void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double
 		a[0] = r.uniform(lo, hi);
 		a[1] = r.uniform(s.speed_min_mps, s.speed_max_mps);
 		const Supplement sup = supplement(m, draws);
-		if (sup.pairs && i >= sup.from) {
+		if (sup.holds(i)) {
 			// Short: the goal within kShortPairMax, inside the side.
 			do {
 				const double dist = kShortPairMax * r.uniform(0, 1), ang = r.uniform(-kPi, kPi);

@@ -98,19 +98,22 @@ int feature_count(hylo_mode mode);
 // about z are not, by up to 0.1%: ZYX Euler angles).
 std::vector<std::vector<double>> feature_symmetries(hylo_mode mode);
 
-// The draw a run uses: requested (1, 2 or 3; 0: the newest, 3) for ground
-// and marine, 2 for flight, 1 or 2 (newest 2) for the double integrator.
+// The draw a run uses: requested (1 to 4; 0: the newest, 4) for ground and
+// marine, 2 for flight, 1 or 2 (newest 2) for the double integrator.
 // Throws std::invalid_argument for a draw the mode does not have.
 int draws_for(hylo_mode mode, int requested);
 
-// A draw's supplement: the pairs from index `from` on (the paper's sample
-// count) are drawn where the planner asks and the first draw is thin, so a
-// dataset of the draw before, up to `from` rows, is a prefix of this one,
-// pair for pair. Ground and marine, draw 3: cruise pairs; the double
-// integrator, draw 2: short pairs. pairs = 0: the draw has none. A draw's
-// default sample count is from + pairs.
+// A draw's supplement: the pairs from index `from` on are drawn where the
+// planner asks and the first draw is thin, so a dataset of the draw before,
+// up to `from` rows, is a prefix of this one, pair for pair. Ground and
+// marine, draw 3: cruise pairs from the paper's sample count on; draw 4:
+// the same number of cruise pairs from half of it, then draw 2's pairs
+// again (closed); the double integrator, draw 2: short pairs. pairs = 0:
+// the draw has none. A draw's default sample count is from + pairs.
 struct Supplement {
 	uint64_t from = 0, pairs = 0;
+	bool closed = false;   // pairs past from + pairs are the first draw's again
+	bool holds(uint64_t i) const { return pairs > 0 && i >= from && (!closed || i < from + pairs); }
 };
 Supplement supplement(hylo_mode mode, int draws);
 
@@ -124,6 +127,10 @@ Supplement supplement(hylo_mode mode, int draws);
 //   turn twice the bearing, half exactly, half within 0.3 rad), each speed
 //   at rest with probability kRestFraction, at the top speed with
 //   kTopFraction, else uniform.
+// - Ground and marine, draw 4: draw 2's pairs but for the indices 5,760 to
+//   8,639, which are draw 3's cruise pairs: the default 8,640 rows label
+//   as fast as draw 3's first 8,640 with all of its cruise pairs, and a
+//   longer run adds draw 2's pairs (14,400 rows: draw 3's mix).
 // - Double integrator, draw 2: draw 1's pairs, then (supplement) short
 //   pairs: the goal at a distance uniform on [0, kShortPairMax] in the phase
 //   plane from a start drawn as draw 1's (the planner's edges are its

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <memory>
@@ -520,8 +519,9 @@ std::vector<double> coincident_minimum(const Geometry &g, Evaluator &ev, std::at
 	return best;
 }
 
-Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, int jobs)
+Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, const EnvelopeOptions &opt)
 {
+	const int jobs = opt.jobs;
 	const uint32_t n_d = g.t.n_d, n_z = g.t.n_z, np = g.pairs();
 	std::vector<std::unique_ptr<Evaluator>> evs = evaluators(m, mode, jobs);
 	std::vector<PlanarStarts> ends(n_d + 1);
@@ -529,7 +529,7 @@ Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode m
 	parallel(n_d + 1, jobs, [&](size_t q, size_t w) {
 		ends[q] = planar_grid(g, *evs[w], g.d_end(static_cast<uint32_t>(q)));
 	});
-	if (std::getenv("HYLO_TRAINER_DEBUG"))
+	if (opt.debug)
 		std::fprintf(stderr, "envelope: grids at %u cell ends in %.1f s\n", n_d + 1, seconds_since(t0));
 	std::atomic<size_t> searches{0}, evaluations{0};
 	t0 = Clock::now();
@@ -568,7 +568,7 @@ Estimate planar_estimate(const Geometry &g, const hylo_svr_model &m, hylo_mode m
 	const std::vector<double> still = coincident_minimum(g, *evs[0], evaluations);
 	for (uint32_t p = 0; p < np; p++)
 		est.cost[g.index(0, 0, p)] = std::min(est.cost[g.index(0, 0, p)], still[p]);
-	if (std::getenv("HYLO_TRAINER_DEBUG"))
+	if (opt.debug)
 		std::fprintf(stderr, "envelope: %zu pattern searches, %zu evaluations, %.1f s\n", searches.load(),
 			     evaluations.load(), seconds_since(t0));
 	return est;
@@ -953,8 +953,9 @@ void flight_edge(const double *x, double s1, double s2, double *tail, double *he
 	head[5] = 0;
 }
 
-Estimate flight_estimate(const Geometry &g, const hylo_svr_model &m, int jobs)
+Estimate flight_estimate(const Geometry &g, const hylo_svr_model &m, const EnvelopeOptions &opt)
 {
+	const int jobs = opt.jobs;
 	const FlightKernel K(m);
 	Eigen::MatrixXd A, B;
 	const DirectionGrid dg = direction_grid(g, K, kDirections, A, B);
@@ -975,7 +976,7 @@ Estimate flight_estimate(const Geometry &g, const hylo_svr_model &m, int jobs)
 		if (corner_needed(q, r))
 			corners[c] = flight_corner(g, K, dg, A, B, g.d_end(q), g.z_end(r));
 	});
-	if (std::getenv("HYLO_TRAINER_DEBUG"))
+	if (opt.debug)
 		std::fprintf(stderr, "envelope: %zu cell corners in %.1f s\n", nc, seconds_since(t0));
 	t0 = Clock::now();
 	std::vector<std::unique_ptr<Evaluator>> evs = evaluators(m, HYLO_MODE_FLIGHT, jobs);
@@ -1022,7 +1023,7 @@ Estimate flight_estimate(const Geometry &g, const hylo_svr_model &m, int jobs)
 		for (uint32_t p = 0; p < np; p++)
 			est.cost[g.index(k, j, p)] = cost[p];
 	});
-	if (std::getenv("HYLO_TRAINER_DEBUG"))
+	if (opt.debug)
 		std::fprintf(stderr, "envelope: %u cells in %.1f s\n", n_d * n_z, seconds_since(t0));
 	return est;
 }
@@ -1140,8 +1141,9 @@ FlightPoint newton_on_turn(const FlightKernel &K, double s1, double s2, double s
 // turned to either side, finds the cell's least cost. Cells no edge of the speeds reaches (a turn
 // beyond pi with one speed zero, any turn but 0 with both) get the least
 // value of their distance cell and speeds, a bound of every such edge.
-Estimate flight_turn_estimate(const Geometry &g, const Geometry &gt, const hylo_svr_model &m, int jobs)
+Estimate flight_turn_estimate(const Geometry &g, const Geometry &gt, const hylo_svr_model &m, const EnvelopeOptions &opt)
 {
+	const int jobs = opt.jobs;
 	constexpr int kTurnDirections = 24;
 	constexpr double kClimbStep = 0.5;
 	const FlightKernel K(m);
@@ -1181,7 +1183,7 @@ Estimate flight_turn_estimate(const Geometry &g, const Geometry &gt, const hylo_
 				}
 		}
 	});
-	if (std::getenv("HYLO_TRAINER_DEBUG"))
+	if (opt.debug)
 		std::fprintf(stderr, "envelope: turn table grid, %zu points in %.1f s\n", n_points, seconds_since(t0));
 	t0 = Clock::now();
 	std::vector<std::unique_ptr<Evaluator>> evs = evaluators(m, HYLO_MODE_FLIGHT, jobs);
@@ -1265,7 +1267,7 @@ Estimate flight_turn_estimate(const Geometry &g, const Geometry &gt, const hylo_
 			if (std::find(found.begin(), found.end(), j) == found.end())
 				est.cost[gt.index(k, j, p)] = least;
 	});
-	if (std::getenv("HYLO_TRAINER_DEBUG"))
+	if (opt.debug)
 		std::fprintf(stderr, "envelope: turn table, %u cells in %.1f s\n", n_d * n_t, seconds_since(t0));
 	return est;
 }
@@ -1353,8 +1355,9 @@ double table_bound(const hylo_svr_model &with, hylo_mode mode, bool turn_table, 
 // n random edges of stream seed against the table (g's layout; turn_table:
 // the flight turn table).
 Comparison compare(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, const std::vector<float> &table,
-		   bool turn_table, uint64_t seed, size_t n, int jobs)
+		   bool turn_table, uint64_t seed, size_t n, const EnvelopeOptions &opt)
 {
+	const int jobs = opt.jobs;
 	EnvelopeExport t = g.t;
 	hylo_svr_envelope env{t.n_d, t.n_z, t.n_v, t.d_step, t.z_min, t.z_step, t.v_min, t.v_step, table.data()};
 	hylo_svr_model with = m;
@@ -1382,7 +1385,7 @@ Comparison compare(const Geometry &g, const hylo_svr_model &m, hylo_mode mode, c
 			if (cost[e] < bound[e]) {
 				r.below++;
 				r.worst_excess = std::max(r.worst_excess, -rel);
-				if (std::getenv("HYLO_TRAINER_DEBUG")) {
+				if (opt.debug) {
 					double tail[HYLO_XS_DIM], head[HYLO_XS_DIM], a[4];
 					random_edge(g, mode, seed, begin + e, tail, head);
 					hylo_envelope_args(mode, tail, head, a);
@@ -1490,7 +1493,7 @@ void finish_table(const Geometry &g, const hylo_svr_model &view, const SvrExport
 	std::vector<float> before(est.cost.size());
 	for (size_t i = 0; i < before.size(); i++)
 		before[i] = round_down(est.cost[i]);
-	const Comparison measured = compare(g, view, mode, before, turn_table, opt.margin_seed, opt.check_edges, opt.jobs);
+	const Comparison measured = compare(g, view, mode, before, turn_table, opt.margin_seed, opt.check_edges, opt);
 	rep.worst_shortfall = measured.worst_excess;
 	rep.shortfall_edges = measured.below;
 	rep.margin = two_digits_up(std::max(opt.min_margin, 2 * measured.worst_excess));
@@ -1501,7 +1504,7 @@ void finish_table(const Geometry &g, const hylo_svr_model &view, const SvrExport
 	rep.table.value.resize(est.cost.size());
 	for (size_t i = 0; i < est.cost.size(); i++)
 		rep.table.value[i] = round_down(est.cost[i] * (1 - rep.margin));
-	const Comparison check = compare(g, view, mode, rep.table.value, turn_table, opt.check_seed, opt.check_edges, opt.jobs);
+	const Comparison check = compare(g, view, mode, rep.table.value, turn_table, opt.check_seed, opt.check_edges, opt);
 	rep.check_violations = check.below;
 	rep.check_closest = check.closest;
 	rep.check_seconds = seconds_since(t0);
@@ -1527,8 +1530,8 @@ EnvelopeReport compute_envelope(const SvrExport &m, const EnvelopeOptions &opt)
 	const Geometry g = geometry(bare);
 	EnvelopeReport rep;
 	auto t0 = Clock::now();
-	const Estimate est = g.flight ? flight_estimate(g, view, opt.jobs)
-				      : planar_estimate(g, view, envelope_mode(m.mode), opt.jobs);
+	const Estimate est = g.flight ? flight_estimate(g, view, opt)
+				      : planar_estimate(g, view, envelope_mode(m.mode), opt);
 	rep.table_seconds = seconds_since(t0);
 	finish_table(g, view, bare, est, false, opt, "envelope", rep);
 	return rep;
@@ -1551,7 +1554,7 @@ EnvelopeReport compute_turn_table(const SvrExport &m, const EnvelopeOptions &opt
 	const Geometry g = geometry(bare), gt = turn_geometry(g);
 	EnvelopeReport rep;
 	auto t0 = Clock::now();
-	const Estimate est = flight_turn_estimate(g, gt, view, opt.jobs);
+	const Estimate est = flight_turn_estimate(g, gt, view, opt);
 	rep.table_seconds = seconds_since(t0);
 	finish_table(gt, view, bare, est, true, opt, "turn table", rep);
 	return rep;

@@ -25,6 +25,7 @@ struct EnvelopeOptions {
 	uint64_t check_seed = 2;         // fresh edges the exported table must not exceed
 	double min_margin = 1e-3;        // the margin is max(this, 2 x worst shortfall)
 	bool progress = true;            // one line per stage on stdout
+	bool debug = false;              // trace each stage's time and every edge below the table on stderr
 };
 
 struct EnvelopeReport {

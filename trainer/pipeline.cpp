@@ -264,6 +264,7 @@ int export_stage(const RobotParams &robot, const PipelineOptions &opt)
 	EnvelopeOptions eo;
 	eo.jobs = opt.gen.jobs;
 	eo.progress = opt.gen.progress;
+	eo.debug = opt.gen.solve.debug;   // trainer --debug
 	auto add = [&](const char *key, const EnvelopeReport &rep) {
 		// Before the version line, which stays last.
 		auto at = !m.provenance.empty() && m.provenance.back().first == "hylo version"

@@ -21,9 +21,9 @@ struct PipelineOptions {
 	bool solutions = false;   // gen: also keep each row's solution for the repair (--solutions)
 };
 
-// The paper's sample counts: 11,520 (ground, marine), 17,016 (flight); 2,000
-// (di); plus the draw's supplement (ground and marine, draw 3: 2,880 cruise
-// pairs; di, draw 2: 2,000 short pairs; dataset.hpp).
+// A draw's sample count, its supplement's end (dataset.hpp): ground and
+// marine 8,640 (draw 4), 14,400 (draw 3), 11,520 (draws 1 and 2, the
+// paper's); flight 17,016; di 4,000 (draw 2), 2,000 (draw 1).
 uint64_t default_samples(hylo_mode mode, int draws);
 
 // Runs stage "gen", "repair", "fit", "export", "all" (gen, fit, export) or

@@ -96,6 +96,7 @@ void usage(FILE *out)
 		"                        only (steps full, straightened, finer mesh), after\n"
 		"                        --ipopt-option's: max_iter=1 forces the fallbacks\n"
 		"  --quiet               no summary lines\n"
+		"  --debug               trace every Ipopt solve and replay on stderr (default: off)\n"
 		"  --help                this text\n"
 		"\n"
 		"Exit codes: 0 clean stop (signal, --once/--request-id done, end of an input\n"
@@ -555,6 +556,10 @@ bool parse(int argc, char **argv, Options &o, int &exit_code)
 		}
 		if (a == "--no-corridors") {
 			o.smooth.corridors = false;
+			continue;
+		}
+		if (a == "--debug") {
+			o.smooth.debug = true;
 			continue;
 		}
 		if (a == "--once" || a == "--compare-graph" || a == "--quiet") {

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -37,7 +36,7 @@ SolveOptions smoothing_solve_options(const SmoothOptions &opt, bool full)
 	if (full)
 		so.ipopt_options.insert(so.ipopt_options.end(), opt.full_ipopt_options.begin(),
 					opt.full_ipopt_options.end());
-	so.debug = std::getenv("HYLO_TRAINER_DEBUG") != nullptr;
+	so.debug = opt.debug;
 	return so;
 }
 

@@ -60,6 +60,7 @@ struct SmoothOptions {
 	bool corridors = true;
 	double margin_m = HYLO_DEFAULT_MARGIN_M;
 	double corridor_pad_m = 0.02;   // added to the cells' clearance: the cubic between knots may bulge
+	bool debug = false;             // a line per Ipopt solve and per replay on stderr (hylo-smooth --debug)
 };
 
 // The multi-phase problem of a plan. Throws std::invalid_argument for a plan

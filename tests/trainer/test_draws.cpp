@@ -151,6 +151,41 @@ int main()
 			      std::to_string(fr) + ", at the top " + std::to_string(ft));
 	}
 
+	// Draw 4: draw 2's pairs but for a window of cruise pairs, drawn as draw
+	// 3's (the same code from the same index gives the same pair).
+	for (const char *m : {"ground", "marine"}) {
+		const ModeParams &p = ambot.mode(m);
+		const Supplement s4 = supplement(p.id, 4);
+		int as_draw2 = 0, as_cruise = 0, off_arc = 0;
+		auto same = [](const double *a, const double *b, const double *c, const double *d) {
+			for (int j = 0; j < 6; j++)
+				if (a[j] != c[j] || b[j] != d[j])
+					return false;
+			return true;
+		};
+		// Indices below, in and past the window.
+		const uint64_t probes[] = {0, 1, 5759, 5760, 5761, 8639, 8640, 8641, 14399};
+		for (uint64_t k : probes) {
+			double a2[6] = {0}, b2[6] = {0}, a4[6] = {0}, b4[6] = {0};
+			draw_pair(p, 1, k, a2, b2, 2);
+			draw_pair(p, 1, k, a4, b4, 4);
+			const bool inside = k >= 5760 && k < 8640;
+			const double bearing = std::atan2(b4[1], b4[0]);
+			const bool arc = std::fabs(bearing) <= kPi / 4 + 1e-12 && std::fabs(b4[3] - 2 * bearing) <= 0.3 + 1e-12;
+			as_draw2 += !inside && same(a2, b2, a4, b4);
+			as_cruise += inside && !same(a2, b2, a4, b4) && arc;
+			off_arc += inside && !arc;
+		}
+		double a3[6] = {0}, b3[6] = {0}, a4[6] = {0}, b4[6] = {0};
+		draw_pair(p, 1, 6000, a4, b4, 4);
+		draw_pair(p, 1, 6000, a3, b3, 3);   // draw 3 at 6,000 is a draw-2 pair
+		check(s4.from == 5760 && s4.pairs == 2880 && s4.closed && as_draw2 == 6 && as_cruise == 3 && off_arc == 0 &&
+			      !same(a3, b3, a4, b4) && supplement(p.id, 3).from == 11520 && !supplement(p.id, 3).closed,
+		      std::string(m) + ", draw 4: draw 2's pairs, but cruise pairs at rows 5,760-8,639 (default 8,640 rows)",
+		      std::to_string(as_draw2) + " of 6 outside the window as draw 2, " + std::to_string(as_cruise) +
+			      " of 3 inside on arcs, " + std::to_string(off_arc) + " off the arcs");
+	}
+
 	// The double integrator's draw 2: draw 1's 2,000 pairs, then short ones.
 	{
 		const RobotParams di = load_robot("trainer/params/di.yaml");
@@ -183,11 +218,12 @@ int main()
 	}
 
 	// Which draws a mode has.
-	check(draws_for(HYLO_MODE_GROUND, 0) == 3 && draws_for(HYLO_MODE_MARINE, 1) == 1 &&
-		      draws_for(HYLO_MODE_MARINE, 2) == 2 && draws_for(HYLO_MODE_FLIGHT, 0) == 2 &&
-		      draws_for(HYLO_MODE_DI_NEG, 0) == 2 && draws_for(HYLO_MODE_DI_POS, 1) == 1 && refused(HYLO_MODE_GROUND, 4) &&
-		      refused(HYLO_MODE_FLIGHT, 1) && refused(HYLO_MODE_FLIGHT, 3) && refused(HYLO_MODE_DI_POS, 3),
-	      "draws: ground and marine 1, 2 or 3 (newest 3), flight 2, double integrator 1 or 2 (newest 2); others refused");
+	check(draws_for(HYLO_MODE_GROUND, 0) == 4 && draws_for(HYLO_MODE_MARINE, 1) == 1 &&
+		      draws_for(HYLO_MODE_MARINE, 2) == 2 && draws_for(HYLO_MODE_MARINE, 3) == 3 &&
+		      draws_for(HYLO_MODE_FLIGHT, 0) == 2 && draws_for(HYLO_MODE_DI_NEG, 0) == 2 &&
+		      draws_for(HYLO_MODE_DI_POS, 1) == 1 && refused(HYLO_MODE_GROUND, 5) && refused(HYLO_MODE_FLIGHT, 1) &&
+		      refused(HYLO_MODE_FLIGHT, 3) && refused(HYLO_MODE_DI_POS, 3),
+	      "draws: ground and marine 1 to 4 (newest 4), flight 2, double integrator 1 or 2 (newest 2); others refused");
 
 	// The meta: draw 2 recorded, draw 1 of ground without a line (as the
 	// committed metas), flight's line as before.

@@ -84,11 +84,15 @@ PY
 case_check di_case1 0.8 0.2 -0.8 0.0
 case_check di_case2 0.7 -0.1 -0.5 0.2 --start di_pos:0.7,-0.1 --goal-state di_neg:-0.5,0.2
 
-# Same input, same bytes out (the traj messages, publication time aside).
-smooth di_case1 --quiet 2>/dev/null
+# Same input, same bytes out (the traj messages, publication time aside),
+# with --debug tracing the solves on stderr and changing nothing else.
+smooth di_case1 --quiet --debug 2> "$T/debug.err"
 traj_json di_case1 > "$T/again.json"
 if cmp -s "$T/again.json" "$T/di_case1.json"; then tap_ok "deterministic: a second run gives the same trajectory"
 else tap_not_ok "deterministic: a second run gives the same trajectory"; fi
+if grep -q '^start T=.* relax 1: solved' "$T/debug.err" && grep -q '^  replay di_' "$T/debug.err"; then
+  tap_ok "--debug traces the solves and replays on stderr"
+else tap_not_ok "--debug traces the solves and replays on stderr" "$(head -5 "$T/debug.err")"; fi
 
 # A plan whose map was never seen, and a failed plan: answered, not dropped.
 "$B/bin/hylo-smooth" --lcm-url "file://$T/di_case1.plan.log?speed=0" --out-url "file://$T/nomap.traj.log?mode=w" \

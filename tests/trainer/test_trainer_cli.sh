@@ -20,7 +20,7 @@ expect_fail() {  # NAME CODE NEEDLE CMD...
 }
 
 "$TR" --help > "$T/help"; rc=$?
-if [ "$rc" -eq 0 ] && grep -q -- "--samples N" "$T/help" && grep -q "default: ground and marine 14400" "$T/help" && grep -q -- "--shard K/N" "$T/help"; then
+if [ "$rc" -eq 0 ] && grep -q -- "--samples N" "$T/help" && grep -q "default: ground and marine 8640" "$T/help" && grep -q -- "--shard K/N" "$T/help"; then
   tap_ok "--help lists the options with their defaults"; else tap_not_ok "--help lists the options with their defaults"; fi
 if grep -q -- "--ipopt-option NAME=VALUE" "$T/help" && grep -A2 -- "--ipopt-option NAME=VALUE" "$T/help" | grep -q "default: none" &&
    grep -A1 -- "--debug" "$T/help" | grep -q "default: off" && grep -q -- "--version" "$T/help"; then
