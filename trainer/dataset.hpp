@@ -128,9 +128,9 @@ Supplement supplement(hylo_mode mode, int draws);
 //   at rest with probability kRestFraction, at the top speed with
 //   kTopFraction, else uniform.
 // - Ground and marine, draw 4: draw 2's pairs but for the indices 5,760 to
-//   8,639, which are draw 3's cruise pairs: the default 8,640 rows label
-//   as fast as draw 3's first 8,640 with all of its cruise pairs, and a
-//   longer run adds draw 2's pairs (14,400 rows: draw 3's mix).
+//   8,639, cruise pairs drawn as draw 3's: the default 8,640 rows hold as
+//   many cruise pairs as draw 3's 14,400, and a longer run adds draw 2's
+//   pairs (14,400 rows: draw 3's mix).
 // - Double integrator, draw 2: draw 1's pairs, then (supplement) short
 //   pairs: the goal at a distance uniform on [0, kShortPairMax] in the phase
 //   plane from a start drawn as draw 1's (the planner's edges are its

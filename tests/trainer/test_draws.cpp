@@ -151,8 +151,8 @@ int main()
 			      std::to_string(fr) + ", at the top " + std::to_string(ft));
 	}
 
-	// Draw 4: draw 2's pairs but for a window of cruise pairs, drawn as draw
-	// 3's (the same code from the same index gives the same pair).
+	// Draw 4: draw 2's pairs, the same pair for pair, but for a window of
+	// cruise pairs (on arcs, as draw 3's, and not draw 2's pairs there).
 	for (const char *m : {"ground", "marine"}) {
 		const ModeParams &p = ambot.mode(m);
 		const Supplement s4 = supplement(p.id, 4);
