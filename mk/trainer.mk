@@ -48,6 +48,10 @@ DRAWS_TEST := $(BUILD)/test/trainer/test_draws
 $(DRAWS_TEST): tests/trainer/test_draws.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
 	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
+PROCESSES_TEST := $(BUILD)/test/trainer/test_processes
+$(PROCESSES_TEST): tests/trainer/test_processes.cpp $(TRAINER_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(TRAINER_CFLAGS) $(LDFLAGS) $< $(TRAINER_LIB) $(TRAINER_LIBS) -o $@
 REPAIR_TEST := $(BUILD)/test/trainer/test_repair
 $(REPAIR_TEST): tests/trainer/test_repair.cpp $(TRAINER_LIB)
 	@mkdir -p $(@D)
@@ -73,9 +77,9 @@ tests/trainer/test_solve_memory.sh: $(TRAINER)
 # Labels independent of the CPU (trainer/numerics.hpp): runs the trainer and
 # test_collocation under several OpenBLAS kernel settings and hwcaps masks.
 tests/trainer/test_numerics.sh: $(TRAINER) $(TRAINER_TEST)
-ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(MEMORY_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
+ALL_TARGETS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(PROCESSES_TEST) $(REPAIR_TEST) $(MEMORY_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
 	$(WALL_CROSSINGS_TEST)
-TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(REPAIR_TEST) $(MEMORY_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
+TESTS += $(TRAINER_TEST) $(MULTIPHASE_TEST) $(RELABEL_TEST) $(DRAWS_TEST) $(PROCESSES_TEST) $(REPAIR_TEST) $(MEMORY_TEST) $(CLEARANCE_CHECK_TEST) $(CORRIDOR_TEST) \
 	$(WALL_CROSSINGS_TEST) tests/trainer/test_trainer_cli.sh tests/trainer/test_solve_memory.sh \
 	tests/trainer/test_numerics.sh
 

@@ -150,43 +150,53 @@ ResumePoint resume_point(const std::string &existing, const std::string &header)
 	return r;
 }
 
-std::vector<std::string> fork_samples(uint64_t lo, uint64_t hi, int jobs,
-				      const std::function<std::string(uint64_t)> &f, const std::string &doing)
+void fork_sample_chunks(uint64_t lo, uint64_t hi, int jobs, int chunk,
+			const std::function<std::string(uint64_t)> &f, const std::string &doing,
+			const std::function<void(uint64_t, uint64_t, std::vector<std::string> &)> &done)
 {
-	std::vector<std::string> rows = fork_each(hi - lo, jobs, [&](size_t k) { return f(lo + k); });
-	for (size_t k = 0; k < rows.size(); k++)
-		if (rows[k].empty())
-			throw std::runtime_error("the process " + doing + " sample " + std::to_string(lo + k) + " failed");
-	return rows;
+	fork_chunks(
+		hi - lo, jobs, static_cast<size_t>(std::max(1, chunk)), [&](size_t k) { return f(lo + k); },
+		[&](size_t first, std::vector<std::string> &rows) {
+			const uint64_t c = lo + first;
+			for (size_t k = 0; k < rows.size(); k++)
+				if (rows[k].empty())
+					throw std::runtime_error("the process " + doing + " sample " + std::to_string(c + k) +
+								 " failed");
+			done(c, c + rows.size(), rows);
+		});
 }
 
 }  // namespace internal
 
 namespace {
 
-// Solves samples [lo, hi), each in its own process (processes.hpp), jobs at a
-// time; returns rows in index order. A sample with a straight-line result in
-// line (--relabel) gets only the other starts.
 // The separator of a worker's row and its sink line.
 constexpr char kSinkSeparator = '\x1e';
 
-std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions &opt,
-				     const std::vector<Solution> &line, uint64_t lo, uint64_t hi,
-				     uint64_t &converged, uint64_t &errors, RowSink *also)
+// Sample i's row (and its sink line), in a worker process. A sample with a
+// straight-line result in line (--relabel) gets only the other starts.
+std::string solve_sample(const RobotParams &robot, const GenOptions &opt, const std::vector<Solution> &line,
+			 uint64_t i, const RowSink *also)
 {
-	std::vector<std::string> rows = internal::fork_samples(lo, hi, opt.jobs, [&](uint64_t i) {
-		double a[6] = {0}, b[6] = {0};
-		draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
-		Solution s;
-		try {
-			s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
-					    : solve_bvp(opt.mode, robot, a, b, opt.solve);
-		} catch (const std::exception &e) {
-			s = Solution();
-			s.status_text = kErrorStatus + std::string(e.what());
-		}
-		return csv_row(opt.mode, i, a, b, s) + (also ? kSinkSeparator + also->line(i, a, b, s) : "");
-	}, "solving");
+	double a[6] = {0}, b[6] = {0};
+	draw_pair(robot.mode(opt.mode), opt.seed, i, a, b, opt.draws);
+	Solution s;
+	try {
+		s = i < line.size() ? solve_bvp_strategies(opt.mode, robot, a, b, opt.solve, line[i])
+				    : solve_bvp(opt.mode, robot, a, b, opt.solve);
+	} catch (const std::exception &e) {
+		s = Solution();
+		s.status_text = kErrorStatus + std::string(e.what());
+	}
+	return csv_row(opt.mode, i, a, b, s) + (also ? kSinkSeparator + also->line(i, a, b, s) : "");
+}
+
+// The workers' results of samples [lo, hi) in the parent: their sink lines
+// go to also, the rows stay in rows; counts the converged rows and the
+// errors, saying each error.
+void take_chunk(const GenOptions &opt, uint64_t lo, std::vector<std::string> &rows, uint64_t &converged,
+		uint64_t &errors, RowSink *also)
+{
 	if (also) {
 		std::vector<std::string> lines;
 		for (std::string &r : rows) {
@@ -209,7 +219,6 @@ std::vector<std::string> solve_chunk(const RobotParams &robot, const GenOptions 
 				     static_cast<unsigned long long>(lo + k), f[status].c_str());
 		}
 	}
-	return rows;
 }
 
 // The straight-line results of --relabel's dataset, by index: its file must
@@ -676,21 +685,22 @@ void solve_rows(const RobotParams &robot, const GenOptions &opt, const std::vect
 		if (fstat(out.fd(), &fs) == 0 && fs.st_size == 0)
 			out.write(header);
 	}
-	for (uint64_t c = next; c < hi; c += static_cast<uint64_t>(opt.chunk)) {
-		uint64_t e = std::min(hi, c + static_cast<uint64_t>(opt.chunk));
-		uint64_t conv = 0, errs = 0;
-		std::vector<std::string> rows = solve_chunk(robot, opt, line, c, e, conv, errs, also);
-		std::string text;
-		for (const auto &r : rows)
-			text += r + "\n";
-		out.write(text);
-		out.sync();
-		sum.done += e - c;
-		sum.converged += conv;
-		sum.errors += errs;
-		sum.rejected += (e - c) - conv - errs;
-		progress.chunk_done(sum, e);
-	}
+	internal::fork_sample_chunks(
+		next, hi, opt.jobs, opt.chunk, [&](uint64_t i) { return solve_sample(robot, opt, line, i, also); },
+		"solving", [&](uint64_t c, uint64_t e, std::vector<std::string> &rows) {
+			uint64_t conv = 0, errs = 0;
+			take_chunk(opt, c, rows, conv, errs, also);
+			std::string text;
+			for (const auto &r : rows)
+				text += r + "\n";
+			out.write(text);
+			out.sync();
+			sum.done += e - c;
+			sum.converged += conv;
+			sum.errors += errs;
+			sum.rejected += (e - c) - conv - errs;
+			progress.chunk_done(sum, e);
+		});
 	progress.end();
 	out.close();
 }

@@ -203,10 +203,12 @@ struct ResumePoint {
 };
 ResumePoint resume_point(const std::string &existing, const std::string &header);
 // f(lo) ... f(hi - 1), the rows of samples lo to hi - 1, each solved in its
-// own process (fork_each, jobs at a time), in index order. Throws "the
-// process <doing> sample I failed" for one that died.
-std::vector<std::string> fork_samples(uint64_t lo, uint64_t hi, int jobs,
-				      const std::function<std::string(uint64_t)> &f, const std::string &doing);
+// own process (fork_chunks, jobs at a time); done(c, e, rows) gets the rows
+// of samples [c, e), chunk at a time in index order, while the workers go on.
+// Throws "the process <doing> sample I failed" for one that died.
+void fork_sample_chunks(uint64_t lo, uint64_t hi, int jobs, int chunk,
+			const std::function<std::string(uint64_t)> &f, const std::string &doing,
+			const std::function<void(uint64_t, uint64_t, std::vector<std::string> &)> &done);
 
 }  // namespace internal
 

@@ -87,19 +87,18 @@ uint64_t extend_sidecar(const RobotParams &robot, const RepairOptions &opt, uint
 	if (fstat(out.fd(), &fs) == 0 && fs.st_size == 0)
 		out.write(header);
 	const uint64_t first = next;
-	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
-		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
-		std::vector<std::string> rows = internal::fork_samples(
-			c, e, opt.gen.jobs, [&](uint64_t i) { return sidecar_line(robot, opt, i); }, "solving");
-		std::string text;
-		for (const std::string &r : rows)
-			text += r + "\n";
-		out.write(text);
-		out.sync();
-		if (opt.gen.progress)
-			std::fprintf(stderr, "%s: %llu/%llu rows solved again\n", path.c_str(),
-				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
-	}
+	internal::fork_sample_chunks(
+		next, n, opt.gen.jobs, opt.gen.chunk, [&](uint64_t i) { return sidecar_line(robot, opt, i); }, "solving",
+		[&](uint64_t, uint64_t e, std::vector<std::string> &rows) {
+			std::string text;
+			for (const std::string &r : rows)
+				text += r + "\n";
+			out.write(text);
+			out.sync();
+			if (opt.gen.progress)
+				std::fprintf(stderr, "%s: %llu/%llu rows solved again\n", path.c_str(),
+					     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
+		});
 	out.close();
 	if (held)
 		*held = n;
@@ -340,27 +339,27 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		if (fstat(work_file.fd(), &fs) == 0 && fs.st_size == 0)
 			work_file.write(header + "\n");
 	}
-	for (uint64_t c = next; c < n; c += static_cast<uint64_t>(opt.gen.chunk)) {
-		uint64_t e = std::min(n, c + static_cast<uint64_t>(opt.gen.chunk));
-		std::vector<std::string> rows = internal::fork_samples(c, e, opt.gen.jobs, [&](uint64_t i) {
-			std::string text;
-			Solution inc = incumbent(i, text);
-			double x1[6] = {0}, x2[6] = {0};
-			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
-			std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
-			std::vector<Guess> guesses;
-			for (uint64_t j : near[i])
-				guesses.push_back(stored_guess(mode, sol[j], a, b, opt.path_points));
-			try {
-				Solution s = solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve, guesses, inc);
-				if (improves_on(s, inc))   // the row's line, then its sidecar line
-					return csv_row(mode, i, x1, x2, s) + "\n" +
-					       solution_line(robot, mode, opt.path_points, i, x1, x2, s);
-			} catch (const std::exception &) {
-				// keep the incumbent
-			}
-			return text;
-		}, "repairing");
+	auto repair_row = [&](uint64_t i) {
+		std::string text;
+		Solution inc = incumbent(i, text);
+		double x1[6] = {0}, x2[6] = {0};
+		draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
+		std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
+		std::vector<Guess> guesses;
+		for (uint64_t j : near[i])
+			guesses.push_back(stored_guess(mode, sol[j], a, b, opt.path_points));
+		try {
+			Solution s = solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve, guesses, inc);
+			if (improves_on(s, inc))   // the row's line, then its sidecar line
+				return csv_row(mode, i, x1, x2, s) + "\n" +
+				       solution_line(robot, mode, opt.path_points, i, x1, x2, s);
+		} catch (const std::exception &) {
+			// keep the incumbent
+		}
+		return text;
+	};
+	internal::fork_sample_chunks(next, n, opt.gen.jobs, opt.gen.chunk, repair_row, "repairing",
+				     [&](uint64_t c, uint64_t e, std::vector<std::string> &rows) {
 		std::string text, side;
 		for (const std::string &r : rows) {
 			const size_t nl = r.find('\n');
@@ -376,7 +375,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		if (opt.gen.progress)
 			std::fprintf(stderr, "%s: %llu/%llu rows repaired\n", work.c_str(),
 				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
-	}
+	});
 	work_file.close();
 	side_file.close();
 	sum.warm_cpu_s = children_cpu_s() - cpu0;
