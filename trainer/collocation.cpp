@@ -292,13 +292,21 @@ Solution solve_bvp_strategies(hylo_mode mode, const RobotParams &robot, const do
 	return add_strategies(robot, bvp(mode, robot, x1s, x2s, opt), opt, line);
 }
 
+SolveOptions guess_solve_options(const SolveOptions &opt)
+{
+	SolveOptions o = opt;
+	o.refine_repeats = false;
+	return o;
+}
+
 Solution solve_bvp_guesses(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			   const double *x2s, const SolveOptions &opt, const std::vector<Guess> &guesses,
 			   const Solution &incumbent)
 {
-	Bvp v = bvp(mode, robot, x1s, x2s, opt);
+	const SolveOptions o = guess_solve_options(opt);
+	Bvp v = bvp(mode, robot, x1s, x2s, o);
 	internal::check_guesses(mode, guesses, v.a, v.b);
-	return solve_from_guesses(robot, v, opt, guesses, incumbent);
+	return solve_from_guesses(robot, v, o, guesses, incumbent);
 }
 
 std::string solve_options_text(const SolveOptions &opt)
@@ -324,6 +332,8 @@ std::string solve_options_text(const SolveOptions &opt)
 	       "\nobjective_scale: " + num(opt.objective_scale) + "\nrefine_within: " + num(opt.refine_within) +
 	       "\nreplay: " + (opt.replay ? "on" : "off") + "\ncontinuation: " + (opt.continuation ? "on" : "off") +
 	       "\nrefine_retry: " + (opt.refine_retry ? "on" : "off") +
+	       // Only where off (warm starts): the metas made before it stay valid.
+	       (opt.refine_repeats ? "" : "\nrefine_repeats: off") +
 	       "\nipopt_options: " + (ipopt.empty() ? "none" : ipopt) + "\n";
 }
 

@@ -52,7 +52,11 @@ Solution solve_bvp(hylo_mode mode, const RobotParams &robot, const double *x1s,
 Solution solve_bvp_strategies(hylo_mode mode, const RobotParams &robot, const double *x1s,
 			      const double *x2s, const SolveOptions &opt, const Solution &line);
 
-// Solves the BVP from each guess (as solve_bvp_strategies does its own) and
+// The options solve_bvp_guesses solves with: opt without refine_repeats.
+SolveOptions guess_solve_options(const SolveOptions &opt);
+
+// Solves the BVP from each guess (as solve_bvp_strategies does its own,
+// under guess_solve_options) and
 // returns their best if it is cheaper than incumbent, else incumbent; starts,
 // refined starts and seconds add up. A guess whose path does not run from
 // the BVP's start to its goal (to 1e-9) or whose states are not the record's nx

@@ -158,7 +158,9 @@ std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
 	std::string out = "repaired_rows: " + std::to_string(opt.gen.samples) +
 			  "\nrepair_neighbours: " + std::to_string(opt.neighbours) +
 			  "\nrepair_path_points: " + std::to_string(opt.path_points) + "\n";
-	std::istringstream in(internal::meta_text(robot, opt.gen));
+	GenOptions warm = opt.gen;   // the warm starts' settings: the repair's own
+	warm.solve = guess_solve_options(opt.gen.solve);
+	std::istringstream in(internal::meta_text(robot, warm));
 	for (std::string line; std::getline(in, line);) {
 		std::string key = line.substr(0, line.find(": "));
 		if (key == "robot" || key == "mode" || key == "seed" || key == "draws" || key == "params_sha256")

@@ -75,6 +75,14 @@ struct SolveOptions {
 	// solves it again through the continuation's last smoothed level
 	// (docs/decisions.md, "A memory of solutions for `--solve`").
 	bool refine_retry = true;
+	// Each refined start is refined, also one whose coarse optimum (cost
+	// and duration to 1e-6) repeats one that an earlier start of the same
+	// solve was refined from into an accepted solution: the fine meshes
+	// from two such starts can end 0.5-8% apart. Off for the warm starts
+	// from stored solutions (guess_solve_options), where most lead back
+	// into the label's basin (docs/decisions.md, "Refining only distinct
+	// coarse results").
+	bool refine_repeats = true;
 	std::vector<IpoptOption> ipopt_options;  // set on every solve, in order (parse_ipopt_option)
 	bool debug = false;               // a line per Ipopt solve and per replay on stderr
 	std::string derivative_test_file; // non-empty: run Ipopt's second-order derivative checker, log here

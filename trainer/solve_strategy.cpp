@@ -129,11 +129,20 @@ struct Coarse {
 	int iterations = 0;   // Ipopt's, over every step of the start
 };
 
+// A coarse optimum's cost and duration.
+struct CoarseResult {
+	double cost = 0, T = 0;
+};
+
 // A start reached an earlier one's solution: cost and duration to 1e-6.
-bool same_result(const Coarse &earlier, const Coarse &c)
+bool same_result(const CoarseResult &earlier, const CoarseResult &c)
 {
 	return std::fabs(earlier.cost - c.cost) <= 1e-6 * std::fabs(earlier.cost) &&
 	       std::fabs(earlier.T - c.T) <= 1e-6 * earlier.T;
+}
+bool same_result(const Coarse &earlier, const Coarse &c)
+{
+	return same_result(CoarseResult{earlier.cost, earlier.T}, CoarseResult{c.cost, c.T});
 }
 
 // The strategy's state over one problem's starts: the best result so far,
@@ -318,8 +327,9 @@ private:
 	}
 
 	// Mesh refinement until the replays agree, at most set_.refinements
-	// times; the result is kept if it is the cheapest so far.
-	void refine(Coarse &c)
+	// times; the result is kept if it is the cheapest so far. True if the
+	// replays agreed.
+	bool refine(Coarse &c)
 	{
 		best_.refined_starts++;
 		NlpStatus res = c.res;
@@ -329,25 +339,28 @@ private:
 			MultiPhaseSolution s = replayed(c, res, iterations, failed);
 			if (std::find(failed.begin(), failed.end(), true) == failed.end()) {
 				accept(std::move(s));
-				return;
+				return true;
 			}
 			rejected_cost_ = std::min(rejected_cost_, s.cost + switch_cost_);
 			if (refinement >= set_.refinements)
-				return;
+				return false;
 			res = refine_mesh(c, failed);
 			iterations += res.iterations;
 			if (!res.succeeded()) {
 				rejection_ += "; then the finer mesh failed (" + std::string(res.text()) + ")";
-				return;
+				return false;
 			}
 		}
 	}
 
 	// Each start in turn, refined as soon as it converges; modes that keep
-	// their first accepted start stop there. False: the derivative checker
-	// ran on the first start, nothing more to do.
+	// their first accepted start stop there. Without opt.refine_repeats, a
+	// start whose coarse optimum repeats one that an earlier start was
+	// refined from into an accepted solution is not refined again. False:
+	// the derivative checker ran on the first start, nothing more to do.
 	bool each_refined_in_turn(const std::vector<Start> &starts)
 	{
+		std::vector<CoarseResult> accepted;
 		for (const Start &st : starts) {
 			if (best_.converged && set_.first_accepted)
 				break;
@@ -355,8 +368,15 @@ private:
 			bool ok = continuation(st, c);
 			if (checking_derivatives())
 				return false;
-			if (ok)
-				refine(c);
+			if (!ok)
+				continue;
+			const CoarseResult r{c.cost, c.T};
+			if (!opt_.refine_repeats && std::any_of(accepted.begin(), accepted.end(), [&r](const CoarseResult &e) {
+				    return same_result(e, r);
+			    }))
+				continue;
+			if (refine(c))
+				accepted.push_back(r);
 		}
 		return true;
 	}

@@ -9,7 +9,9 @@
 // that solution; --jobs does not change a byte; a repair killed part-way
 // (solving the sidecar, or repairing) and resumed (torn rows appended) gives
 // the same bytes; a second repair does nothing; generation refuses to extend
-// a repaired dataset. Prints TAP.
+// a repaired dataset. Warm starts that repeat a coarse optimum already
+// refined are not refined again (the repair's refine_repeats: off). Prints
+// TAP.
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -133,6 +135,15 @@ int main(int argc, char **argv)
 		      "Ambot ground sample 0: a neighbour's solution leads into the basin below 100 J, the straight lines "
 		      "end 25% or more above it",
 		      std::to_string(warm.cost) + " vs " + std::to_string(line.cost));
+		// The same warm start three times: one refinement (the repeats reach
+		// the coarse optimum it was refined from), the same result.
+		Solution thrice = solve_bvp_guesses(HYLO_MODE_GROUND, ambot, a, b, o, {g, g, g}, none);
+		check(thrice.starts == 3 && thrice.refined_starts == 1 && thrice.cost == warm.cost &&
+			      warm.refined_starts == 1,
+		      "warm starts that repeat a coarse optimum already refined into an accepted solution are not "
+		      "refined again",
+		      std::to_string(thrice.starts) + " starts, " + std::to_string(thrice.refined_starts) + " refined, " +
+			      std::to_string(thrice.cost) + " J");
 		bool threw = false;
 		try {
 			Guess bad = g;
@@ -220,6 +231,8 @@ int main(int argc, char **argv)
 	const std::string meta1 = read_file(r1.gen.out_dir + "/di_neg.csv.meta");
 	check(meta1.rfind(meta, 0) == 0 && meta1.find("repaired_rows: 12\nrepair_neighbours: 8\n") != std::string::npos &&
 		      meta1.find("repair_blas: ") != std::string::npos &&
+		      meta1.find("\nrepair_refine_repeats: off\n") != std::string::npos &&
+		      meta.find("refine_repeats") == std::string::npos &&
 		      !fs::exists(r1.gen.out_dir + "/di_neg.csv.repair") &&
 		      !fs::exists(r1.gen.out_dir + "/di_neg.csv.repair.meta"),
 	      "the .meta keeps the input's lines and records the repair; no in-progress file is left");
