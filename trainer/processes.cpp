@@ -67,7 +67,7 @@ void fork_chunks(size_t n, int jobs, size_t chunk, const std::function<std::stri
 	Slots slots(ring, max_bytes);
 	std::map<pid_t, size_t> running;              // child -> item
 	std::vector<bool> finished(n, false);
-	size_t next = 0, first = 0, finished_in_chunk = 0;
+	size_t next = 0, first = 0;
 	auto kill_children = [&] {
 		for (const auto &[pid, item] : running) {
 			kill(pid, SIGKILL);
@@ -78,15 +78,12 @@ void fork_chunks(size_t n, int jobs, size_t chunk, const std::function<std::stri
 	try {
 		while (first < n) {
 			const size_t end = std::min(n, first + chunk);
-			if (finished_in_chunk == end - first) {
+			if (std::all_of(finished.begin() + first, finished.begin() + end, [](bool f) { return f; })) {
 				const size_t at = first;
 				std::vector<std::string> out;
 				for (size_t i = at; i < end; i++)
 					out.push_back(slots.get(i % ring));
 				first = end;
-				finished_in_chunk = 0;
-				for (size_t i = first; i < std::min(n, first + chunk); i++)
-					finished_in_chunk += finished[i];
 				done(at, out);
 				continue;
 			}
@@ -117,7 +114,6 @@ void fork_chunks(size_t n, int jobs, size_t chunk, const std::function<std::stri
 			if (it == running.end())
 				continue;   // not one of ours
 			finished[it->second] = true;
-			finished_in_chunk += it->second >= first && it->second < end;
 			running.erase(it);
 		}
 	} catch (...) {
@@ -131,7 +127,6 @@ std::vector<std::string> fork_each(size_t n, int jobs, const std::function<std::
 {
 	std::vector<std::string> out;
 	fork_chunks(n, jobs, n, f, [&out](size_t, std::vector<std::string> &r) { out = std::move(r); }, max_bytes);
-	out.resize(n);
 	return out;
 }
 
