@@ -21,23 +21,30 @@ tap_need_netns "${NAMES[@]}"
 
 unshare --net env B="$B" T="$T" bash -c '
 set -u
+. tests/node/wait.sh
+trap "kill \$(jobs -p) 2>/dev/null" EXIT   # nothing outlives a failed wait
 ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 3
 NODE=$B/test/node/hylo-planner-synthetic
 BURST=$B/test/node/goal_burst
 $NODE 2> "$T/node.err" &
 node=$!
-sleep 0.5
+wait_receivers 1 || exit 4
 $BURST --slow --goals 100 --rate 2000 --timeout 120 > "$T/slow.json" 2> "$T/slow.err"; echo $? > "$T/slow.rc"
 $BURST --goals 2000 --rate 0 --requesters 4 --timeout 120 > "$T/burst.json" 2> "$T/burst.err"; echo $? > "$T/burst.rc"
 $BURST --maps 20 > "$T/maps.json" 2> "$T/maps.err"; echo $? > "$T/maps.rc"
 kill -TERM $node; wait $node
-timeout 5 $NODE --recv-buf 1073741824 --once 2> "$T/capped.err" &
-sleep 1; kill -TERM $! 2>/dev/null; wait
+$NODE --recv-buf 1073741824 --once 2> "$T/capped.err" &
+capped=$!
+wait_catching $capped   # its warning comes before its handlers
+kill -TERM $capped; wait $capped
 exit 0
 '
 rc=$?
-if [ "$rc" -ne 0 ]; then
+if [ "$rc" -eq 3 ]; then
   for n in "${NAMES[@]}"; do tap_skip "$n" "namespace set-up failed (exit $rc)"; done
+  tap_finish; exit
+elif [ "$rc" -ne 0 ]; then
+  for n in "${NAMES[@]}"; do tap_not_ok "$n" "the node never got ready (exit $rc): $(cat "$T/node.err")"; done
   tap_finish; exit
 fi
 field() { sed -n "s/.*\"$2\":\([0-9.-]*\).*/\1/p" "$T/$1.json"; }

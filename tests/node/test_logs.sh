@@ -7,6 +7,7 @@
 set -u
 cd "$(dirname "$0")/../.."
 . tests/tap.sh
+. tests/node/wait.sh
 B=${BUILD:-build}
 NODE=$B/test/node/hylo-planner-synthetic
 SCENE=$B/bin/hylo-scene
@@ -66,7 +67,7 @@ if [ "$rc" -eq 0 ] && [ "$n" -eq 1 ]; then tap_ok "--once answers one goal and e
 for sig in TERM INT; do
   "$NODE" --lcm-url memq:// 2> "$T/sig.err" &
   pid=$!
-  sleep 0.3
+  wait_catching "$pid"
   kill -s "$sig" "$pid"
   wait "$pid"
   rc=$?

@@ -25,6 +25,8 @@ PY=.venv/bin/python
 # loopback, so no packet can leave this machine.
 unshare --net env B="$B" T="$T" PY="$PY" bash -c '
 set -u
+. tests/node/wait.sh
+trap "kill \$(jobs -p) 2>/dev/null" EXIT   # nothing outlives a failed wait
 ip link set lo up && ip route add 224.0.0.0/4 dev lo || exit 3
 URL="udpm://239.255.76.67:7667?ttl=0"
 NODE=$B/test/node/hylo-planner-synthetic
@@ -34,10 +36,11 @@ $B/bin/hylo-listen --lcm-url "$URL" --count 2 --timeout 20 > "$T/listen.txt" 2>&
 listen=$!
 $NODE --lcm-url "$URL" 2> "$T/node.err" &
 node=$!
-sleep 0.5
+wait_receivers 3 || exit 4   # the logger, the listener and the node
 $B/bin/hylo-scene tests/node/synthetic.yaml --goal --request-id 1 --lcm-url "$URL"
+# Request 2 only once request 1 is answered, so that it cannot supersede it.
+wait_line "$T/listen.txt" "^plan 1 " || exit 4
 if [ -n "$PY" ]; then
-  sleep 0.5
   $PY tools/hylo_client.py tests/node/synthetic.yaml --request-id 2 --lcm-url "$URL" \
     --timeout 20 > "$T/client.txt" 2>&1
   echo $? > "$T/client.rc"
@@ -45,7 +48,7 @@ else
   $B/bin/hylo-scene tests/node/synthetic.yaml --goal --request-id 2 --lcm-url "$URL"
 fi
 wait $listen; echo $? > "$T/listen.rc"
-sleep 0.3
+wait_plans $B/bin/hylo-listen "$T/session.log" 2 || exit 4
 kill -INT $logger; wait $logger
 kill -TERM $node; wait $node; echo $? > "$T/node.rc"
 
@@ -54,16 +57,19 @@ lcm-logger --lcm-url="$URL" -f "$T/replay.log" >/dev/null 2>&1 &
 logger=$!
 $NODE --lcm-url "$URL" 2> "$T/node2.err" &
 node=$!
-sleep 0.5
+wait_receivers 2 || exit 4   # the new logger and the new node
 lcm-logplayer --lcm-url="$URL" -e "^HYLO_(MAP|GOAL)$" -s 4 "$T/session.log"
-sleep 1
+wait_plans $B/bin/hylo-listen "$T/replay.log" 2 || exit 4
 kill -INT $logger; wait $logger
 kill -TERM $node; wait $node
 exit 0
 '
 rc=$?
-if [ "$rc" -ne 0 ]; then
+if [ "$rc" -eq 3 ]; then
   for n in "${NAMES[@]}"; do tap_skip "$n" "namespace set-up failed (exit $rc)"; done
+  tap_finish; exit
+elif [ "$rc" -ne 0 ]; then
+  for n in "${NAMES[@]}"; do tap_not_ok "$n" "a process never got ready (exit $rc): $(cat "$T"/*.err 2>/dev/null)"; done
   tap_finish; exit
 fi
 

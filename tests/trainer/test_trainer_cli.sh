@@ -110,7 +110,7 @@ tap_check "shards 1/3, 2/3, 3/3 concatenate to the unsharded file" cmp "$T/sh/al
 # Interrupted: killed after its first chunks, then run again.
 "$TR" --mode di_neg --robot di --stage gen --quiet --samples 96 --seed 3 --jobs 2 --out "$T/kill" > /dev/null &
 pid=$!
-for i in $(seq 1 100); do
+for i in $(seq 1 1200); do
   [ -f "$T/kill/di_neg.csv" ] && [ "$(wc -l < "$T/kill/di_neg.csv")" -gt 40 ] && break
   sleep 0.05
 done
