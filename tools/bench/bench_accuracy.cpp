@@ -12,9 +12,10 @@
 // solve does not converge are counted, not scored.
 //
 // usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J]
-//                       [--csv EDGES.csv] [SCENE.yaml ...]
-// N edges per model and source (default 100); every committed scene by
-// default. Writes a table to stdout, JSON rows {name, value, unit,
+//                       [--model NAME ...] [--csv EDGES.csv] [SCENE.yaml ...]
+// N edges per model and source (default 100); every committed scene and
+// every model by default (--model, repeatable: only that model's edges are
+// solved, e.g. ambot_marine before and after its refit). Writes a table to stdout, JSON rows {name, value, unit,
 // reference, reference_value, ratio} to RESULTS.json (ratio = reference /
 // value: above 1, the planner's edges are predicted better than held-out
 // rows) and one CSV line per edge (default: RESULTS.json with
@@ -268,7 +269,7 @@ int run(int argc, char **argv)
 {
 	if (argc < 2 || argv[1][0] == '-') {
 		std::fprintf(stderr, "usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J] "
-				     "[--csv EDGES.csv] [SCENE.yaml ...]\n");
+				     "[--model NAME ...] [--csv EDGES.csv] [SCENE.yaml ...]\n");
 		return 2;
 	}
 	const std::string json = argv[1];
@@ -278,7 +279,7 @@ int run(int argc, char **argv)
 	size_t per_source = 100;
 	uint64_t seed = 1;
 	int jobs = 2;
-	std::vector<std::string> scenes;
+	std::vector<std::string> scenes, only;
 	for (int i = 2; i < argc; i++) {
 		std::string a = argv[i];
 		auto val = [&] { return option_value(argc, argv, i); };
@@ -290,6 +291,8 @@ int run(int argc, char **argv)
 			jobs = std::stoi(val());
 		else if (a == "--csv")
 			csv = val();
+		else if (a == "--model")
+			only.push_back(val());
 		else if (!a.empty() && a[0] == '-')
 			throw std::invalid_argument("unknown option " + a);
 		else
@@ -322,6 +325,13 @@ int run(int argc, char **argv)
 						me.model = pl->robot->modes[k].model;
 			}
 	}
+
+	for (const std::string &name : only)
+		if (!models.count(name))
+			throw std::invalid_argument("--model " + name + ": no such model on these scenes' plans");
+	if (!only.empty())
+		for (auto it = models.begin(); it != models.end();)
+			it = std::find(only.begin(), only.end(), it->first) == only.end() ? models.erase(it) : std::next(it);
 
 	std::map<std::string, RobotParams> params;
 	std::vector<Edge> todo;
