@@ -32,7 +32,7 @@ URL="udpm://239.255.76.67:7667?ttl=0"
 NODE=$B/test/node/hylo-planner-synthetic
 lcm-logger --lcm-url="$URL" -f "$T/session.log" >/dev/null 2>&1 &
 logger=$!
-$B/bin/hylo-listen --lcm-url "$URL" --count 2 --timeout 20 > "$T/listen.txt" 2>&1 &
+$B/bin/hylo-listen --lcm-url "$URL" --count 2 --timeout 60 > "$T/listen.txt" 2>&1 &
 listen=$!
 $NODE --lcm-url "$URL" 2> "$T/node.err" &
 node=$!
