@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -394,34 +395,22 @@ int run(int argc, char **argv)
 		std::vector<double> a = parse_vector(solve1, d, "--solve X1"), b = parse_vector(solve2, d, "--solve X2");
 		Solution s;
 		std::string memory;
-		std::vector<Guess> guesses;
+		size_t memory_starts = 0;
 		const std::string committed = "trainer/datasets/" + robot_name;
 		if (memory_dir.empty() && access((committed + "/" + mode + ".solutions.csv").c_str(), F_OK) == 0)
 			memory_dir = committed;
 		try {
+			std::unique_ptr<Memory> m;
 			if (!memory_dir.empty() && memory_dir != "none") {
-				Memory m(robot, id, memory_dir);
-				memory = m.sidecar();
-				guesses = m.guesses(robot, a.data(), b.data(), po.neighbours);
+				m = std::make_unique<Memory>(robot, id, memory_dir);
+				memory = m->sidecar();
 			}
-			s = solve_bvp(id, robot, a.data(), b.data(), po.gen.solve);
-			if (!guesses.empty()) {
-				Solution m = solve_bvp_guesses(id, robot, a.data(), b.data(), po.gen.solve, guesses, s);
-				// A tie keeps the pair's own solution, as the repair keeps a
-				// label; the starts and seconds add up either way.
-				if (improves_on(m, s)) {
-					s = m;
-				} else {
-					s.starts = m.starts;
-					s.converged_starts = m.converged_starts;
-					s.refined_starts = m.refined_starts;
-					s.solve_seconds = m.solve_seconds;
-				}
-			}
+			s = solve_remembered(id, robot, a.data(), b.data(), po.gen.solve, m.get(), po.neighbours,
+					     &memory_starts);
 		} catch (const std::invalid_argument &e) {
 			throw Usage(e.what());
 		}
-		print_solution(s, mode, robot_name, a, b, json, traj, memory, guesses.size());
+		print_solution(s, mode, robot_name, a, b, json, traj, memory, memory_starts);
 		return 0;
 	}
 	if (!memory_dir.empty())

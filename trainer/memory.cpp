@@ -239,4 +239,27 @@ std::vector<Guess> Memory::guesses(const RobotParams &robot, const double *x1s, 
 	return out;
 }
 
+Solution solve_remembered(hylo_mode mode, const RobotParams &robot, const double *x1s, const double *x2s,
+			  const SolveOptions &opt, const Memory *memory, int k, size_t *memory_starts)
+{
+	std::vector<Guess> guesses;
+	if (memory)
+		guesses = memory->guesses(robot, x1s, x2s, k);
+	if (memory_starts)
+		*memory_starts = guesses.size();
+	Solution s = solve_bvp(mode, robot, x1s, x2s, opt);
+	if (guesses.empty())
+		return s;
+	Solution m = solve_bvp_guesses(mode, robot, x1s, x2s, opt, guesses, s);
+	if (improves_on(m, s))
+		return m;
+	// A tie keeps the pair's own solution, as the repair keeps a label; the
+	// starts and seconds add up either way.
+	s.starts = m.starts;
+	s.converged_starts = m.converged_starts;
+	s.refined_starts = m.refined_starts;
+	s.solve_seconds = m.solve_seconds;
+	return s;
+}
+
 }  // namespace hylo::trainer

@@ -93,6 +93,14 @@ private:
 	std::vector<double> scale_;
 };
 
+// The pair x1s -> x2s solved from its own starts and, with a memory, from
+// the paths of its k nearest rows too: the cheaper (improves_on: a tie
+// keeps the pair's own), with the starts and seconds of both. What
+// trainer --solve and bench_accuracy call the exact cost. memory_starts,
+// when given, is set to the number of memory starts.
+Solution solve_remembered(hylo_mode mode, const RobotParams &robot, const double *x1s, const double *x2s,
+			  const SolveOptions &opt, const Memory *memory, int k, size_t *memory_starts = nullptr);
+
 }  // namespace hylo::trainer
 
 #endif

@@ -5,14 +5,18 @@
 // a seeded sample per model and source is solved exactly with the
 // trainer's collocation (training_solve_options: the solver that labelled
 // the training rows; ground and marine edges in the tail's frame, as the
-// training rows), and the model's relative error (prediction - exact)
+// training rows), from the edge's own starts and, as trainer --solve, from
+// the paths of the 8 nearest rows of the model's dataset where
+// trainer/datasets/<robot> holds its sidecar (--memory DIR another
+// dataset directory, --memory none: own starts only), and the model's relative error (prediction - exact)
 // / exact is summarized: median and p95 of |error|, the worst |error| and
 // the bias (signed mean), next to the held-out errors on rows drawn like
 // the training rows (each model's provenance string). Edges whose exact
 // solve does not converge are counted, not scored.
 //
 // usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J]
-//                       [--model NAME ...] [--csv EDGES.csv] [SCENE.yaml ...]
+//                       [--model NAME ...] [--memory DIR|none] [--csv EDGES.csv]
+//                       [SCENE.yaml ...]
 // N edges per model and source (default 100); every committed scene and
 // every model by default (--model, repeatable: only that model's edges are
 // solved, e.g. ambot_marine before and after its refit). Writes a table to stdout, JSON rows {name, value, unit,
@@ -44,6 +48,7 @@
 #include "trainer/cli.hpp"
 #include "trainer/collocation.hpp"
 #include "trainer/dataset.hpp"
+#include "trainer/memory.hpp"
 #include "trainer/params.hpp"
 #include "trainer/processes.hpp"
 
@@ -166,14 +171,27 @@ void bvp_states(const Edge &e, double *a, double *b)
 	b[0] = r[0], b[1] = r[1], b[3] = r[2];
 }
 
-// Solves every edge (one forked process each: trainer/processes.hpp).
+// The memory of the robot's mode in dir ("" or "none": none; a directory
+// without the mode's sidecar: none).
+std::unique_ptr<Memory> memory_of(const std::string &dir, const RobotParams &robot, hylo_mode mode)
+{
+	if (dir.empty() || dir == "none" ||
+	    !std::filesystem::exists(dir + "/" + hylo_mode_str(mode) + ".solutions.csv"))
+		return nullptr;
+	return std::make_unique<Memory>(robot, mode, dir);
+}
+
+// Solves every edge (one forked process each: trainer/processes.hpp), with
+// the memory of its model where it has one (memory_of, null: none).
 void solve_all(std::vector<Edge> &edges, const std::map<std::string, RobotParams> &robots,
-	       const std::vector<std::string> &robot_of, int jobs)
+	       const std::vector<std::string> &robot_of, const std::vector<const Memory *> &memory_of_edge,
+	       int jobs)
 {
 	std::vector<std::string> res = fork_each(edges.size(), jobs, [&](size_t i) {
 		double a[HYLO_XS_DIM], b[HYLO_XS_DIM];
 		bvp_states(edges[i], a, b);
-		Solution s = solve_bvp(edges[i].mode, robots.at(robot_of[i]), a, b, training_solve_options());
+		Solution s = solve_remembered(edges[i].mode, robots.at(robot_of[i]), a, b, training_solve_options(),
+					      memory_of_edge[i], 8);
 		char buf[64];
 		std::snprintf(buf, sizeof buf, "%d %.17g", s.converged ? 1 : 0, s.cost);
 		return std::string(buf);
@@ -269,7 +287,7 @@ int run(int argc, char **argv)
 {
 	if (argc < 2 || argv[1][0] == '-') {
 		std::fprintf(stderr, "usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J] "
-				     "[--model NAME ...] [--csv EDGES.csv] [SCENE.yaml ...]\n");
+				     "[--model NAME ...] [--memory DIR|none] [--csv EDGES.csv] [SCENE.yaml ...]\n");
 		return 2;
 	}
 	const std::string json = argv[1];
@@ -280,6 +298,7 @@ int run(int argc, char **argv)
 	uint64_t seed = 1;
 	int jobs = 2;
 	std::vector<std::string> scenes, only;
+	std::string memory_dir;
 	for (int i = 2; i < argc; i++) {
 		std::string a = argv[i];
 		auto val = [&] { return option_value(argc, argv, i); };
@@ -293,6 +312,8 @@ int run(int argc, char **argv)
 			csv = val();
 		else if (a == "--model")
 			only.push_back(val());
+		else if (a == "--memory")
+			memory_dir = val();
 		else if (!a.empty() && a[0] == '-')
 			throw std::invalid_argument("unknown option " + a);
 		else
@@ -336,23 +357,30 @@ int run(int argc, char **argv)
 	std::map<std::string, RobotParams> params;
 	std::vector<Edge> todo;
 	std::vector<std::string> todo_model, todo_robot;
+	std::vector<std::unique_ptr<Memory>> memories;
+	std::vector<const Memory *> todo_memory;
 	uint64_t stream = 0;
 	for (const auto &[name, me] : models) {
-		std::printf("%-20s %7zu edges evaluated, %4zu on plans (%zu scenes, there and back)\n", name.c_str(),
-			    me.pool[0].size(), me.pool[1].size(), scenes.size());
 		if (!params.count(me.robot))
 			params[me.robot] = load_robot(robot_file(me.robot));
+		const hylo_mode mode = me.pool[0].empty() ? me.pool[1].front().mode : me.pool[0].front().mode;
+		memories.push_back(memory_of(memory_dir.empty() ? "trainer/datasets/" + me.robot : memory_dir,
+					     params.at(me.robot), mode));
+		std::printf("%-20s %7zu edges evaluated, %4zu on plans (%zu scenes, there and back); memory: %s\n",
+			    name.c_str(), me.pool[0].size(), me.pool[1].size(), scenes.size(),
+			    memories.back() ? memories.back()->sidecar().c_str() : "none");
 		for (int s = 0; s < 2; s++)
 			for (const Edge &e : sample(me.pool[s], per_source, seed * 1000003 + stream++)) {
 				todo.push_back(e);
 				todo_model.push_back(name);
 				todo_robot.push_back(me.robot);
+				todo_memory.push_back(memories.back().get());
 			}
 	}
 	std::printf("solving %zu edges exactly (%zu per model and source at most, seed %llu, %d jobs)\n", todo.size(),
 		    per_source, static_cast<unsigned long long>(seed), jobs);
 	std::fflush(stdout);
-	solve_all(todo, params, todo_robot, jobs);
+	solve_all(todo, params, todo_robot, todo_memory, jobs);
 
 	std::vector<BenchRow> rows;
 	std::vector<std::pair<std::string, Edge>> all;
