@@ -396,15 +396,10 @@ int run(int argc, char **argv)
 		Solution s;
 		std::string memory;
 		size_t memory_starts = 0;
-		const std::string committed = "trainer/datasets/" + robot_name;
-		if (memory_dir.empty() && access((committed + "/" + mode + ".solutions.csv").c_str(), F_OK) == 0)
-			memory_dir = committed;
 		try {
-			std::unique_ptr<Memory> m;
-			if (!memory_dir.empty() && memory_dir != "none") {
-				m = std::make_unique<Memory>(robot, id, memory_dir);
+			const std::unique_ptr<Memory> m = open_memory(memory_dir, robot_name, robot, id);
+			if (m)
 				memory = m->sidecar();
-			}
 			s = solve_remembered(id, robot, a.data(), b.data(), po.gen.solve, m.get(), po.neighbours,
 					     &memory_starts);
 		} catch (const std::invalid_argument &e) {

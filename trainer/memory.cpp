@@ -1,5 +1,7 @@
 #include "trainer/memory.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -237,6 +239,18 @@ std::vector<Guess> Memory::guesses(const RobotParams &robot, const double *x1s, 
 		out.push_back(stored_guess(mode_, moved, a, b, points_));
 	}
 	return out;
+}
+
+std::unique_ptr<Memory> open_memory(const std::string &dir, const std::string &robot_name, const RobotParams &robot,
+				    hylo_mode mode)
+{
+	std::string d = dir;
+	if (d.empty()) {
+		d = "trainer/datasets/" + robot_name;
+		if (access((d + "/" + hylo_mode_str(mode) + ".solutions.csv").c_str(), F_OK) != 0)
+			return nullptr;
+	}
+	return d == "none" ? nullptr : std::make_unique<Memory>(robot, mode, d);
 }
 
 Solution solve_remembered(hylo_mode mode, const RobotParams &robot, const double *x1s, const double *x2s,

@@ -10,6 +10,7 @@
 #define HYLO_TRAINER_MEMORY_HPP
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,12 @@ private:
 	std::vector<StoredSolution> sol_;
 	std::vector<double> scale_;
 };
+
+// The memory --memory DIR names for robot_name's mode: "" the committed
+// dataset trainer/datasets/<robot_name> where it holds the mode's sidecar
+// (else none), "none" none, else DIR's (throws as Memory does). Null: none.
+std::unique_ptr<Memory> open_memory(const std::string &dir, const std::string &robot_name, const RobotParams &robot,
+				    hylo_mode mode);
 
 // The pair x1s -> x2s solved from its own starts and, with a memory, from
 // the paths of its k nearest rows too: the cheaper (improves_on: a tie

@@ -7,24 +7,25 @@
 // the training rows; ground and marine edges in the tail's frame, as the
 // training rows), from the edge's own starts and, as trainer --solve, from
 // the paths of the 8 nearest rows of the model's dataset where
-// trainer/datasets/<robot> holds its sidecar (--memory DIR another
-// dataset directory, --memory none: own starts only), and the model's relative error (prediction - exact)
-// / exact is summarized: median and p95 of |error|, the worst |error| and
-// the bias (signed mean), next to the held-out errors on rows drawn like
-// the training rows (each model's provenance string). Edges whose exact
-// solve does not converge are counted, not scored.
+// trainer/datasets/<robot> holds its sidecar (--memory DIR another dataset
+// directory, --memory none: own starts only), and the model's relative
+// error (prediction - exact) / exact is summarized: median and p95 of
+// |error|, the worst |error| and the bias (signed mean), next to the
+// held-out errors on rows drawn like the training rows (each model's
+// provenance string). Edges whose exact solve does not converge are
+// counted, not scored.
 //
 // usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J]
 //                       [--model NAME ...] [--memory DIR|none] [--csv EDGES.csv]
 //                       [SCENE.yaml ...]
 // N edges per model and source (default 100); every committed scene and
 // every model by default (--model, repeatable: only that model's edges are
-// solved, e.g. ambot_marine before and after its refit). Writes a table to stdout, JSON rows {name, value, unit,
-// reference, reference_value, ratio} to RESULTS.json (ratio = reference /
-// value: above 1, the planner's edges are predicted better than held-out
-// rows) and one CSV line per edge (default: RESULTS.json with
-// _edges.csv for .json: length, climb, speeds, costs, error and both
-// states) for tools/accuracy/plot_accuracy.py.
+// solved, e.g. ambot_marine before and after its refit). Writes a table to
+// stdout, JSON rows {name, value, unit, reference, reference_value, ratio}
+// to RESULTS.json (ratio = reference / value: above 1, the planner's edges
+// are predicted better than held-out rows) and one CSV line per edge
+// (default: RESULTS.json with _edges.csv for .json: length, climb, speeds,
+// costs, error and both states) for tools/accuracy/plot_accuracy.py.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -171,18 +172,8 @@ void bvp_states(const Edge &e, double *a, double *b)
 	b[0] = r[0], b[1] = r[1], b[3] = r[2];
 }
 
-// The memory of the robot's mode in dir ("" or "none": none; a directory
-// without the mode's sidecar: none).
-std::unique_ptr<Memory> memory_of(const std::string &dir, const RobotParams &robot, hylo_mode mode)
-{
-	if (dir.empty() || dir == "none" ||
-	    !std::filesystem::exists(dir + "/" + hylo_mode_str(mode) + ".solutions.csv"))
-		return nullptr;
-	return std::make_unique<Memory>(robot, mode, dir);
-}
-
 // Solves every edge (one forked process each: trainer/processes.hpp), with
-// the memory of its model where it has one (memory_of, null: none).
+// the memory of its model where it has one (open_memory; null: none).
 void solve_all(std::vector<Edge> &edges, const std::map<std::string, RobotParams> &robots,
 	       const std::vector<std::string> &robot_of, const std::vector<const Memory *> &memory_of_edge,
 	       int jobs)
@@ -364,8 +355,7 @@ int run(int argc, char **argv)
 		if (!params.count(me.robot))
 			params[me.robot] = load_robot(robot_file(me.robot));
 		const hylo_mode mode = me.pool[0].empty() ? me.pool[1].front().mode : me.pool[0].front().mode;
-		memories.push_back(memory_of(memory_dir.empty() ? "trainer/datasets/" + me.robot : memory_dir,
-					     params.at(me.robot), mode));
+		memories.push_back(open_memory(memory_dir, me.robot, params.at(me.robot), mode));
 		std::printf("%-20s %7zu edges evaluated, %4zu on plans (%zu scenes, there and back); memory: %s\n",
 			    name.c_str(), me.pool[0].size(), me.pool[1].size(), scenes.size(),
 			    memories.back() ? memories.back()->sidecar().c_str() : "none");
