@@ -320,6 +320,15 @@ std::vector<std::vector<double>> feature_symmetries(hylo_mode mode)
 	return {{1, -1, 1, 1, -1, 1, 1, -1, 1}};
 }
 
+std::vector<double> feature_weights(hylo_mode mode)
+{
+	if (mode != HYLO_MODE_MARINE)
+		return {};
+	std::vector<double> w(HYLO_FEATURES_PLANAR, 1.0);
+	w[HYLO_FEATURES_PLANAR - 1] = 2;   // (dx', |dy'|, s*dtheta, vx1, vx2, d, turn, arc)
+	return w;
+}
+
 int draws_for(hylo_mode mode, int requested)
 {
 	const hylo_mode_desc &d = mode_desc(mode);

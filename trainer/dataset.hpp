@@ -98,6 +98,12 @@ int feature_count(hylo_mode mode);
 // about z are not, by up to 0.1%: ZYX Euler angles).
 std::vector<std::vector<double>> feature_symmetries(hylo_mode mode);
 
+// The cost model's feature weights for mode (FitOptions::feature_weights;
+// empty: none). Marine: 2 on arc, the distance from the one circular arc
+// that joins the poses (hylo/features.h): paddling at speed, the cost is a
+// narrow valley along it (docs/decisions.md, "The arc feature's weight").
+std::vector<double> feature_weights(hylo_mode mode);
+
 // The draw a run uses: requested (1 to 4; 0: the newest, 4) for ground and
 // marine, 2 for flight, 1 or 2 (newest 2) for the double integrator.
 // Throws std::invalid_argument for a draw the mode does not have.

@@ -167,6 +167,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	fo.jobs = g.jobs;
 	fo.debug = g.solve.debug;   // trainer --debug: the solver's and the fit's traces
 	fo.symmetries = feature_symmetries(g.mode);
+	fo.feature_weights = feature_weights(g.mode);
 	SvrExport m;
 	FitReport rep = fit_cost(nf, rows.x_conv, rows.cost, fo, m);
 	m.robot = robot.robot;
@@ -209,6 +210,12 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		m.provenance.insert(m.provenance.end() - 1,
 				    {"mirror images", std::to_string(fo.symmetries.size()) +
 							      " per training pair (feature_symmetries, trainer/dataset.cpp)"});
+	if (!fo.feature_weights.empty()) {
+		std::string w;
+		for (double v : fo.feature_weights)
+			w += (w.empty() ? "" : " ") + format_double(v);
+		m.provenance.insert(m.provenance.end() - 1, {"feature weights", w + " (feature_weights, trainer/dataset.cpp)"});
+	}
 	if (mode_desc(g.mode).air) {
 		// Takeoff and landing (docs/models.md section 6): hover at h to hover at h+1, and back.
 		TakeoffLanding tl = takeoff_landing(robot, g.solve);

@@ -101,10 +101,17 @@ void check_data(int nf, const std::vector<double> &x, size_t n, size_t min_n, in
 						    " is not finite");
 }
 
-// Feature standardization from the training rows only.
+// Feature standardization from the training rows only, each scale divided
+// by its feature's weight (none: 1).
 void standardization(int nf, const std::vector<double> &x, const std::vector<size_t> &train,
-		     std::vector<double> &offset, std::vector<double> &scale)
+		     const std::vector<double> &weights, std::vector<double> &offset, std::vector<double> &scale)
 {
+	if (!weights.empty() && weights.size() != static_cast<size_t>(nf))
+		throw std::invalid_argument("fit: " + std::to_string(weights.size()) + " feature weights for " +
+					    std::to_string(nf) + " features");
+	for (double w : weights)
+		if (!(w > 0) || !std::isfinite(w))
+			throw std::invalid_argument("fit: a feature weight is not finite and > 0");
 	offset.assign(static_cast<size_t>(nf), 0.0);
 	scale.assign(static_cast<size_t>(nf), 1.0);
 	for (int k = 0; k < nf; k++) {
@@ -118,7 +125,8 @@ void standardization(int nf, const std::vector<double> &x, const std::vector<siz
 		}
 		var /= static_cast<double>(train.size());
 		offset[static_cast<size_t>(k)] = mean;
-		scale[static_cast<size_t>(k)] = var > 1e-24 ? std::sqrt(var) : 1.0;
+		scale[static_cast<size_t>(k)] = (var > 1e-24 ? std::sqrt(var) : 1.0) /
+						 (weights.empty() ? 1.0 : weights[static_cast<size_t>(k)]);
 	}
 }
 
@@ -396,7 +404,7 @@ FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<doubl
 	d.labels = log_labels(cost, sp.train);
 	d.xa = with_symmetries(nf, x, n, opt.symmetries, d.labels.target);
 	const std::vector<size_t> train_all = with_images(sp.train, n, d.symmetries);
-	standardization(nf, d.xa, train_all, d.offset, d.scale);
+	standardization(nf, d.xa, train_all, opt.feature_weights, d.offset, d.scale);
 
 	std::vector<Point> grid = grid_of(opt);
 	const size_t best = cross_validate(d, cv_rows(sp.train, opt), grid, opt);
@@ -515,7 +523,7 @@ ClassifierReport fit_feasibility(int nf, const std::vector<double> &x,
 	d.x = &x;
 	for (size_t i = 0; i < n; i++)
 		d.label.push_back(feasible[i] ? 1 : -1);
-	standardization(nf, x, sp.train, d.offset, d.scale);
+	standardization(nf, x, sp.train, {}, d.offset, d.scale);
 	std::vector<ClassPoint> grid;
 	for (double C : opt.C)
 		for (double g : opt.gamma)

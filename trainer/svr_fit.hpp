@@ -40,6 +40,10 @@ struct FitOptions {
 	// training row is also fitted flipped (held-out and validation rows
 	// are not; a fold's flipped copies stay in its fold).
 	std::vector<std::vector<double>> symmetries;
+	// Per feature, how much faster the kernel varies along it than along a
+	// standardized feature: its scale is divided by the weight (exported
+	// with it, so the onboard evaluator needs nothing). Empty: all 1.
+	std::vector<double> feature_weights;
 };
 
 struct FitReport {

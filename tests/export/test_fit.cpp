@@ -1,7 +1,8 @@
 // The model fit (trainer/svr_fit.cpp) on a smooth synthetic energy function
 // of 5 planar quantities: accuracy on held-out data, determinism across
 // runs and thread counts, the exported model evaluated by the onboard code,
-// and clear errors on unusable data. Prints TAP.
+// mirror images, feature weights and clear errors on unusable data. Prints
+// TAP.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -154,6 +155,35 @@ int main()
 		bad.symmetries = {{1, -1}};
 		check_throws([&] { fit_cost(5, upper.x, upper.cost, bad, without); }, "2 signs for 5 features",
 			     "a symmetry of the wrong length: clear error");
+	}
+
+	// Feature weights: the weighted feature's exported scale is divided by
+	// its weight, the others' are unchanged, and a cost with a narrow valley
+	// along that feature is learned better with it.
+	{
+		Data v = make(800, 17);
+		for (size_t i = 0; i < v.cost.size(); i++)
+			v.cost[i] *= 1 + 4 * std::fabs(std::sin(2 * v.x[5 * i + 2]));
+		FitOptions wo = small_grid();
+		wo.feature_weights = {1, 1, 3, 1, 1};
+		SvrExport plain, weighted;
+		FitReport rp = fit_cost(5, v.x, v.cost, small_grid(), plain);
+		FitReport rw = fit_cost(5, v.x, v.cost, wo, weighted);
+		bool scales = weighted.feature_scale[2] == plain.feature_scale[2] / 3 &&
+			      weighted.feature_scale[0] == plain.feature_scale[0] &&
+			      weighted.feature_scale[4] == plain.feature_scale[4] &&
+			      weighted.feature_offset == plain.feature_offset;
+		check(scales && rw.median_rel_error < rp.median_rel_error && rw.p95_rel_error < rp.p95_rel_error,
+		      "feature weights: the weighted scale divided by 3, a narrow valley learned better",
+		      "median " + std::to_string(rp.median_rel_error) + " -> " + std::to_string(rw.median_rel_error) +
+			      ", p95 " + std::to_string(rp.p95_rel_error) + " -> " + std::to_string(rw.p95_rel_error));
+		FitOptions bad = small_grid();
+		bad.feature_weights = {1, 1};
+		check_throws([&] { fit_cost(5, v.x, v.cost, bad, weighted); }, "2 feature weights for 5 features",
+			     "feature weights of the wrong length: clear error");
+		bad.feature_weights = {1, 1, 0, 1, 1};
+		check_throws([&] { fit_cost(5, v.x, v.cost, bad, weighted); }, "not finite and > 0",
+			     "a zero feature weight: clear error");
 	}
 
 	ClassifierExport f;
