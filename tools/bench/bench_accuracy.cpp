@@ -18,6 +18,7 @@
 // usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J]
 //                       [--model NAME ...] [--memory DIR|none] [--csv EDGES.csv]
 //                       [SCENE.yaml ...]
+//        bench_accuracy --rescore EDGES.csv HEADER.h
 // N edges per model and source (default 100); every committed scene and
 // every model by default (--model, repeatable: only that model's edges are
 // solved, e.g. ambot_marine before and after its refit). Writes a table to
@@ -26,6 +27,8 @@
 // are predicted better than held-out rows) and one CSV line per edge
 // (default: RESULTS.json with _edges.csv for .json: length, climb, speeds,
 // costs, error and both states) for tools/accuracy/plot_accuracy.py.
+// --rescore EDGES.csv HEADER.h scores another header of one of the file's
+// models on its edges (a regenerated model against the committed one).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -52,6 +55,7 @@
 #include "trainer/memory.hpp"
 #include "trainer/params.hpp"
 #include "trainer/processes.hpp"
+#include "trainer/svr_export.hpp"
 
 namespace {
 
@@ -274,11 +278,76 @@ void write_csv(const std::string &path, const std::vector<std::pair<std::string,
 		throw std::runtime_error("cannot write " + path);
 }
 
+// --rescore EDGES.csv HEADER.h: the edges of an earlier run (their exact
+// costs) predicted by another header of one of their models, e.g. a
+// regenerated one, beside the header they were benchmarked with. No solves.
+int rescore(const std::string &csv, const std::string &header)
+{
+	for (const std::string &path : {csv, header})
+		if (!std::ifstream(path))
+			throw std::invalid_argument("cannot read " + path);
+	SvrExport h = parse_svr_header(read_file(header));
+	const std::string name = h.robot + "_" + hylo_mode_str(h.mode);
+	if (h.n_features != static_cast<int>(hylo_feature_count(h.mode)))
+		throw std::invalid_argument(header + ": " + std::to_string(h.n_features) + " features, mode " +
+					    hylo_mode_str(h.mode) + " has " + std::to_string(hylo_feature_count(h.mode)));
+	hylo_svr_model m = svr_view(h, h.n_features, name.c_str());
+	m.label_offset = h.label_offset;
+	m.label_scale = h.label_scale;
+	m.label_log = h.label_log;
+	std::ifstream in(csv);
+	std::string line;
+	if (!std::getline(in, line) || line.rfind("model,mode,source,", 0) != 0)
+		throw std::invalid_argument(csv + ": not a bench_accuracy edges file");
+	std::vector<Edge> before, after;
+	for (size_t no = 2; std::getline(in, line); no++) {
+		std::vector<std::string> f;
+		for (size_t a = 0, b; a <= line.size(); a = b + 1) {
+			b = std::min(line.find(',', a), line.size());
+			f.push_back(line.substr(a, b - a));
+		}
+		if (f.size() != 11 + 2 * HYLO_XS_DIM)
+			throw std::invalid_argument(csv + ":" + std::to_string(no) + ": " + std::to_string(f.size()) +
+						    " fields, not " + std::to_string(11 + 2 * HYLO_XS_DIM));
+		if (f[0] != name)
+			continue;
+		Edge e;
+		e.source = f[2] == kSources[1] ? 1 : 0;
+		e.mode = h.mode;
+		e.predicted = std::stod(f[8]);
+		e.exact = std::stod(f[9]);
+		for (int k = 0; k < HYLO_XS_DIM; k++) {
+			e.a[k] = std::stod(f[11 + k]);
+			e.b[k] = std::stod(f[11 + HYLO_XS_DIM + k]);
+		}
+		before.push_back(e);
+		double x[HYLO_MAX_FEATURES];
+		hylo_features(e.mode, e.a, e.b, x);
+		e.predicted = hylo_svr_predict(&m, x);
+		after.push_back(e);
+	}
+	if (before.empty())
+		throw std::invalid_argument(csv + ": no edges of " + name + " (" + header + ")");
+	std::printf("%-9s %-9s %7s %6s %8s %8s %9s %8s\n", "header", "source", "edges", "unsolv", "median", "p95",
+		    "worst", "bias");
+	for (const auto &[label, edges] : {std::make_pair("as run", &before), std::make_pair("rescored", &after)})
+		for (int src = -1; src < 2; src++) {
+			const Summary sm = summarize(*edges, src);
+			std::printf("%-9s %-9s %7zu %6zu %7.2f%% %7.2f%% %+8.2f%% %+7.2f%%\n", label,
+				    src < 0 ? "all" : kSources[src], sm.n, sm.unsolved, 100 * sm.median, 100 * sm.p95,
+				    100 * sm.worst, 100 * sm.bias);
+		}
+	return 0;
+}
+
 int run(int argc, char **argv)
 {
+	if (argc == 4 && std::string(argv[1]) == "--rescore")
+		return rescore(argv[2], argv[3]);
 	if (argc < 2 || argv[1][0] == '-') {
 		std::fprintf(stderr, "usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J] "
-				     "[--model NAME ...] [--memory DIR|none] [--csv EDGES.csv] [SCENE.yaml ...]\n");
+				     "[--model NAME ...] [--memory DIR|none] [--csv EDGES.csv] [SCENE.yaml ...]\n"
+				     "       bench_accuracy --rescore EDGES.csv HEADER.h\n");
 		return 2;
 	}
 	const std::string json = argv[1];
