@@ -99,26 +99,6 @@ double seconds_since(Clock::time_point t0)
 	return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// The onboard model over m's arrays (m must outlive it).
-hylo_svr_model model_view(const SvrExport &m)
-{
-	hylo_svr_model v = svr_view(m, m.n_features, "envelope");
-	v.label_offset = m.label_offset;
-	v.label_scale = m.label_scale;
-	v.label_log = m.label_log ? 1 : 0;
-	v.cost_floor_per_m = m.cost_floor_per_m;
-	v.cost_floor_j = m.cost_floor_j;
-	v.max_distance_m = m.max_distance_m;
-	v.speed_min_mps = m.speed_min_mps;
-	v.speed_max_mps = m.speed_max_mps;
-	v.state_bounded = m.state_bounded;
-	for (size_t k = 0; k < m.state_min.size(); k++) {
-		v.state_min[k] = m.state_min[k];
-		v.state_max[k] = m.state_max[k];
-	}
-	return v;
-}
-
 // The onboard batch evaluator with a cache of its own (one per thread).
 class Evaluator {
 public:
@@ -1471,7 +1451,7 @@ hylo_svr_model bare_view(const SvrExport &m, SvrExport &bare)
 	bare = m;
 	bare.envelope.reset();
 	bare.turn_envelope.reset();
-	const hylo_svr_model view = model_view(bare);
+	const hylo_svr_model view = model_view(bare, "envelope");
 	hylo_reason why;
 	if (hylo_svr_check(&view, &why) != HYLO_OK)
 		throw std::invalid_argument(std::string("envelope: ") + why.text);

@@ -698,4 +698,23 @@ void write_svr_header(const SvrExport &m, const std::string &path)
 	write_file_atomically(path, svr_header_text(m));
 }
 
+hylo_svr_model model_view(const SvrExport &m, const char *name)
+{
+	hylo_svr_model v = svr_view(m, m.n_features, name);
+	v.label_offset = m.label_offset;
+	v.label_scale = m.label_scale;
+	v.label_log = m.label_log ? 1 : 0;
+	v.cost_floor_per_m = m.cost_floor_per_m;
+	v.cost_floor_j = m.cost_floor_j;
+	v.max_distance_m = m.max_distance_m;
+	v.speed_min_mps = m.speed_min_mps;
+	v.speed_max_mps = m.speed_max_mps;
+	v.state_bounded = m.state_bounded;
+	for (size_t k = 0; k < m.state_min.size(); k++) {
+		v.state_min[k] = m.state_min[k];
+		v.state_max[k] = m.state_max[k];
+	}
+	return v;
+}
+
 }  // namespace hylo::trainer

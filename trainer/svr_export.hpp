@@ -115,6 +115,11 @@ hylo_svr_model svr_view(const Model &m, int n_features, const char *name)
 	return v;
 }
 
+// The onboard cost model over m's arrays (m must outlive it), named name:
+// svr_view with m's labels, floors and trained region (no envelope), so
+// that hylo_svr_predict gives the cost the header gives.
+hylo_svr_model model_view(const SvrExport &m, const char *name);
+
 // Shortest round-trip-exact text of v with 17 significant digits, "%.17g"
 // in the C locale.
 std::string format_double(double v);

@@ -53,15 +53,6 @@ hylo::trainer::FitOptions small_grid()
 	return o;
 }
 
-hylo_svr_model view(const hylo::trainer::SvrExport &a, int nf)
-{
-	hylo_svr_model m = hylo::trainer::svr_view(a, nf, "fitbot_ground");
-	m.label_offset = a.label_offset;
-	m.label_scale = a.label_scale;
-	m.label_log = a.label_log;
-	return m;
-}
-
 }  // namespace
 
 int main()
@@ -105,7 +96,7 @@ int main()
 	}
 
 	// The exported model, evaluated by the onboard code, gives libsvm's fit.
-	hylo_svr_model m = view(a, 5);
+	hylo_svr_model m = model_view(a, "fitbot_ground");
 	Data fresh = make(300, 99);
 	std::vector<double> rel;
 	for (size_t i = 0; i < fresh.cost.size(); i++)
@@ -130,7 +121,7 @@ int main()
 		SvrExport with, without;
 		fit_cost(5, upper.x, upper.cost, so, with);
 		fit_cost(5, upper.x, upper.cost, small_grid(), without);
-		hylo_svr_model mw = view(with, 5), mo = view(without, 5);
+		hylo_svr_model mw = model_view(with, "fitbot_ground"), mo = model_view(without, "fitbot_ground");
 		std::vector<double> rw, ro;
 		double asym = 0;
 		for (size_t i = 0; i < fresh.cost.size(); i++) {

@@ -291,10 +291,7 @@ int rescore(const std::string &csv, const std::string &header)
 	if (h.n_features != static_cast<int>(hylo_feature_count(h.mode)))
 		throw std::invalid_argument(header + ": " + std::to_string(h.n_features) + " features, mode " +
 					    hylo_mode_str(h.mode) + " has " + std::to_string(hylo_feature_count(h.mode)));
-	hylo_svr_model m = svr_view(h, h.n_features, name.c_str());
-	m.label_offset = h.label_offset;
-	m.label_scale = h.label_scale;
-	m.label_log = h.label_log;
+	const hylo_svr_model m = model_view(h, name.c_str());
 	std::ifstream in(csv);
 	std::string line;
 	if (!std::getline(in, line) || line.rfind("model,mode,source,", 0) != 0)
