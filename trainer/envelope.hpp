@@ -24,6 +24,7 @@ struct EnvelopeOptions {
 	uint64_t margin_seed = 1;        // edges whose worst shortfall sets the margin
 	uint64_t check_seed = 2;         // fresh edges the exported table must not exceed
 	double min_margin = 1e-3;        // the margin is max(this, 2 x worst shortfall)
+	int check_rounds = 3;            // fresh checks, the margin widened after each failed one
 	bool progress = true;            // one line per stage on stdout
 	bool debug = false;              // trace each stage's time and every edge below the table on stderr
 };

@@ -33,7 +33,8 @@ struct FitOptions {
 	double sparse_median = 0.015;
 	double sparse_mean_slack = 0.1;
 	size_t sparse_min_train = 2000;
-	size_t cv_max_samples = 2000;      // cross-validate on at most this many training samples
+	size_t cv_max_samples = 2000;      // cross-validate on at most this many training samples;
+	                                   // with more, gamma is validated again on all of them
 	int jobs = 1;                      // threads for the cross-validation fits
 	bool debug = false;                // each grid point's cross-validated errors on stderr
 	// Sign flips of the features under which the cost is invariant: every
