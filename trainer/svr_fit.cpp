@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -292,6 +291,20 @@ void fold(const std::vector<size_t> &cv, size_t f, size_t k, std::vector<size_t>
 		(i % k == f ? val_idx : fit_idx).push_back(cv[i]);
 }
 
+// The median and p95 of a point's relative errors rel.
+void set_quantiles(Point &pt, const std::vector<double> &rel)
+{
+	pt.median = quantile(rel, 0.5);
+	pt.p95 = quantile(rel, 0.95);
+}
+
+// A point's errors on stderr (--debug); stage: where they were measured.
+void trace(const char *stage, const Point &pt)
+{
+	std::fprintf(stderr, "%s: C %g gamma %g epsilon %g: relative error mean %.5f, median %.5f, p95 %.5f\n", stage,
+		     pt.C, pt.gamma, pt.eps, pt.err, pt.median, pt.p95);
+}
+
 // One fold's fit at a grid point: the relative errors of its validation rows.
 std::vector<double> fold_errors(const CostData &d, const std::vector<size_t> &cv, const Point &pt, size_t f,
 				size_t k)
@@ -331,15 +344,13 @@ size_t cross_validate(const CostData &d, const std::vector<size_t> &cv, std::vec
 			grid[g].err += sum / static_cast<double>(rel.size()) / static_cast<double>(k);
 			all.insert(all.end(), rel.begin(), rel.end());
 		}
-		grid[g].median = quantile(all, 0.5);
-		grid[g].p95 = quantile(all, 0.95);
+		set_quantiles(grid[g], all);
 		if (grid[g].err < grid[best].err)
 			best = g;
 	}
 	if (opt.debug)
 		for (const Point &pt : grid)
-			std::fprintf(stderr, "cv: C %g gamma %g epsilon %g: relative error mean %.5f, median %.5f p95 %.5f\n",
-				     pt.C, pt.gamma, pt.eps, pt.err, pt.median, pt.p95);
+			trace("cv", pt);
 	return best;
 }
 
@@ -372,25 +383,18 @@ Point width_at_full_density(const CostData &d, const std::vector<size_t> &train,
 	const size_t k = static_cast<size_t>(opt.folds);
 	std::vector<std::vector<double>> rel(widths.size());
 	parallel_for(widths.size(), opt.jobs, [&](size_t i) { rel[i] = fold_errors(d, train, widths[i], 0, k); });
-	Point best = chosen;
-	double best_err = std::numeric_limits<double>::infinity();
+	size_t best = 0;
 	for (size_t i = 0; i < widths.size(); i++) {
-		double sum = 0;
-		for (double e : rel[i])
-			sum += e;
-		widths[i].err = sum / static_cast<double>(rel[i].size());
-		widths[i].median = quantile(rel[i], 0.5);
-		widths[i].p95 = quantile(rel[i], 0.95);
+		widths[i].err = std::accumulate(rel[i].begin(), rel[i].end(), 0.0) / static_cast<double>(rel[i].size());
+		set_quantiles(widths[i], rel[i]);
 		if (opt.debug)
-			std::fprintf(stderr, "full density: C %g gamma %g epsilon %g: relative error mean %.5f, median %.5f p95 %.5f\n",
-				     widths[i].C, widths[i].gamma, widths[i].eps, widths[i].err, widths[i].median, widths[i].p95);
-		if (widths[i].err < best_err) {
-			best_err = widths[i].err;
-			best = widths[i];
-		}
+			trace("full density", widths[i]);
+		if (widths[i].err < widths[best].err)
+			best = i;
 	}
-	best.err = chosen.err;   // the report's cross-validated mean stays the grid's
-	return best;
+	Point pt = widths[best];
+	pt.err = chosen.err;   // the report's cross-validated mean stays the grid's
+	return pt;
 }
 
 // The held-out errors of model m.

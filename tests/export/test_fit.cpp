@@ -1,8 +1,8 @@
 // The model fit (trainer/svr_fit.cpp) on a smooth synthetic energy function
 // of 5 planar quantities: accuracy on held-out data, determinism across
 // runs and thread counts, the exported model evaluated by the onboard code,
-// mirror images, feature weights, the kernel width and clear errors on unusable data. Prints
-// TAP.
+// mirror images, feature weights, the kernel width and clear errors on
+// unusable data. Prints TAP.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
