@@ -39,6 +39,15 @@ $(FIT_TEST): tests/export/test_fit.cpp $(TRAINER_LIB) $(ONBOARD_LIB)
 ALL_TARGETS += $(FIT_TEST)
 TESTS += $(FIT_TEST)
 
+# The envelope's margin widened after a failed fresh check
+# (tests/export/test_envelope_widening.cpp), on a model with narrow dips.
+WIDENING_TEST := $(BUILD)/test/export/test_envelope_widening
+$(WIDENING_TEST): tests/export/test_envelope_widening.cpp $(TRAINER_LIB) $(ONBOARD_LIB)
+	@mkdir -p $(@D)
+	$(CXX) $(CXX17_FLAGS) $(LDFLAGS) -I. $(ONBOARD_INC) $< $(TRAINER_LIB) $(ONBOARD_LIB) -lpthread -lm -o $@
+ALL_TARGETS += $(WIDENING_TEST)
+TESTS += $(WIDENING_TEST)
+
 # Headers read back (tests/export/test_header_parse.cpp): the export stage
 # reads the fit stage's header before it adds the envelope.
 HEADER_PARSE_TEST := $(BUILD)/test/export/test_header_parse

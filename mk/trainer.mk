@@ -99,8 +99,9 @@ models: deps $(TRAINER)
 # make regenerate MODEL=robot:mode: one model's data made again as the
 # committed ones are to be (docs/trainer.md, "Regenerating a model"): a new
 # dataset in build/regen/<robot> (the pinned numerics, the newest draw, every
-# start refined), repaired from 8 neighbours' solutions, fitted and exported
-# into build/regen/models. Resumable: run it again after an interruption.
+# start refined), repaired from 8 neighbours' solutions, fitted (with the
+# committed header's errors on the same held-out rows) and exported into
+# build/regen/models. Resumable: run it again after an interruption.
 REGEN_DIR ?= $(BUILD)/regen
 regenerate: deps $(TRAINER)
 	@case " $(MODEL_LIST) " in *" $(MODEL) "*) ;; \
@@ -111,7 +112,8 @@ regenerate: deps $(TRAINER)
 		echo "== $$r $$m: $$stage"; \
 		$(TRAINER) --robot $$r --mode $$m --stage $$stage --refine-within inf --neighbours 8 --solutions \
 			--jobs $(MODEL_JOBS) --out $(REGEN_DIR)/$$r --models-dir $(REGEN_DIR)/models \
-			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)); \
+			$(if $(MODEL_SAMPLES),--samples $(MODEL_SAMPLES)) \
+			$$(if [ $$stage = fit ] && [ -f onboard/models/$${r}_$$m.h ]; then echo --compare onboard/models/$${r}_$$m.h; fi); \
 	done
 .PHONY: regenerate
 

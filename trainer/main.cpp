@@ -130,6 +130,8 @@ void usage(FILE *f)
 		"                    and only those starts solved. A run over such a dataset\n"
 		"                    in --out relabels it in place (kept as <file>.straight)\n"
 		"  --models-dir DIR  where export writes headers (default: onboard/models)\n"
+		"  --compare HEADER  fit: also print the held-out errors of HEADER's model (this\n"
+		"                    robot and mode, e.g. the committed one) on the same rows\n"
 		"  --solve X1 X2     solve one BVP between sampled states (comma-separated,\n"
 		"                    docs/models.md section 7 order) and print the result\n"
 		"  --memory DIR      --solve: also start from the solutions of the K nearest rows\n"
@@ -343,6 +345,8 @@ int run(int argc, char **argv)
 			po.gen.relabel = val();
 		} else if (a == "--models-dir") {
 			po.models_dir = val();
+		} else if (a == "--compare") {
+			po.compare = val();
 		} else if (a == "--solutions") {
 			po.solutions = true;
 		} else if (a == "--draws") {
@@ -429,6 +433,8 @@ int run(int argc, char **argv)
 	} else if (gather_shards != 0) {
 		throw Usage("--shards N is for --stage gather; a shard task takes --shard K/N");
 	}
+	if (!po.compare.empty() && stage != "fit" && stage != "all")
+		throw Usage("--compare HEADER is for the fit (--stage fit or all), not --stage " + stage);
 	return run_pipeline(robot, po, stage);
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -150,6 +151,33 @@ void set_region(SvrExport &m, const TrainedRegion &r)
 	m.state_max = r.max;
 }
 
+// The model fit --compare names, read before the fit so that a wrong file
+// is an error at once: a header of this robot and mode.
+SvrExport compared_model(const std::string &header, const std::string &robot, hylo_mode mode, int nf)
+{
+	SvrExport other;
+	try {
+		other = parse_svr_header(slurp(header));
+	} catch (const std::exception &e) {
+		throw std::invalid_argument("--compare " + header + ": " + e.what());
+	}
+	if (other.robot != robot || other.mode != mode || other.n_features != nf)
+		throw std::invalid_argument("--compare " + header + ": a " + other.robot + " " + hylo_mode_str(other.mode) +
+					    " model, not " + robot + " " + hylo_mode_str(mode));
+	return other;
+}
+
+// other's held-out errors on the rows a fit held out: what a refit is
+// compared with (issue #35).
+Accuracy held_out_of(const SvrExport &other, int nf, const Rows &rows, const std::vector<size_t> &test)
+{
+	const hylo_svr_model view = model_view(other, "compared");
+	std::vector<double> pred;
+	for (size_t r : test)
+		pred.push_back(hylo_svr_predict(&view, &rows.x_conv[r * static_cast<size_t>(nf)]));
+	return accuracy_of(pred, rows.cost, test);
+}
+
 int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 {
 	GenOptions g = opt.gen;
@@ -162,6 +190,9 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	Rows rows = read_dataset(path, g.mode, g.samples);
 	const ModeParams &p = robot.mode(g.mode);
 	int nf = feature_count(g.mode);
+	std::optional<SvrExport> compared;
+	if (!opt.compare.empty())
+		compared = compared_model(opt.compare, robot.robot, g.mode, nf);
 	FitOptions fo;
 	fo.seed = g.seed;
 	fo.jobs = g.jobs;
@@ -242,6 +273,13 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	std::printf("fit %s %s: %zu of %zu samples converged; %zu SVs; held-out %s; feasibility %s; %.1f s\n",
 		    robot.robot.c_str(), hylo_mode_str(g.mode), rows.cost.size(), rows.n, rep.n_sv, buf,
 		    have_classifier ? format_double(crep.accuracy).c_str() : "none", rep.fit_seconds);
+	if (compared) {
+		const Accuracy a = held_out_of(*compared, nf, rows, rep.test_rows);
+		std::printf("fit %s %s: %s (%zu SVs) on the same %zu held-out rows: median %.4f, p95 %.4f, max %.4f "
+			    "relative; MAE %.4g J\n",
+			    robot.robot.c_str(), hylo_mode_str(g.mode), opt.compare.c_str(), compared->coef.size(),
+			    rep.test_rows.size(), a.median, a.p95, a.max, a.mae);
+	}
 	return 0;
 }
 

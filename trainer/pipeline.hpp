@@ -19,6 +19,7 @@ struct PipelineOptions {
 	std::string models_dir = "onboard/models";
 	int neighbours = 8;   // --stage repair, --solve: warm starts (RepairOptions, Memory)
 	bool solutions = false;   // gen: also keep each row's solution for the repair (--solutions)
+	std::string compare;      // fit: another header of this robot and mode, scored on the same held-out rows
 };
 
 // A draw's sample count, its supplement's end (dataset.hpp): ground and
@@ -33,7 +34,8 @@ uint64_t default_samples(hylo_mode mode, int draws);
 // resubmitted, 2 when some are not this stream's. A sharded run (N > 1)
 // only generates: other stages throw std::invalid_argument.
 // "fit" writes <out>/<robot>_<mode>.h (the fitted model) and
-// <out>/<mode>.fit.json; "export" reads that header, adds the envelope
+// <out>/<mode>.fit.json, and with compare set also prints the held-out
+// errors of that header's model on the same rows; "export" reads that header, adds the envelope
 // (ground, marine, flight; trainer/envelope.hpp) and writes the result into
 // models_dir. "region" writes the trained region (trained_region,
 // trainer/dataset.hpp), checked against the dataset rows the model was

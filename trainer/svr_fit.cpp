@@ -402,16 +402,15 @@ void test_errors(const svm_model *m, const CostData &d, const std::vector<double
 		 const std::vector<size_t> &test, FitReport &rep)
 {
 	Problem t(d.nf, x, test, d.labels.target, d.offset, d.scale);
-	std::vector<double> rel;
-	for (size_t r = 0; r < test.size(); r++) {
-		double pred = d.labels.cost(svm_predict(m, t.rows[r]));
-		double c = (*d.cost)[test[r]];
-		rep.mae += std::fabs(pred - c) / static_cast<double>(test.size());
-		rel.push_back(std::fabs(pred - c) / c);
-	}
-	rep.median_rel_error = quantile(rel, 0.5);
-	rep.p95_rel_error = quantile(rel, 0.95);
-	rep.max_rel_error = *std::max_element(rel.begin(), rel.end());
+	std::vector<double> pred;
+	for (size_t r = 0; r < test.size(); r++)
+		pred.push_back(d.labels.cost(svm_predict(m, t.rows[r])));
+	const Accuracy a = accuracy_of(pred, *d.cost, test);
+	rep.mae = a.mae;
+	rep.median_rel_error = a.median;
+	rep.p95_rel_error = a.p95;
+	rep.max_rel_error = a.max;
+	rep.test_rows = test;
 }
 
 // Model m with d's standardization as an export's model fields.
@@ -429,6 +428,25 @@ void export_model(const svm_model *m, const CostData &d, SvrExport &out)
 }
 
 }  // namespace
+
+Accuracy accuracy_of(const std::vector<double> &predicted, const std::vector<double> &cost,
+		     const std::vector<size_t> &rows)
+{
+	if (rows.empty() || predicted.size() != rows.size())
+		throw std::invalid_argument("accuracy: " + std::to_string(predicted.size()) + " predictions for " +
+					    std::to_string(rows.size()) + " rows");
+	Accuracy a;
+	std::vector<double> rel;
+	for (size_t r = 0; r < rows.size(); r++) {
+		const double c = cost.at(rows[r]);
+		a.mae += std::fabs(predicted[r] - c) / static_cast<double>(rows.size());
+		rel.push_back(std::fabs(predicted[r] - c) / c);
+	}
+	a.median = quantile(rel, 0.5);
+	a.p95 = quantile(rel, 0.95);
+	a.max = *std::max_element(rel.begin(), rel.end());
+	return a;
+}
 
 FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<double> &cost,
 		   const FitOptions &opt, SvrExport &out)

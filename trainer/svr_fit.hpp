@@ -54,7 +54,17 @@ struct FitReport {
 	double mae = 0;                    // held-out mean absolute error [J]
 	double median_rel_error = 0, p95_rel_error = 0, max_rel_error = 0;
 	double fit_seconds = 0;            // cross-validation and final fit
+	std::vector<size_t> test_rows;     // the held-out samples (indices into cost)
 };
+
+// Relative errors |predicted - cost| / cost, and the mean absolute error [J].
+struct Accuracy {
+	double mae = 0, median = 0, p95 = 0, max = 0;
+};
+
+// predicted[r] against cost[rows[r]] (rows not empty, the sizes equal).
+Accuracy accuracy_of(const std::vector<double> &predicted, const std::vector<double> &cost,
+		     const std::vector<size_t> &rows);
 
 struct ClassifierReport {
 	size_t n_train = 0, n_test = 0, n_sv = 0, n_feasible = 0;

@@ -174,6 +174,33 @@ if [ -s "$T/first/di_di_neg.h" ] && cmp -s "$T/first/di_di_neg.h" "$T/cut/di_di_
   tap_ok "--stage fit --samples 100 fits the first 100 rows and names their hash"; else
   tap_not_ok "--stage fit --samples 100 fits the first 100 rows and names their hash" "$(grep -E 'samples|dataset' "$T/first/di_di_neg.h" | head -2)"; fi
 
+# --compare HEADER: the held-out errors of another model on the fit's own
+# held-out rows. The fit's own header gives the fit's figures; the
+# 100-row model gives other ones; a header of another mode is refused
+# before any fitting.
+mkdir -p "$T/cmp"
+cp "$T/pipe/di_neg.csv" "$T/pipe/di_neg.csv.meta" "$T/cmp/"
+"$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/cmp" > "$T/cmp/own.out" 2>&1
+cp "$T/cmp/di_di_neg.h" "$T/cmp/own.h"
+"$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/cmp" --compare "$T/cmp/own.h" > "$T/cmp/same.out" 2>&1
+"$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/cmp" --compare "$T/first/di_di_neg.h" > "$T/cmp/other.out" 2>&1
+figures() { grep -o 'median [0-9.]*, p95 [0-9.]*, max [0-9.]* relative; MAE [0-9.e-]* J' "$1" | sed -n "$2p"; }
+own=$(figures "$T/cmp/own.out" 1)
+if [ -n "$own" ] && [ "$(figures "$T/cmp/same.out" 1)" = "$own" ] && [ "$(figures "$T/cmp/same.out" 2)" = "$own" ] &&
+   grep -q "own.h (.* SVs) on the same [0-9]* held-out rows" "$T/cmp/same.out" &&
+   [ -n "$(figures "$T/cmp/other.out" 2)" ] && [ "$(figures "$T/cmp/other.out" 2)" != "$own" ] &&
+   cmp -s "$T/cmp/di_di_neg.h" "$T/cmp/own.h"; then
+  tap_ok "--compare: the fit's own header scores the fit's held-out figures on its held-out rows, another header others"; else
+  tap_not_ok "--compare: the fit's own header scores the fit's held-out figures on its held-out rows, another header others" \
+    "$(cat "$T/cmp/own.out" "$T/cmp/same.out" "$T/cmp/other.out")"; fi
+echo "# $(grep 'on the same' "$T/cmp/other.out")"
+expect_fail "--compare with a header of another mode: refused before the fit" 2 "not di di_neg" \
+  "$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/cmp" --compare onboard/models/di_di_pos.h
+expect_fail "--compare with a missing header: clear error" 2 "--compare $T/cmp/none.h" \
+  "$TR" --mode di_neg --robot di --stage fit --seed 5 --quiet --out "$T/cmp" --compare "$T/cmp/none.h"
+expect_fail "--compare outside the fit: usage error" 2 "--compare HEADER is for the fit" \
+  "$TR" --mode di_neg --robot di --stage export --out "$T/cmp" --compare "$T/cmp/own.h"
+
 # Rows whose solve threw (status "error: ..."): read, never labels. A fit
 # with three such rows gives the model of a fit on a copy without them.
 mkdir -p "$T/errrows" "$T/noerrrows"
