@@ -9,6 +9,9 @@
 #include <map>
 #include <stdexcept>
 #include <sys/mman.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -90,10 +93,20 @@ void fork_chunks(size_t n, int jobs, size_t chunk, const std::function<std::stri
 			if (next < std::min(n, first + ring) && running.size() < limit) {
 				slots.clear(next % ring);
 				std::fflush(nullptr);
+				const pid_t parent = getpid();
 				pid_t pid = fork();
 				if (pid < 0)
 					throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
 				if (pid == 0) {
+#ifdef __linux__
+					// A worker dies with the process that forked it
+					// (killed by a job scheduler or a test), instead of
+					// solving on for no one.
+					if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent)
+						_exit(1);
+#else
+					(void)parent;
+#endif
 					int code = 1;
 					try {
 						code = slots.put(next % ring, f(next)) ? 0 : 1;

@@ -201,6 +201,23 @@ expect_fail "--compare with a missing header: clear error" 2 "--compare $T/cmp/n
 expect_fail "--compare outside the fit: usage error" 2 "--compare HEADER is for the fit" \
   "$TR" --mode di_neg --robot di --stage export --out "$T/cmp" --compare "$T/cmp/own.h"
 
+# Workers die with the trainer: killed by a scheduler or a test, it leaves
+# no worker process solving on (a marine solve takes seconds, so a worker
+# left behind would still be there half a second later).
+mkdir -p "$T/killed"
+"$TR" --mode marine --robot ambot --stage gen --samples 40 --jobs 2 --quiet --out "$T/killed" > /dev/null 2>&1 &
+kpid=$!
+workers=0
+for _ in $(seq 1 100); do workers=$(pgrep -P "$kpid" | wc -l); [ "$workers" -ge 2 ] && break; sleep 0.1; done
+sleep 0.5
+kill "$kpid"; wait "$kpid" 2>/dev/null
+sleep 0.5
+left=$(pgrep -f -- "--out $T/killed" | wc -l)
+if [ "$workers" -ge 1 ] && [ "$left" = 0 ]; then
+  tap_ok "gen --jobs 2 killed: its workers ($workers running) die with it"; else
+  tap_not_ok "gen --jobs 2 killed: its workers die with it" "$workers workers before, $left processes left"; fi
+pkill -9 -f -- "--out $T/killed" 2>/dev/null
+
 # Rows whose solve threw (status "error: ..."): read, never labels. A fit
 # with three such rows gives the model of a fit on a copy without them.
 mkdir -p "$T/errrows" "$T/noerrrows"
