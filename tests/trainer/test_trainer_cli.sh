@@ -3,7 +3,8 @@
 # mode): usage errors, parameter-file errors, --ipopt-option and --debug,
 # the settings a dataset's .meta records, --solve --json, determinism
 # across worker counts, resume after a kill, shards that concatenate to the
-# unsharded file, and a small gen -> fit -> export run whose header compiles.
+# unsharded file, a small gen -> fit -> export run whose header compiles,
+# --compare, and workers that die with a killed trainer (a short marine gen).
 set -u
 cd "$(dirname "$0")/../.."
 . tests/tap.sh
