@@ -221,9 +221,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	} catch (const std::invalid_argument &e) {
 		std::fprintf(stderr, "trainer: no feasibility classifier: %s\n", e.what());
 	}
-	char buf[512];
-	std::snprintf(buf, sizeof buf, "median %.4f, p95 %.4f, max %.4f relative; MAE %.4g J",
-		      rep.median_rel_error, rep.p95_rel_error, rep.max_rel_error, rep.mae);
+	const std::string held_out = describe(rep.held_out);
 	m.provenance = {
 		{"robot file", "trainer/params/" + robot.robot + ".yaml"},   // location-independent
 		{"robot file sha256", robot.labels_sha256},
@@ -231,7 +229,7 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		{"samples", std::to_string(rows.n) + " (" + std::to_string(rows.cost.size()) + " converged" +
 				    (rows.errors ? ", " + std::to_string(rows.errors) + " errors left out" : "") + ")"},
 		{"seed", std::to_string(g.seed)},
-		{"held-out errors", buf},
+		{"held-out errors", held_out},
 		{"svr", "C " + format_double(rep.C) + ", gamma " + format_double(rep.gamma) + ", epsilon " +
 				format_double(rep.epsilon) + ", " + std::to_string(rep.n_sv) + " support vectors"},
 		{"feasibility accuracy", have_classifier ? format_double(crep.accuracy) : "none"},
@@ -260,9 +258,9 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 	   << ",\"converged\":" << rows.cost.size() << ",\"n_train\":" << rep.n_train
 	   << ",\"n_test\":" << rep.n_test << ",\"n_sv\":" << rep.n_sv << ",\"C\":" << format_double(rep.C)
 	   << ",\"gamma\":" << format_double(rep.gamma) << ",\"epsilon\":" << format_double(rep.epsilon)
-	   << ",\"mae_j\":" << format_double(rep.mae)
-	   << ",\"median_rel_error\":" << format_double(rep.median_rel_error)
-	   << ",\"p95_rel_error\":" << format_double(rep.p95_rel_error)
+	   << ",\"mae_j\":" << format_double(rep.held_out.mae)
+	   << ",\"median_rel_error\":" << format_double(rep.held_out.median)
+	   << ",\"p95_rel_error\":" << format_double(rep.held_out.p95)
 	   << ",\"fit_s\":" << format_double(rep.fit_seconds)
 	   << ",\"feasibility_accuracy\":" << (have_classifier ? format_double(crep.accuracy) : "null")
 	   << "}\n";
@@ -271,14 +269,13 @@ int fit_stage(const RobotParams &robot, const PipelineOptions &opt)
 		std::fprintf(stderr, "trainer: fit %s %s: %zu rows whose solve ended in an error (status 'error: ...') "
 				     "left out\n", robot.robot.c_str(), hylo_mode_str(g.mode), rows.errors);
 	std::printf("fit %s %s: %zu of %zu samples converged; %zu SVs; held-out %s; feasibility %s; %.1f s\n",
-		    robot.robot.c_str(), hylo_mode_str(g.mode), rows.cost.size(), rows.n, rep.n_sv, buf,
+		    robot.robot.c_str(), hylo_mode_str(g.mode), rows.cost.size(), rows.n, rep.n_sv, held_out.c_str(),
 		    have_classifier ? format_double(crep.accuracy).c_str() : "none", rep.fit_seconds);
 	if (compared) {
 		const Accuracy a = held_out_of(*compared, nf, rows, rep.test_rows);
-		std::printf("fit %s %s: %s (%zu SVs) on the same %zu held-out rows: median %.4f, p95 %.4f, max %.4f "
-			    "relative; MAE %.4g J\n",
-			    robot.robot.c_str(), hylo_mode_str(g.mode), opt.compare.c_str(), compared->coef.size(),
-			    rep.test_rows.size(), a.median, a.p95, a.max, a.mae);
+		std::printf("fit %s %s: %s (%zu SVs) on the same %zu held-out rows: %s\n", robot.robot.c_str(),
+			    hylo_mode_str(g.mode), opt.compare.c_str(), compared->coef.size(), rep.test_rows.size(),
+			    describe(a).c_str());
 	}
 	return 0;
 }

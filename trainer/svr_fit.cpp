@@ -405,11 +405,7 @@ void test_errors(const svm_model *m, const CostData &d, const std::vector<double
 	std::vector<double> pred;
 	for (size_t r = 0; r < test.size(); r++)
 		pred.push_back(d.labels.cost(svm_predict(m, t.rows[r])));
-	const Accuracy a = accuracy_of(pred, *d.cost, test);
-	rep.mae = a.mae;
-	rep.median_rel_error = a.median;
-	rep.p95_rel_error = a.p95;
-	rep.max_rel_error = a.max;
+	rep.held_out = accuracy_of(pred, *d.cost, test);
 	rep.test_rows = test;
 }
 
@@ -446,6 +442,14 @@ Accuracy accuracy_of(const std::vector<double> &predicted, const std::vector<dou
 	a.p95 = quantile(rel, 0.95);
 	a.max = *std::max_element(rel.begin(), rel.end());
 	return a;
+}
+
+std::string describe(const Accuracy &a)
+{
+	char buf[160];
+	std::snprintf(buf, sizeof buf, "median %.4f, p95 %.4f, max %.4f relative; MAE %.4g J", a.median, a.p95, a.max,
+		      a.mae);
+	return buf;
 }
 
 FitReport fit_cost(int nf, const std::vector<double> &x, const std::vector<double> &cost,

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "trainer/svr_export.hpp"
@@ -47,24 +48,27 @@ struct FitOptions {
 	std::vector<double> feature_weights;
 };
 
-struct FitReport {
-	size_t n_train = 0, n_test = 0, n_sv = 0;
-	double C = 0, gamma = 0, epsilon = 0;
-	double cv_mean_rel_error = 0;      // of the chosen grid point
-	double mae = 0;                    // held-out mean absolute error [J]
-	double median_rel_error = 0, p95_rel_error = 0, max_rel_error = 0;
-	double fit_seconds = 0;            // cross-validation and final fit
-	std::vector<size_t> test_rows;     // the held-out samples (indices into cost)
-};
-
 // Relative errors |predicted - cost| / cost, and the mean absolute error [J].
 struct Accuracy {
 	double mae = 0, median = 0, p95 = 0, max = 0;
 };
 
+struct FitReport {
+	size_t n_train = 0, n_test = 0, n_sv = 0;
+	double C = 0, gamma = 0, epsilon = 0;
+	double cv_mean_rel_error = 0;      // of the chosen grid point
+	Accuracy held_out;                 // on test_rows
+	double fit_seconds = 0;            // cross-validation and final fit
+	std::vector<size_t> test_rows;     // the held-out samples (indices into cost)
+};
+
 // predicted[r] against cost[rows[r]] (rows not empty, the sizes equal).
 Accuracy accuracy_of(const std::vector<double> &predicted, const std::vector<double> &cost,
 		     const std::vector<size_t> &rows);
+
+// "median M, p95 P, max X relative; MAE E J", as the fit's report and the
+// header's provenance print it.
+std::string describe(const Accuracy &a);
 
 struct ClassifierReport {
 	size_t n_train = 0, n_test = 0, n_sv = 0, n_feasible = 0;

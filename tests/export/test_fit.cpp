@@ -63,13 +63,13 @@ int main()
 	SvrExport a, b, c;
 	FitReport ra = fit_cost(5, d.x, d.cost, o, a);
 	check(ra.n_test == 160 && ra.n_train == 640, "held-out split of 20% is never fitted");
-	check(ra.median_rel_error < 0.03, "held-out median relative error < 3%",
-	      std::to_string(ra.median_rel_error));
-	check(ra.p95_rel_error < 0.10, "held-out 95th percentile relative error < 10%",
-	      std::to_string(ra.p95_rel_error));
+	check(ra.held_out.median < 0.03, "held-out median relative error < 3%",
+	      std::to_string(ra.held_out.median));
+	check(ra.held_out.p95 < 0.10, "held-out 95th percentile relative error < 10%",
+	      std::to_string(ra.held_out.p95));
 	std::printf("# fit: C %g gamma %g epsilon %g, %zu SVs, MAE %.3g J, median %.4f, p95 %.4f, %.2f s\n",
-		    ra.C, ra.gamma, ra.epsilon, ra.n_sv, ra.mae, ra.median_rel_error,
-		    ra.p95_rel_error, ra.fit_seconds);
+		    ra.C, ra.gamma, ra.epsilon, ra.n_sv, ra.held_out.mae, ra.held_out.median,
+		    ra.held_out.p95, ra.fit_seconds);
 
 	o.jobs = 2;
 	fit_cost(5, d.x, d.cost, o, b);
@@ -164,10 +164,10 @@ int main()
 			      weighted.feature_scale[0] == plain.feature_scale[0] &&
 			      weighted.feature_scale[4] == plain.feature_scale[4] &&
 			      weighted.feature_offset == plain.feature_offset;
-		check(scales && rw.median_rel_error < rp.median_rel_error && rw.p95_rel_error < rp.p95_rel_error,
+		check(scales && rw.held_out.median < rp.held_out.median && rw.held_out.p95 < rp.held_out.p95,
 		      "feature weights: the weighted scale divided by 3, a narrow valley learned better",
-		      "median " + std::to_string(rp.median_rel_error) + " -> " + std::to_string(rw.median_rel_error) +
-			      ", p95 " + std::to_string(rp.p95_rel_error) + " -> " + std::to_string(rw.p95_rel_error));
+		      "median " + std::to_string(rp.held_out.median) + " -> " + std::to_string(rw.held_out.median) +
+			      ", p95 " + std::to_string(rp.held_out.p95) + " -> " + std::to_string(rw.held_out.p95));
 		FitOptions bad = small_grid();
 		bad.feature_weights = {1, 1};
 		check_throws([&] { fit_cost(5, v.x, v.cost, bad, weighted); }, "2 feature weights for 5 features",
@@ -196,10 +196,10 @@ int main()
 		SvrExport m;
 		FitReport rf = fit_cost(5, r.x, r.cost, fo, m);
 		FitReport rn = fit_cost(5, r.x, r.cost, narrow, m);
-		check(rf.gamma == 0.1 && rf.mae < rn.mae,
+		check(rf.gamma == 0.1 && rf.held_out.mae < rn.held_out.mae,
 		      "kernel width validated on the whole training split, not the cross-validation's subsample",
-		      "gamma " + std::to_string(rf.gamma) + ", held-out MAE " + std::to_string(rf.mae) +
-			      " J (the subsample's gamma 0.3: " + std::to_string(rn.mae) + " J)");
+		      "gamma " + std::to_string(rf.gamma) + ", held-out MAE " + std::to_string(rf.held_out.mae) +
+			      " J (the subsample's gamma 0.3: " + std::to_string(rn.held_out.mae) + " J)");
 	}
 
 	ClassifierExport f;
