@@ -17,9 +17,10 @@
  * multiply-add (-ffp-contract=off, mk/config.mk), one rounding per op.
  */
 typedef double hylo_v4 __attribute__((vector_size(32)));
-/* The helpers below pass 32-byte vectors by value; they are static and
- * inlined, so the AVX calling convention GCC and Clang warn about never
- * applies. */
+/* The helpers below are static and inlined, so the AVX calling convention
+ * GCC and Clang warn about for 32-byte vectors never applies: the pragma
+ * silences the warning on returned vectors, and vector arguments go by
+ * pointer, because GCC's note on those ignores the pragma. */
 #if defined(__clang__)
 #pragma clang diagnostic ignored "-Wpsabi"
 #elif defined(__GNUC__)
@@ -41,9 +42,9 @@ static inline hylo_v4 load4(const double *p)
 	return v;
 }
 
-static inline void store4(double *p, hylo_v4 v)
+static inline void store4(double *p, const hylo_v4 *v)
 {
-	memcpy(p, &v, sizeof v);
+	memcpy(p, v, sizeof *v);
 }
 
 static inline hylo_v4 splat4(double x)
@@ -80,12 +81,12 @@ static const double exp2_64[64] = {
  * times 2^k put into the exponent bits. Below -700 the result is 0 (libm's
  * is < 1e-304, and it only ever multiplies a support vector's coefficient).
  */
-static inline hylo_v4 exp_nonpositive4(hylo_v4 x)
+static inline hylo_v4 exp_nonpositive4(const hylo_v4 *arg)
 {
 	const double ln2_64_hi = 0x1.62e42fef00000p-7, ln2_64_lo = 0x1.473de6af278edp-40;
 	const hylo_v4 shift = splat4(0x1.8p52), lowest = splat4(-700.0);
 	hylo_v4u keep, xb, lb, tb, jb, pb;
-	hylo_v4 t, n, r, r2, p, tab;
+	hylo_v4 x = *arg, t, n, r, r2, p, tab;
 
 	keep = (hylo_v4u)(x >= lowest);
 	memcpy(&xb, &x, sizeof xb);
@@ -534,7 +535,9 @@ static void kernel_row(double *row, const hylo_svr_cache *c, uint32_t b, uint32_
 
 			d2 += d * d;
 		}
-		store4(&row[i], exp_nonpositive4(-gamma * d2));
+		d2 = -gamma * d2;
+		d2 = exp_nonpositive4(&d2);
+		store4(&row[i], &d2);
 	}
 	if (i < n) {
 		hylo_v4 d2 = splat4(0), e;
@@ -547,7 +550,8 @@ static void kernel_row(double *row, const hylo_svr_cache *c, uint32_t b, uint32_
 				d[l] = v[k] - col[i + l < n ? i + l : n - 1];
 			d2 += d * d;
 		}
-		e = exp_nonpositive4(-gamma * d2);
+		e = -gamma * d2;
+		e = exp_nonpositive4(&e);
 		for (l = 0; i + l < n; l++)
 			row[i + l] = e[l];
 	}
@@ -599,7 +603,7 @@ static double dot(const double *a, const double *b, uint32_t n)
 
 	for (i = 0; i + 4 <= n; i += 4)
 		acc += load4(&a[i]) * load4(&b[i]);
-	store4(s, acc);
+	store4(s, &acc);
 	for (; i < n; i++)
 		s[0] += a[i] * b[i];
 	return (s[0] + s[1]) + (s[2] + s[3]);
@@ -611,8 +615,11 @@ static void multiply(double *out, const double *a, const double *b, uint32_t n)
 {
 	uint32_t i;
 
-	for (i = 0; i + 4 <= n; i += 4)
-		store4(&out[i], load4(&a[i]) * load4(&b[i]));
+	for (i = 0; i + 4 <= n; i += 4) {
+		hylo_v4 p = load4(&a[i]) * load4(&b[i]);
+
+		store4(&out[i], &p);
+	}
 	for (; i < n; i++)
 		out[i] = a[i] * b[i];
 }
