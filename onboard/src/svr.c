@@ -528,16 +528,16 @@ static void kernel_row(double *row, const hylo_svr_cache *c, uint32_t b, uint32_
 	uint32_t i, k, l;
 
 	for (i = 0; i + 4 <= n; i += 4) {
-		hylo_v4 d2 = splat4(0);
+		hylo_v4 d2 = splat4(0), e;
 
 		for (k = 0; k < w; k++) {
 			hylo_v4 d = splat4(v[k]) - load4(&c->sv_col[(size_t)c->order[b + k] * n + i]);
 
 			d2 += d * d;
 		}
-		d2 = -gamma * d2;
-		d2 = exp_nonpositive4(&d2);
-		store4(&row[i], &d2);
+		e = -gamma * d2;
+		e = exp_nonpositive4(&e);
+		store4(&row[i], &e);
 	}
 	if (i < n) {
 		hylo_v4 d2 = splat4(0), e;
