@@ -14,8 +14,8 @@
 // 100 edges pin it only to between their 10th and 2nd largest errors),
 // the worst |error|, the bias (signed mean) and how many edges are off by
 // more than 10%, next to the held-out errors on rows drawn like the
-// training rows (each model's provenance string). Edges whose exact solve does not converge are
-// counted, not scored.
+// training rows (each model's provenance string). Edges whose exact solve
+// does not converge are counted, not scored.
 //
 // usage: bench_accuracy RESULTS.json [--edges N] [--seed S] [--jobs J]
 //                       [--model NAME ...] [--memory DIR|none] [--csv EDGES.csv]
@@ -207,9 +207,9 @@ struct Summary {
 	double p95_low = NAN, p95_high = NAN;   // its 90% confidence interval
 };
 
-double quantile(std::vector<double> v, double q)
+// The q-quantile of the sorted sample v, interpolated.
+double quantile(const std::vector<double> &v, double q)
 {
-	std::sort(v.begin(), v.end());
 	if (v.empty())
 		return NAN;
 	double x = q * (v.size() - 1);
@@ -217,35 +217,24 @@ double quantile(std::vector<double> v, double q)
 	return lo + 1 < v.size() ? v[lo] + (x - lo) * (v[lo + 1] - v[lo]) : v[lo];
 }
 
-// P(B <= k) for B ~ Binomial(n, q), 0 < q < 1.
-double binomial_cdf(size_t k, size_t n, double q)
-{
-	double sum = 0;
-	for (size_t j = 0; j <= k && j <= n; j++)
-		sum += std::exp(std::lgamma(n + 1.0) - std::lgamma(j + 1.0) - std::lgamma(n - j + 1.0) +
-				j * std::log(q) + (n - j) * std::log1p(-q));
-	return sum;
-}
-
 // A distribution-free 90% confidence interval of the q-quantile of the
 // sorted sample v: the order statistics v[r-1], v[s-1] (1-based r, s) with
 // P(B < r) <= 0.05 and P(B >= s) <= 0.05 for B ~ Binomial(n, q), the number
-// of draws below the true quantile. NAN where the sample is too small for
-// that end (for p95: the low end from 14 edges, the high end from 59).
+// of draws below the true quantile. The high end is NAN where the sample is
+// too small for it (for the p95: under 59 edges).
 void quantile_interval(const std::vector<double> &v, double q, double &low, double &high)
 {
 	const size_t n = v.size();
+	double cdf = 0;   // P(B <= j)
 	low = high = NAN;
-	size_t r = 0;
-	while (r + 1 <= n && binomial_cdf(r, n, q) <= 0.05)   // P(B < r + 1) <= 0.05
-		r++;
-	if (r >= 1)
-		low = v[r - 1];
-	for (size_t s = 1; s <= n; s++)
-		if (1 - binomial_cdf(s - 1, n, q) <= 0.05) {   // P(B >= s)
-			high = v[s - 1];
-			break;
-		}
+	for (size_t j = 0; j < n; j++) {
+		cdf += std::exp(std::lgamma(n + 1.0) - std::lgamma(j + 1.0) - std::lgamma(n - j + 1.0) +
+				j * std::log(q) + (n - j) * std::log1p(-q));
+		if (cdf <= 0.05)   // P(B < j + 1): r = j + 1 will do
+			low = v[j];
+		if (std::isnan(high) && 1 - cdf <= 0.05)   // P(B >= j + 1): s = j + 1
+			high = v[j];
+	}
 }
 
 Summary summarize(const std::vector<Edge> &edges, int source)
@@ -269,9 +258,9 @@ Summary summarize(const std::vector<Edge> &edges, int source)
 		s.n++;
 	}
 	if (s.n) {
+		std::sort(abs_err.begin(), abs_err.end());
 		s.median = quantile(abs_err, 0.5);
 		s.p95 = quantile(abs_err, 0.95);
-		std::sort(abs_err.begin(), abs_err.end());
 		quantile_interval(abs_err, 0.95, s.p95_low, s.p95_high);
 		s.bias = sum / s.n;
 	}
