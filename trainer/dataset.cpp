@@ -137,6 +137,15 @@ bool same_stream(const std::string &a, const std::string &b)
 	return stream(a) == stream(b);
 }
 
+std::string generated_lines(const std::string &meta)
+{
+	std::string out;
+	for (const auto &kv : meta_lines(meta))
+		if (kv.first != "repaired_rows" && kv.first.rfind("repair_", 0) != 0)
+			out += kv.second + "\n";
+	return out;
+}
+
 ResumePoint resume_point(const std::string &existing, const std::string &header)
 {
 	ResumePoint r;
@@ -609,10 +618,11 @@ std::string csv_header(const GenOptions &opt)
 	return opt.shard == 1 ? csv_join(csv_columns(opt.mode)) + "\n" : "";
 }
 
-// Resume: the metadata must match; keeps complete rows, drops a torn tail.
-// Returns the index to go on from; none when every row asked for is there,
-// labelled under other settings (then it may be fitted, not extended). A
-// new dataset gets its metadata.
+// Resume: the metadata must match (a repaired dataset's but for the
+// repair's lines, which stay: they describe its first repaired_rows rows);
+// keeps complete rows, drops a torn tail. Returns the index to go on from;
+// none when every row asked for is there, labelled under other settings
+// (then it may be fitted, not extended). A new dataset gets its metadata.
 std::optional<uint64_t> resume(const GenOptions &opt, const std::string &path, const std::string &meta, const std::string &header,
 		uint64_t lo, uint64_t hi)
 {
@@ -624,7 +634,7 @@ std::optional<uint64_t> resume(const GenOptions &opt, const std::string &path, c
 	}
 	internal::ResumePoint r = internal::resume_point(existing, header);
 	std::string old_meta = read_file(meta_path);
-	if (old_meta != meta) {
+	if (internal::generated_lines(old_meta) != meta) {
 		if (r.rows >= hi - lo && internal::same_stream(old_meta, meta)) {
 			if (opt.progress)
 				std::fprintf(stderr, "%s: every row asked for is there (labelled under other "
@@ -633,7 +643,7 @@ std::optional<uint64_t> resume(const GenOptions &opt, const std::string &path, c
 			return std::nullopt;
 		}
 		throw std::runtime_error(path + " was made under other settings: " +
-					 internal::meta_differences(old_meta, meta) +
+					 internal::meta_differences(internal::generated_lines(old_meta), meta) +
 					 "; regenerate it into another --out directory");
 	}
 	if (truncate(path.c_str(), static_cast<off_t>(r.keep)) != 0 && errno != ENOENT)

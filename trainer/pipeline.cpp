@@ -422,12 +422,14 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 				    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), s.path.c_str(),
 				    static_cast<unsigned long long>(s.rows));
 		} else {
-			std::printf("repair %s %s: %llu rows of %s (%llu solved again, %llu repaired now), %llu labels "
+			std::printf("repair %s %s: %llu rows of %s (%llu kept from an earlier pass, %llu solved again, "
+				    "%llu repaired now), %llu labels "
 				    "lowered by more than 0.5%% (%llu by the solver alone, %llu by a neighbour's "
 				    "warm start; median %.2f%%, largest %.2f%%), %llu newly converged, %llu sidecar paths "
 				    "replaced by a neighbour's; CPU %.1f s solving again, %.1f s warm-started; %.1f s\n",
 				    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), static_cast<unsigned long long>(s.rows),
-				    s.path.c_str(), static_cast<unsigned long long>(s.solved_again),
+				    s.path.c_str(), static_cast<unsigned long long>(s.kept),
+				    static_cast<unsigned long long>(s.solved_again),
 				    static_cast<unsigned long long>(s.repaired_now),
 				    static_cast<unsigned long long>(s.lowered),
 				    static_cast<unsigned long long>(s.lowered_by_solver),

@@ -173,12 +173,30 @@ std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
 // meta without the lines of an earlier repair, then this one's.
 std::string repaired_meta(const std::string &meta, const std::string &lines)
 {
+	return internal::generated_lines(meta) + lines;
+}
+
+// The repair's lines of meta but repaired_rows and repair_passes: its settings.
+std::string repair_settings(const std::string &meta)
+{
 	std::string out;
 	std::istringstream in(meta);
 	for (std::string line; std::getline(in, line);)
-		if (line.rfind("repaired_rows: ", 0) != 0 && line.rfind("repair_", 0) != 0)
+		if (line.rfind("repair_", 0) == 0 && line.rfind("repair_passes: ", 0) != 0)
 			out += line + "\n";
-	return out + lines;
+	return out;
+}
+
+// The rows an earlier repair with these settings did, when generation has
+// extended the dataset past them (its .meta's repaired_rows, below n): they
+// keep their labels and only the rows past them are repaired, so adding
+// rows costs their repair, not every row's again. 0 (repair every row) for
+// a dataset never repaired or repaired under other settings.
+uint64_t repaired_before(const std::string &meta, const std::string &lines, uint64_t n)
+{
+	const std::string rows = internal::meta_value(meta, "repaired_rows");
+	const uint64_t r = rows.empty() ? 0 : std::strtoull(rows.c_str(), nullptr, 10);
+	return r < n && repair_settings(meta) == repair_settings(lines) ? r : 0;
 }
 
 bool contains_lines(const std::string &meta, const std::string &lines)
@@ -236,11 +254,20 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	if (!internal::same_stream(input_meta, internal::meta_text(robot, opt.gen)))
 		throw std::invalid_argument("repair: " + sum.path + " is not this stream's (" +
 					    internal::meta_differences(input_meta, internal::meta_text(robot, opt.gen)) + ")");
-	const std::string lines_meta = repair_lines(robot, opt);
-	if (contains_lines(input_meta, lines_meta)) {
+	const std::string settings_lines = repair_lines(robot, opt);
+	if (contains_lines(input_meta, settings_lines)) {
 		sum.already = true;
 		return sum;
 	}
+	// Rows below `from` keep an earlier pass's labels; the .meta lists the
+	// passes' row counts (repair_passes: 8640 17280), a one-pass repair none.
+	const uint64_t from = repaired_before(input_meta, settings_lines, n);
+	std::string passes = internal::meta_value(input_meta, "repair_passes");
+	if (passes.empty())
+		passes = std::to_string(from);
+	const std::string lines_meta =
+		settings_lines + (from ? "repair_passes: " + passes + " " + std::to_string(n) + "\n" : "");
+	sum.kept = from;
 	std::vector<std::string> lines = complete_lines(input);
 	const std::string header = csv_join(csv_columns(mode));
 	if (lines.empty() || lines[0] != header)
@@ -340,6 +367,14 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		struct stat fs;
 		if (fstat(work_file.fd(), &fs) == 0 && fs.st_size == 0)
 			work_file.write(header + "\n");
+	}
+	if (next < from) {   // the earlier pass's rows, its bytes
+		std::string text;
+		for (uint64_t i = next; i < from; i++)
+			text += lines[i + 1] + "\n";
+		work_file.write(text);
+		work_file.sync();
+		next = from;
 	}
 	auto repair_row = [&](uint64_t i) {
 		std::string text;

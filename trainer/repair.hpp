@@ -30,8 +30,16 @@
 // dataset as the repaired rows, then the input's rows past N unchanged, and
 // its .meta gets the repair's lines
 // (repaired_rows, repair_neighbours, repair_path_points and the repairing
-// solver's settings and numerics as repair_<line>), so generation refuses
-// to extend it, and a second repair with the same settings does nothing.
+// solver's settings and numerics as repair_<line>), so a second repair
+// with the same settings does nothing.
+//
+// Generation extends a repaired dataset (its .meta keeps the repair's
+// lines: they describe its first repaired_rows rows). A repair of more
+// rows under the same settings then repairs only the rows past them, their
+// neighbours among all N (the earlier rows keep their labels, their
+// sidecar lines the earlier repair's paths), and the .meta lists the
+// passes (repair_passes: 8640 17280). Under other settings every row is
+// repaired again.
 #ifndef HYLO_TRAINER_REPAIR_HPP
 #define HYLO_TRAINER_REPAIR_HPP
 
@@ -53,6 +61,7 @@ struct RepairOptions {
 
 struct RepairSummary {
 	uint64_t rows = 0;             // N
+	uint64_t kept = 0;             // the first rows, an earlier pass's (repaired_before)
 	uint64_t solved_again = 0;     // sidecar rows solved by this run
 	uint64_t repaired_now = 0;     // rows repaired by this run (the rest resumed)
 	uint64_t lowered = 0;          // converged before and after, label lower by more than 0.5%

@@ -287,6 +287,14 @@ else tap_not_ok "--stage repair --neighbours 2: repairs the first N rows, says h
   "exit $rc" "$(cat "$T/rep.out")"; fi
 expect_fail "repair of more rows than the dataset has: clear error (exit 2)" 2 "fewer than the 20 asked for" \
   "$TR" --mode di_neg --robot di --stage repair --samples 20 --seed 3 --out "$T/rep" --quiet
+"$TR" --mode di_neg --robot di --stage gen --quiet --samples 12 --seed 3 --jobs 2 --out "$T/rep" > /dev/null &&
+"$TR" --mode di_neg --robot di --stage repair --quiet --samples 12 --seed 3 --jobs 2 --neighbours 2 --out "$T/rep" > "$T/rep2.out"; rc=$?
+if [ "$rc" -eq 0 ] && grep -q "^repair di di_neg: 12 rows of .* (8 kept from an earlier pass, .* 4 repaired now)" "$T/rep2.out" &&
+   grep -q "^repaired_rows: 12$" "$T/rep/di_neg.csv.meta" && grep -q "^repair_passes: 8 12$" "$T/rep/di_neg.csv.meta" &&
+   [ "$(grep -c . "$T/rep/di_neg.csv")" -eq 13 ]; then
+  tap_ok "gen extends a repaired dataset; the repair then repairs only the rows past it and records both passes"
+else tap_not_ok "gen extends a repaired dataset; the repair then repairs only the rows past it and records both passes" \
+  "exit $rc" "$(cat "$T/rep2.out")"; fi
 expect_fail "--refine-within x: clear error (exit 2)" 2 "fraction >= 0 or inf" \
   "$TR" --mode di_neg --robot di --refine-within x --solve -0.5,0 -0.3,0
 "$TR" --mode di_neg --robot di --stage gen --quiet --samples 2 --seed 3 --refine-within 0.05 --out "$T/rw005" > /dev/null
