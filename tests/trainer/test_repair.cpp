@@ -363,8 +363,7 @@ int main(int argc, char **argv)
 			GenSummary gs = generate(di, e.gen);
 			return std::make_pair(e, gs);
 		};
-		auto [e1_, gen1] = extend("extended");
-		RepairOptions e1 = e1_;
+		auto [e1, gen1] = extend("extended");
 		const std::string grown = read_file(dataset_path(e1.gen));
 		std::vector<std::string> gl = lines_of(grown), ol = lines_of(out1);
 		check(gen1.resumed_from == 16 && gl.size() == 21 && std::equal(ol.begin(), ol.end(), gl.begin()) &&
@@ -391,12 +390,13 @@ int main(int argc, char **argv)
 		      "its .meta records both passes (repaired_rows: 20, repair_passes: 12 20); a second repair does nothing",
 		      rep_meta);
 		for (const char *what : {"kept", "repaired"}) {
+			const bool in_kept = std::string(what) == "kept";
 			RepairOptions e2 = extend(std::string("extended_killed_") + what).first;
 			const std::string w2 = dataset_path(e2.gen) + ".repair";
 			e2.gen.jobs = 1;
-			kill_part_way([&] { repair(di, e2); }, w2, std::string(what) == "kept" ? 1 : 15);
+			kill_part_way([&] { repair(di, e2); }, w2, in_kept ? 1 : 15);
 			const size_t at = count_lines(w2);
-			if (std::string(what) == "kept")   // torn in the kept rows
+			if (in_kept)   // torn in the kept rows
 				spit(w2, joined(std::vector<std::string>(gl.begin(), gl.begin() + 5)) + "4,-0.4");
 			else
 				std::ofstream(w2, std::ios::app) << "14,-0.2";
