@@ -1,5 +1,5 @@
-// How training pairs are drawn (draw_pair, --draws): draw 1 of ground is
-// the committed Ambot ground dataset's stream, pair for pair; draw 2 puts
+// How training pairs are drawn (draw_pair, --draws): the committed
+// datasets are their draws' streams, pair for pair; draw 2 puts
 // each ground and marine speed at rest with probability kRestFraction and
 // keeps every pair inside the trained region; draw 3 is draw 2 up to its
 // supplement, then cruise pairs; the double integrator's draw 2 is draw 1,
@@ -45,32 +45,63 @@ bool inside(const TrainedRegion &r, const double *x)
 	return true;
 }
 
+struct Stream {
+	std::string robot, mode;
+	const ModeParams *params;
+	int draw;
+	uint64_t first_row;
+};
+
+// How many of the n pairs from first_row of the committed dataset are the
+// draw's, to the bit; why names the first that is not.
+int same_pairs(const Stream &s, uint64_t n, std::string &why)
+{
+	std::ifstream f("trainer/datasets/" + s.robot + "/" + s.mode + ".csv");
+	std::string line;
+	std::getline(f, line);
+	const size_t x1 = csv_column(hylo_mode_parse(s.mode.c_str()), "x1_0");
+	int same = 0;
+	for (uint64_t i = 0; i < s.first_row + n && std::getline(f, line); i++) {
+		if (i < s.first_row)
+			continue;
+		std::vector<std::string> c = csv_fields(line);
+		double a[6] = {0}, b[6] = {0};
+		draw_pair(*s.params, 1, i, a, b, s.draw);
+		bool ok = c.size() > x1 + 7;
+		for (int k = 0; ok && k < 4; k++)
+			ok = std::strtod(c[x1 + k].c_str(), nullptr) == a[k] &&
+			     std::strtod(c[x1 + 4 + k].c_str(), nullptr) == b[k];
+		same += ok;
+		if (!ok && why.empty())
+			why = "row " + std::to_string(i) + ": " + line.substr(0, 120);
+	}
+	return same;
+}
+
 }  // namespace
 
 int main()
 {
 	const RobotParams ambot = load_robot("trainer/params/ambot.yaml");
 
-	// Draw 1 is the committed stream: the first 50 rows' states, exactly.
-	std::ifstream f("trainer/datasets/ambot/ground.csv");
-	std::string line;
-	std::getline(f, line);
-	const size_t x1 = csv_column(HYLO_MODE_GROUND, "x1_0");
-	int same = 0, rows = 0;
-	std::string why;
-	for (uint64_t i = 0; i < 50 && std::getline(f, line); i++, rows++) {
-		std::vector<std::string> c = csv_fields(line);
-		double a[6] = {0}, b[6] = {0};
-		draw_pair(ambot.mode("ground"), 1, i, a, b, 1);
-		bool ok = true;
-		for (int k = 0; k < 4; k++)
-			ok = ok && std::strtod(c[x1 + k].c_str(), nullptr) == a[k] &&
-			     std::strtod(c[x1 + 4 + k].c_str(), nullptr) == b[k];
-		same += ok;
-		if (!ok && why.empty())
-			why = "row " + std::to_string(i) + ": " + line.substr(0, 120);
+	// The committed datasets are their draws, pair for pair: Drivocopter
+	// ground is draw 1; Ambot ground and marine are draw 4, checked at the
+	// start and inside the cruise block.
+	const RobotParams drivocopter = load_robot("trainer/params/drivocopter.yaml");
+	const Stream streams[] = {
+		{"drivocopter", "ground", &drivocopter.mode("ground"), 1, 0},
+		{"ambot", "ground", &ambot.mode("ground"), 4, 0},
+		{"ambot", "ground", &ambot.mode("ground"), 4, 5760},
+		{"ambot", "marine", &ambot.mode("marine"), 4, 0},
+	};
+	for (const Stream &s : streams) {
+		std::string why;
+		const int same = same_pairs(s, 50, why);
+		check(same == 50,
+		      "draw " + std::to_string(s.draw) + " is the committed " + s.robot + " " + s.mode + " stream (50 pairs from row " +
+			      std::to_string(s.first_row) + ", exactly)",
+		      why);
 	}
-	check(rows == 50 && same == 50, "draw 1 is the committed Ambot ground stream (first 50 pairs, exactly)", why);
 
 	// Draw 2: speeds at rest a fifth of the time, each end on its own; the
 	// rest uniform as in draw 1; inside the trained region.
