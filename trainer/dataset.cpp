@@ -375,6 +375,12 @@ int existing_draws(const GenOptions &opt)
 	return draws.empty() ? 1 : std::atoi(draws.c_str());
 }
 
+uint64_t existing_rows(const GenOptions &opt)
+{
+	const std::string path = opt.out_dir + "/" + hylo_mode_str(opt.mode) + ".csv";
+	return internal::resume_point(read_file(path), csv_join(csv_columns(opt.mode)) + "\n").rows;
+}
+
 void draw_pair(const ModeParams &p, uint64_t seed, uint64_t i, double *a, double *b, int draws)
 {
 	Stream r{mix(seed * 0x2545f4914f6cdd1dULL + i + 1)};

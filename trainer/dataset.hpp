@@ -149,6 +149,10 @@ inline constexpr double kRestFraction = 0.2, kTopFraction = 0.3, kShortPairMax =
 // line; none: 1), or 0 (the newest) when there is none.
 int existing_draws(const GenOptions &opt);
 
+// The whole rows of the dataset already in opt.out_dir (0 when there is
+// none; a torn last row does not count).
+uint64_t existing_rows(const GenOptions &opt);
+
 // The sampled coordinates draw_pair bounds, beyond the displacement
 // (max_distance_m) and the speed range: bit k of bounded set means
 // coordinate k of both states of every pair lies in [min[k], max[k]]

@@ -93,7 +93,8 @@ void usage(FILE *f)
 		"  --samples N       training pairs: gen extends the dataset to N rows, repair\n"
 		"                    and fit use its first N (default: ground and marine 8640,\n"
 		"                    14400 under --draws 3, 11520 under 1 or 2; flight 17016;\n"
-		"                    di 4000, 2000 under --draws 1)\n"
+		"                    di 4000, 2000 under --draws 1; or the dataset's rows when\n"
+		"                    it holds more)\n"
 		"  --neighbours K    repair, --solve: warm starts from the K nearest rows' solutions\n"
 		"                    (default: 8)\n"
 		"  --solutions       gen: also keep each row's solution in <out>/<mode>.solutions.csv\n"
@@ -422,7 +423,7 @@ int run(int argc, char **argv)
 	if (po.gen.draws == 0)
 		po.gen.draws = existing_draws(po.gen);
 	draws_for(id, po.gen.draws);   // a draw the mode has
-	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(id, po.gen.draws);
+	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(po.gen);
 	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
 		stage = po.gen.shards > 1 ? "gen" : "all";
 	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&

@@ -377,6 +377,11 @@ uint64_t default_samples(hylo_mode mode, int draws)
 	return sup.from + sup.pairs;
 }
 
+uint64_t default_samples(const GenOptions &opt)
+{
+	return std::max(default_samples(opt.mode, opt.draws), existing_rows(opt));
+}
+
 int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std::string &stage)
 {
 	// A shard is a slice of the stream, not a dataset: fitting it, or a stale

@@ -27,6 +27,11 @@ struct PipelineOptions {
 // paper's); flight 17,016; di 4,000 (draw 2), 2,000 (draw 1).
 uint64_t default_samples(hylo_mode mode, int draws);
 
+// --samples when none is given: the draw's count, or the rows of the
+// dataset in opt.out_dir when it holds more (a dataset extended past its
+// draw's count, like Ambot marine's, is repaired and fitted whole).
+uint64_t default_samples(const GenOptions &opt);
+
 // Runs stage "gen", "repair", "fit", "export", "all" (gen, fit, export) or
 // "gather"; returns the exit code. "repair" repairs the dataset's first
 // samples rows (trainer/repair.hpp). "gather" (gen.shards = N) checks and

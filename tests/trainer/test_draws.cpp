@@ -20,6 +20,7 @@
 #include "tests/tap.hpp"
 #include "trainer/dataset.hpp"
 #include "trainer/params.hpp"
+#include "trainer/pipeline.hpp"
 
 namespace {
 
@@ -269,7 +270,7 @@ int main()
 	      "a ground dataset's meta says 'draws: 2'; draw 1 has no line; the two are other streams");
 
 	// A run adopts the draw of the dataset in --out.
-	char tmpl[] = "/tmp/hylo_test_draws_XXXXXX";
+	char tmpl[] = "/tmp/hylo_test_draws_XXXXXX", tmpl2[] = "/tmp/hylo_test_draws_XXXXXX";
 	const std::string dir = mkdtemp(tmpl);
 	o.out_dir = dir;
 	o.draws = 0;
@@ -282,5 +283,27 @@ int main()
 	check(none == 0 && one == 1 && two == 2,
 	      "existing_draws: none without a dataset, 1 for a meta without a line, 2 for 'draws: 2'",
 	      std::to_string(none) + " " + std::to_string(one) + " " + std::to_string(two));
+
+	// Without --samples a run takes the draw's count, or the dataset's
+	// whole rows when it holds more (an extended dataset is fitted whole).
+	o.draws = 4;
+	const std::string dir2 = mkdtemp(tmpl2);
+	o.out_dir = dir2;
+	const uint64_t empty = default_samples(o);
+	auto write_rows = [&](uint64_t n) {
+		std::ofstream f(dir2 + "/ground.csv");
+		f << csv_join(csv_columns(HYLO_MODE_GROUND)) << "\n";
+		for (uint64_t i = 0; i < n; i++)
+			f << i << ",0\n";
+		f << n << ",0";   // a torn row
+	};
+	write_rows(100);
+	const uint64_t fewer = default_samples(o);
+	write_rows(9000);
+	const uint64_t more = default_samples(o);
+	fs::remove_all(dir2);
+	check(empty == 8640 && fewer == 8640 && more == 9000,
+	      "default samples: the draw's 8,640 without a dataset or with 100 rows, 9,000 with 9,000 whole rows and a torn one",
+	      std::to_string(empty) + " " + std::to_string(fewer) + " " + std::to_string(more));
 	return tap_finish();
 }
