@@ -395,6 +395,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		}
 		return text;
 	};
+	const auto rows_t0 = std::chrono::steady_clock::now();   // this run's rate counts from here
 	internal::fork_sample_chunks(next, n, opt.gen.jobs, opt.gen.chunk, repair_row, "repairing",
 				     [&](uint64_t c, uint64_t e, std::vector<std::string> &rows) {
 		std::string text, side;
@@ -409,9 +410,13 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		work_file.write(text);
 		work_file.sync();
 		sum.repaired_now += e - c;
-		if (opt.gen.progress)
-			std::fprintf(stderr, "%s: %llu/%llu rows repaired\n", work.c_str(),
-				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n));
+		if (opt.gen.progress) {
+			const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - rows_t0).count();
+			const double rate = static_cast<double>(sum.repaired_now) / std::max(el, 1e-9);
+			std::fprintf(stderr, "%s: %llu/%llu rows repaired, %.2f/s, ETA %.0f s\n", work.c_str(),
+				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n), rate,
+				     static_cast<double>(n - e) / std::max(rate, 1e-9));
+		}
 	});
 	work_file.close();
 	side_file.close();
