@@ -37,3 +37,17 @@ accuracy-picture: venv-report
 	.venv/bin/python tools/accuracy/plot_accuracy.py $(ACCURACY_EDGES) docs/accuracy/planner_edges.png
 	tools/provenance record docs/accuracy/planner_edges.png
 .PHONY: accuracy-picture
+
+# Labels against an independent optimum (tools/accuracy/independent_optimum.py):
+# pairs drawn from a planar mode's training ranges, solved by CasADi with many
+# random starts and by `trainer --solve` at each of INDEPENDENT_SEGMENTS.
+# Minutes per pair; MODEL=robot:mode (default ambot:ground, ground or marine).
+INDEPENDENT_MODEL = $(or $(MODEL),ambot:ground)
+INDEPENDENT_PROBLEMS ?= 20
+INDEPENDENT_SEGMENTS ?= 20,40
+independent-optimum: venv-bench $(TRAINER)
+	@mkdir -p $(BUILD)/accuracy
+	.venv/bin/python tools/accuracy/independent_optimum.py $(subst :, ,$(INDEPENDENT_MODEL)) \
+		$(BUILD)/accuracy/independent-$(subst :,-,$(INDEPENDENT_MODEL)).jsonl \
+		--problems $(INDEPENDENT_PROBLEMS) --segments $(INDEPENDENT_SEGMENTS)
+.PHONY: independent-optimum
