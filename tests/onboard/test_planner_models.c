@@ -710,9 +710,10 @@ static const char *largest_model_name(const hylo_planner_config *cfg)
 	for (k = 0; k < cfg->n_robots; k++)
 		for (m = 0; m < cfg->robots[k].n_modes; m++) {
 			const hylo_svr_model *x = cfg->robots[k].modes[m].model;
+			const size_t size = x ? hylo_svr_cache_size(x) : 0;
 
-			if (x && hylo_svr_cache_size(x) > most) {
-				most = hylo_svr_cache_size(x);
+			if (size > most) {
+				most = size;
 				name = x->name;
 			}
 		}

@@ -89,6 +89,13 @@ class Problem:
         o.solver("ipopt", {"print_time": False, "expand": True}, IPOPT)
         self.J = J
         self.s = [(k + tau[j]) / N for k in range(N) for j in range(d)] + [1.0]   # state times / T
+        # The replay's step: one interval of duration dt, the input linear from u0 to u1, the cost appended.
+        x, u0, u1 = ca.SX.sym("x", self.nx + 1), ca.SX.sym("u0", self.nu), ca.SX.sym("u1", self.nu)
+        dt, t = ca.SX.sym("dt"), ca.SX.sym("t")
+        xd, L = self.f(x[:self.nx], u0 + (u1 - u0) * t)
+        self.step = ca.integrator("step", "cvodes", {"x": x, "p": ca.vertcat(u0, u1, dt), "t": t,
+                                                       "ode": dt * ca.vertcat(xd, L)},
+                                  0, 1, {"abstol": 1e-10, "reltol": 1e-10, "max_num_steps": 100000})
 
     def guess(self, a, z, rng, kind):
         """A start's duration and state at time fraction s: a straight line, or a
@@ -168,26 +175,18 @@ class Problem:
 
     def replay(self, x1s, x2s, T, U):
         """CVODE under the control linear between the interval ends: (cost, largest end-state error)."""
-        x, u0, u1 = ca.SX.sym("x", self.nx + 1), ca.SX.sym("u0", self.nu), ca.SX.sym("u1", self.nu)
-        dt, t = ca.SX.sym("dt"), ca.SX.sym("t")
-        xd, L = self.f(x[:self.nx], u0 + (u1 - u0) * t)
-        step = ca.integrator("step", "cvodes", {"x": x, "p": ca.vertcat(u0, u1, dt), "t": t,
-                                                  "ode": dt * ca.vertcat(xd, L)},
-                             0, 1, {"abstol": 1e-10, "reltol": 1e-10, "max_num_steps": 100000})
         xs = self.full(x1s) + [0.0]
         for k in range(self.N):
-            xs = step(x0=xs, p=U[k] + U[k + 1] + [T / self.N])["xf"]
+            xs = self.step(x0=xs, p=U[k] + U[k + 1] + [T / self.N])["xf"]
         xs = [float(v) for v in ca.vertsplit(xs)]
         z = self.full(x2s)
         return xs[self.nx], max(abs(xs[i] - z[i]) for i in range(self.nx))
 
 
-def draw(robot, mode, rng):
+def draw(smp, rng):
     """A pair as the training draw makes them: start at the origin facing +x, the
     goal within the parameter file's distance, any heading, speeds from its range
-    (at rest with probability 0.2)."""
-    with open(f"trainer/params/{robot}.yaml") as f:
-        smp = yaml.safe_load(f)["modes"][mode]["sampling"]
+    (at rest with probability 0.2); smp is the mode's `sampling` entry."""
     r = rng.uniform(0.5, smp["max_distance_m"])
     phi, psi = rng.uniform(-math.pi, math.pi), rng.uniform(-math.pi, math.pi)
 
@@ -227,7 +226,9 @@ def main():
     if os.path.exists(a.out):
         done = {json.loads(line)["problem"] for line in open(a.out)}
     rng = random.Random(a.seed)
-    problems = [draw(a.robot, a.mode, rng) for _ in range(a.problems)]
+    with open(f"trainer/params/{a.robot}.yaml") as f:
+        sampling = yaml.safe_load(f)["modes"][a.mode]["sampling"]
+    problems = [draw(sampling, rng) for _ in range(a.problems)]
     P = Problem(a.robot, a.mode, a.intervals)
     with open(a.out, "a") as out:
         for i, (x1s, x2s) in enumerate(problems):
