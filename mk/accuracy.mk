@@ -44,7 +44,7 @@ accuracy-picture: venv-report
 # Minutes per pair; MODEL=robot:mode (default ambot:ground, ground or marine).
 INDEPENDENT_MODEL = $(or $(MODEL),ambot:ground)
 INDEPENDENT_PROBLEMS ?= 20
-INDEPENDENT_SEGMENTS ?= 20,40
+INDEPENDENT_SEGMENTS ?= 20
 independent-optimum: venv-bench $(TRAINER)
 	@mkdir -p $(BUILD)/accuracy
 	.venv/bin/python tools/accuracy/independent_optimum.py $(subst :, ,$(INDEPENDENT_MODEL)) \

@@ -51,6 +51,7 @@ Bvp bvp(hylo_mode mode, const RobotParams &robot, const double *x1s, const doubl
 	check_state(v.b, v.info.bounds, mode);
 	PhaseSetup s;
 	s.segments = opt.segments;
+	s.accept_segments = v.info.accept_segments;
 	s.T_fixed = opt.T_fixed;
 	s.guess = {v.a, v.b};
 	s.first_lo = s.first_hi = v.a;

@@ -18,6 +18,7 @@
 #include <fcntl.h>
 
 #include "hylo/features.h"
+#include "trainer/mode_config.hpp"
 #include "trainer/model_table.hpp"
 #include "trainer/modes.hpp"
 #include "trainer/numerics.hpp"
@@ -75,7 +76,12 @@ std::string meta_text(const RobotParams &robot, const GenOptions &opt)
 		m << "starts: 3\n";
 	m << "params_sha256: " << robot.labels_sha256 << "\n";
 	// What else a label depends on: the solver's settings and the numerics.
-	m << solve_options_text(opt.solve) << numerics_description();
+	m << solve_options_text(opt.solve);
+	// The mode's mesh a label is accepted on (its solver hints), where it
+	// sets one: earlier files have no line.
+	if (const int n = internal::mode_info(opt.mode, robot).accept_segments; n > 0)
+		m << "accept_segments: " << n << "\n";
+	m << numerics_description();
 	return m.str();
 }
 
@@ -141,7 +147,8 @@ std::string generated_lines(const std::string &meta)
 {
 	std::string out;
 	for (const auto &kv : meta_lines(meta))
-		if (kv.first != "repaired_rows" && kv.first.rfind("repair_", 0) != 0)
+		if (kv.first != "repaired_rows" && kv.first.rfind("repair_", 0) != 0 && kv.first != "remeshed_rows" &&
+		    kv.first.rfind("remesh_", 0) != 0)
 			out += kv.second + "\n";
 	return out;
 }

@@ -205,8 +205,8 @@ std::string meta_value(const std::string &meta, const std::string &key);
 std::string meta_differences(const std::string &old_meta, const std::string &new_meta);
 // Whether two metas describe the same stream of pairs, whatever labelled them.
 bool same_stream(const std::string &a, const std::string &b);
-// A dataset's .meta without a repair's lines (repaired_rows, repair_*): the
-// lines generation wrote.
+// A dataset's .meta without a repair's or remesh's lines (repaired_rows,
+// repair_*, remeshed_rows, remesh_*): the lines generation wrote.
 std::string generated_lines(const std::string &meta);
 // Where a file of rows after header resumes: the bytes to keep (the header
 // and complete rows; a torn last row dropped) and how many rows they hold.

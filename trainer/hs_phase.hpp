@@ -57,6 +57,9 @@ struct PhaseSetup {
 	// The phase's share of a longer phase's time (hand_overs.hpp): its mode's
 	// least number of segments is scaled by it.
 	double mesh_share = 1;
+	// > 0: a solution is accepted on at least this many segments (a BVP's,
+	// its mode's ModeInfo::accept_segments; solve_strategy.cpp).
+	int accept_segments = 0;
 };
 
 // A sparsity structure written entry by entry, as Ipopt's triplet arrays

@@ -77,7 +77,7 @@ void usage(FILE *f)
 		"                    section 6; Drivocopter takeoff and landing are solved, ~20 s)\n"
 		"  --robot R         robot parameter file trainer/params/R.yaml (required; installed:\n"
 		"                    PREFIX/share/hylo/params/R.yaml; $HYLO_PARAMS_DIR/R.yaml first)\n"
-		"  --stage S         gen, repair, fit, export, region, all (gen, fit, export) or\n"
+		"  --stage S         gen, repair, remesh, fit, export, region, all (gen, fit, export) or\n"
 		"                    gather (default: all; gen with --shard); export reads the\n"
 		"                    header fit wrote into --out and adds the envelope (minutes).\n"
 		"                    region: writes the trained region into the header in\n"
@@ -89,7 +89,11 @@ void usage(FILE *f)
 		"                    replaced atomically when every row is done (resumable, its\n"
 		"                    .meta records the repair; docs/decisions.md); after gen has\n"
 		"                    extended a repaired dataset, only the rows past the repaired\n"
-		"                    ones (same settings)\n"
+		"                    ones (same settings). remesh: each of the first N rows\n"
+		"                    labelled on a coarser mesh than its mode now accepts (ground,\n"
+		"                    marine: 40 segments) is solved again from its own solution\n"
+		"                    in the sidecar, and the finer mesh's label replaces it\n"
+		"                    (resumable, atomic, recorded in the .meta like repair)\n"
 		"  --samples N       training pairs: gen extends the dataset to N rows, repair\n"
 		"                    and fit use its first N (default: ground and marine 8640,\n"
 		"                    14400 under --draws 3, 11520 under 1 or 2; flight 17016;\n"
@@ -426,9 +430,9 @@ int run(int argc, char **argv)
 	po.gen.samples = samples > 0 ? static_cast<uint64_t>(samples) : default_samples(po.gen);
 	if (stage.empty())   // a shard task only generates (the gather step makes the dataset)
 		stage = po.gen.shards > 1 ? "gen" : "all";
-	if (stage != "gen" && stage != "repair" && stage != "fit" && stage != "export" && stage != "all" &&
-	    stage != "gather" && stage != "region")
-		throw Usage("unknown stage '" + stage + "' (gen, repair, fit, export, region, all, gather)");
+	if (stage != "gen" && stage != "repair" && stage != "remesh" && stage != "fit" && stage != "export" &&
+	    stage != "all" && stage != "gather" && stage != "region")
+		throw Usage("unknown stage '" + stage + "' (gen, repair, remesh, fit, export, region, all, gather)");
 	if (stage == "gather") {
 		if (gather_shards == 0 || po.gen.shards > 1)
 			throw Usage("--stage gather needs --shards N (the N of the tasks' --shard K/N), not --shard");

@@ -44,6 +44,7 @@ ModeInfo info_of(const M &model)
 		i.mumps_permuting_scaling = 0;
 	i.continuation = h.continuation;
 	i.min_segments = h.min_segments;
+	i.accept_segments = h.accept_segments;
 	i.max_step_s = h.max_step_s;
 	i.first_accepted = h.first_accepted;
 	i.step_max_iter = h.step_max_iter;

@@ -32,6 +32,7 @@ struct ModeInfo {
 	std::vector<double> continuation = {100.0, 10.0, 3.0, 1.0};  // smoothing multipliers, to 1
 	int refinements = 0;          // the parameter file's solver: {refinements: N}
 	int min_segments = 0;         // a start's mesh has at least these segments
+	int accept_segments = 0;      // > 0: a BVP's solution is accepted on at least these
 	double max_step_s = 0;        // > 0: and segments of at most this guessed duration [s]
 	bool first_accepted = false;  // keep the first start that passes, try no more
 	int step_max_iter = 0;        // > 0: a continuation step's iteration limit; a start

@@ -72,6 +72,10 @@ struct SolverHints {
 	int step_max_iter = 0;        // > 0: a continuation step's iteration limit
 	bool mumps_no_permuting_scaling = false;  // MUMPS without MC64 (else its own choice)
 	int path_guess_points = 0;    // > 0: straight-line starts from path_guess(a, b, T, this)
+	// > 0: a BVP's solution (a training label, trainer --solve) is accepted
+	// on at least this many segments: one that passes its replay on a
+	// coarser mesh is solved again on doubled meshes from it.
+	int accept_segments = 0;
 };
 
 // ---- double integrator (docs/models.md section 2) ------------------------------
@@ -137,6 +141,10 @@ struct PlanarModel {
 	{
 		SolverHints h;
 		h.position_dims = 2;
+		// 20 segments of a few tenths of a second cannot place a brief
+		// turn: labels 0.5-7% above the optimum (docs/decisions.md, "Labels
+		// against an independent optimum: the 20-segment mesh").
+		h.accept_segments = 40;
 		return h;
 	}
 	std::array<double, NU> input_guess() const { return {0.0, 0.0}; }

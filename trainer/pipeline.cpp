@@ -417,6 +417,26 @@ int run_pipeline(const RobotParams &robot, const PipelineOptions &opt, const std
 					     "(see above; their rows are not labels)\n",
 				     robot.robot.c_str(), hylo_mode_str(opt.gen.mode), static_cast<unsigned long long>(s.errors));
 	}
+	if (stage == "remesh") {
+		RepairOptions ro;
+		ro.gen = opt.gen;
+		ro.remesh = true;
+		RepairSummary s = repair(robot, ro);
+		if (s.already)
+			std::printf("remesh %s %s: %s records this remesh of its first %llu rows already; nothing to do\n",
+				    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), s.path.c_str(),
+				    static_cast<unsigned long long>(s.rows));
+		else
+			std::printf("remesh %s %s: %llu rows of %s (%llu kept from an earlier pass, %llu done now), "
+				    "%llu labels from a finer mesh: %llu lower by more than 0.5%% (median %.2f%%, "
+				    "largest %.2f%%), %llu higher by more than 0.5%%; CPU %.1f s; %.1f s\n",
+				    robot.robot.c_str(), hylo_mode_str(opt.gen.mode), static_cast<unsigned long long>(s.rows),
+				    s.path.c_str(), static_cast<unsigned long long>(s.kept),
+				    static_cast<unsigned long long>(s.repaired_now),
+				    static_cast<unsigned long long>(s.relabelled),
+				    static_cast<unsigned long long>(s.lowered), 100 * s.median_drop, 100 * s.max_drop,
+				    static_cast<unsigned long long>(s.raised), s.warm_cpu_s, s.seconds);
+	}
 	if (stage == "repair") {
 		RepairOptions ro;
 		ro.gen = opt.gen;

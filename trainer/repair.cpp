@@ -18,6 +18,7 @@
 #include "trainer/collocation.hpp"
 #include "trainer/files.hpp"
 #include "trainer/memory.hpp"
+#include "trainer/mode_config.hpp"
 #include "trainer/numerics.hpp"
 #include "trainer/sha256.hpp"
 #include "trainer/svr_export.hpp"
@@ -151,52 +152,70 @@ std::vector<StoredSolution> read_sidecar(const RepairOptions &opt, uint64_t n)
 	return out;
 }
 
-// The repair's lines of a dataset's .meta (and of the in-progress file's):
-// its settings, and the repairing trainer's solver and numerics.
+// A pass's names (the repair's or the remesh's): its word, the prefix of
+// its .meta lines, their row count's key, its in-progress files' suffix.
+struct Pass {
+	std::string name, prefix, rows_key, suffix;
+};
+Pass pass_of(const RepairOptions &opt)
+{
+	return opt.remesh ? Pass{"remesh", "remesh_", "remeshed_rows", ".remesh"}
+			  : Pass{"repair", "repair_", "repaired_rows", ".repair"};
+}
+
+// The pass's lines of a dataset's .meta (and of the in-progress file's):
+// its settings, and the trainer's solver and numerics.
 std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
 {
-	std::string out = "repaired_rows: " + std::to_string(opt.gen.samples) +
-			  "\nrepair_neighbours: " + std::to_string(opt.neighbours) +
-			  "\nrepair_path_points: " + std::to_string(opt.path_points) + "\n";
-	GenOptions warm = opt.gen;   // the warm starts' settings: the repair's own
+	const Pass P = pass_of(opt);
+	std::string out = P.rows_key + ": " + std::to_string(opt.gen.samples) + "\n";
+	if (!opt.remesh)
+		out += "repair_neighbours: " + std::to_string(opt.neighbours) + "\n";
+	out += P.prefix + "path_points: " + std::to_string(opt.path_points) + "\n";
+	GenOptions warm = opt.gen;   // the warm starts' settings: the pass's own
 	warm.solve = guess_solve_options(opt.gen.solve);
 	std::istringstream in(internal::meta_text(robot, warm));
 	for (std::string line; std::getline(in, line);) {
 		std::string key = line.substr(0, line.find(": "));
 		if (key == "robot" || key == "mode" || key == "seed" || key == "draws" || key == "params_sha256")
 			continue;   // the stream's, in the dataset's own lines
-		out += "repair_" + line + "\n";
+		out += P.prefix + line + "\n";
 	}
 	return out;
 }
 
-// meta without the lines of an earlier repair, then this one's.
-std::string repaired_meta(const std::string &meta, const std::string &lines)
-{
-	return internal::generated_lines(meta) + lines;
-}
-
-// The repair's lines of meta but repaired_rows and repair_passes: its settings.
-std::string repair_settings(const std::string &meta)
+// meta without the lines of an earlier pass of this kind, then this one's.
+std::string repaired_meta(const Pass &P, const std::string &meta, const std::string &lines)
 {
 	std::string out;
 	std::istringstream in(meta);
 	for (std::string line; std::getline(in, line);)
-		if (line.rfind("repair_", 0) == 0 && line.rfind("repair_passes: ", 0) != 0)
+		if (line.rfind(P.rows_key + ": ", 0) != 0 && line.rfind(P.prefix, 0) != 0)
+			out += line + "\n";
+	return out + lines;
+}
+
+// The pass's lines of meta but its row count and passes: its settings.
+std::string repair_settings(const Pass &P, const std::string &meta)
+{
+	std::string out;
+	std::istringstream in(meta);
+	for (std::string line; std::getline(in, line);)
+		if (line.rfind(P.prefix, 0) == 0 && line.rfind(P.prefix + "passes: ", 0) != 0)
 			out += line + "\n";
 	return out;
 }
 
-// The rows an earlier repair with these settings did, when generation has
+// The rows an earlier pass with these settings did, when generation has
 // extended the dataset past them (its .meta's repaired_rows, below n): they
 // keep their labels and only the rows past them are repaired, so adding
 // rows costs their repair, not every row's again. 0 (repair every row) for
 // a dataset never repaired or repaired under other settings.
-uint64_t repaired_before(const std::string &meta, const std::string &lines, uint64_t n)
+uint64_t repaired_before(const Pass &P, const std::string &meta, const std::string &lines, uint64_t n)
 {
-	const std::string rows = internal::meta_value(meta, "repaired_rows");
+	const std::string rows = internal::meta_value(meta, P.rows_key);
 	const uint64_t r = rows.empty() ? 0 : std::strtoull(rows.c_str(), nullptr, 10);
-	return r < n && repair_settings(meta) == repair_settings(lines) ? r : 0;
+	return r < n && repair_settings(P, meta) == repair_settings(P, lines) ? r : 0;
 }
 
 bool contains_lines(const std::string &meta, const std::string &lines)
@@ -242,17 +261,23 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	opt.gen.shard = opt.gen.shards = 1;
 	const hylo_mode mode = opt.gen.mode;
 	const uint64_t n = opt.gen.samples;
-	if (opt.neighbours < 1 || opt.path_points < 2)
+	const Pass P = pass_of(opt);
+	if ((!opt.remesh && opt.neighbours < 1) || opt.path_points < 2)
 		throw std::invalid_argument("repair needs at least one neighbour and two path points");
+	// remesh: the mesh the mode's labels are accepted on.
+	const int accept = internal::mode_info(mode, robot).accept_segments;
+	if (opt.remesh && accept <= 0)
+		throw std::invalid_argument(std::string("remesh: mode ") + hylo_mode_str(mode) +
+					    "'s solver accepts labels on any mesh; nothing to remesh");
 	RepairSummary sum;
 	sum.rows = n;
 	sum.path = dataset_path(opt.gen);
 	const std::string meta_path = sum.path + ".meta";
 	const std::string input = read_file(sum.path), input_meta = read_file(meta_path);
 	if (input.empty() || input_meta.empty())
-		throw std::invalid_argument("repair: no dataset " + sum.path + " with its .meta (run --stage gen first)");
+		throw std::invalid_argument(P.name + ": no dataset " + sum.path + " with its .meta (run --stage gen first)");
 	if (!internal::same_stream(input_meta, internal::meta_text(robot, opt.gen)))
-		throw std::invalid_argument("repair: " + sum.path + " is not this stream's (" +
+		throw std::invalid_argument(P.name + ": " + sum.path + " is not this stream's (" +
 					    internal::meta_differences(input_meta, internal::meta_text(robot, opt.gen)) + ")");
 	const std::string settings_lines = repair_lines(robot, opt);
 	if (contains_lines(input_meta, settings_lines)) {
@@ -261,19 +286,19 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	}
 	// Rows below `from` keep an earlier pass's labels; the .meta lists the
 	// passes' row counts (repair_passes: 8640 17280), a one-pass repair none.
-	const uint64_t from = repaired_before(input_meta, settings_lines, n);
-	std::string passes = internal::meta_value(input_meta, "repair_passes");
+	const uint64_t from = repaired_before(P, input_meta, settings_lines, n);
+	std::string passes = internal::meta_value(input_meta, P.prefix + "passes");
 	if (passes.empty())
 		passes = std::to_string(from);
 	const std::string lines_meta =
-		settings_lines + (from ? "repair_passes: " + passes + " " + std::to_string(n) + "\n" : "");
+		settings_lines + (from ? P.prefix + "passes: " + passes + " " + std::to_string(n) + "\n" : "");
 	sum.kept = from;
 	std::vector<std::string> lines = complete_lines(input);
 	const std::string header = csv_join(csv_columns(mode));
 	if (lines.empty() || lines[0] != header)
 		throw std::invalid_argument(sum.path + ": line 1 is not the header of a " + hylo_mode_str(mode) + " dataset");
 	if (lines.size() < n + 1)
-		throw std::invalid_argument("repair: " + sum.path + " has " + std::to_string(lines.size() - 1) +
+		throw std::invalid_argument(P.name + ": " + sum.path + " has " + std::to_string(lines.size() - 1) +
 					    " rows, fewer than the " + std::to_string(n) + " asked for");
 	// The rows must be this stream's samples.
 	const size_t ix = csv_column(mode, "x1_0"), ic = csv_column(mode, "cost_j");
@@ -301,10 +326,10 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	const std::string input_sha = sha256_hex(input_rows);
 
 	// The in-progress file: resumed if it is this repair's of these rows.
-	const std::string work = sum.path + ".repair", work_meta_path = work + ".meta";
+	const std::string work = sum.path + P.suffix, work_meta_path = work + ".meta";
 	// Beside it: the sidecar lines of the rows whose label a neighbour's
-	// path lowered (their new solutions), written before their rows.
-	const std::string side_work = solutions_path(opt.gen) + ".repair";
+	// path lowered (remesh: the finer mesh gave), written before their rows.
+	const std::string side_work = solutions_path(opt.gen) + P.suffix;
 	const std::string work_meta = "repair_of_sha256: " + input_sha + "\n" + lines_meta;
 	std::string existing = read_file(work);
 	uint64_t next = 0;
@@ -313,7 +338,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		if (old != work_meta && existing == input_rows && old.find('\n') != std::string::npos &&
 		    old.substr(old.find('\n') + 1) == lines_meta) {
 			// Interrupted between replacing the dataset and its .meta: finish.
-			write_file_atomically(meta_path, repaired_meta(input_meta, lines_meta));
+			write_file_atomically(meta_path, repaired_meta(P, input_meta, lines_meta));
 			std::remove(work.c_str());
 			std::remove(work_meta_path.c_str());
 			std::remove(side_work.c_str());
@@ -321,7 +346,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 			return sum;
 		}
 		if (old != work_meta)
-			throw std::runtime_error(work + " is a repair under other settings or of other rows: " +
+			throw std::runtime_error(work + " is a " + P.name + " under other settings or of other rows: " +
 						 internal::meta_differences(old, work_meta) + "; remove it");
 		internal::ResumePoint r = internal::resume_point(existing, header + "\n");
 		next = std::min(r.rows, n);
@@ -342,17 +367,27 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	write_file_atomically(side_work, side_done);
 
 	double cpu0 = children_cpu_s();
-	sum.solved_again = extend_sidecar(robot, opt, n);
+	// remesh: a dataset without a sidecar has its coarse rows solved again
+	// in full instead (the training solve), and keeps having none.
+	const std::string side_meta = read_file(solutions_path(opt.gen) + ".meta");
+	const bool sidecar = !opt.remesh || !side_meta.empty();
+	if (!opt.remesh)
+		sum.solved_again = extend_sidecar(robot, opt, n);
+	else if (sidecar && !internal::same_stream(side_meta, input_meta))
+		throw std::invalid_argument("remesh: " + solutions_path(opt.gen) + " is not " + sum.path +
+					    "'s stream (its .meta)");
 	sum.solve_cpu_s = children_cpu_s() - cpu0;
 	cpu0 = children_cpu_s();
-	std::vector<StoredSolution> sol = read_sidecar(opt, n);
-	std::vector<std::vector<uint64_t>> near = nearest_rows(coords, sol, opt.neighbours);
+	std::vector<StoredSolution> sol = sidecar ? read_sidecar(opt, n) : std::vector<StoredSolution>(n);
+	std::vector<std::vector<uint64_t>> near;
+	if (!opt.remesh)
+		near = nearest_rows(coords, sol, opt.neighbours);
 	// Each row's incumbent: the cheaper converged of the stored label and the
-	// current solver's, and the row text it stands for (the input's own
-	// bytes where the stored label is kept).
+	// current solver's (remesh: the stored label), and the row text it
+	// stands for (the input's own bytes where the stored label is kept).
 	auto incumbent = [&](uint64_t i, std::string &text) {
 		const Solution &a = stored[i], &b = sol[i].s;
-		if (improves_on(b, a)) {
+		if (!opt.remesh && improves_on(b, a)) {
 			double x1[6] = {0}, x2[6] = {0};
 			draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 			text = csv_row(mode, i, x1, x2, b);
@@ -382,6 +417,22 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		double x1[6] = {0}, x2[6] = {0};
 		draw_pair(robot.mode(mode), opt.gen.seed, i, x1, x2, opt.gen.draws);
 		std::vector<double> a = full_state(mode, robot, x1), b = full_state(mode, robot, x2);
+		if (opt.remesh) {
+			if (!inc.converged || inc.segments >= accept || (sidecar && !sol[i].s.converged))
+				return text;
+			try {
+				Solution s = sidecar ? solve_bvp_guesses(mode, robot, x1, x2, opt.gen.solve,
+									 {stored_guess(mode, sol[i], a, b, opt.path_points)},
+									 Solution())
+						     : solve_bvp(mode, robot, x1, x2, opt.gen.solve);
+				if (s.converged && s.segments >= accept)
+					return csv_row(mode, i, x1, x2, s) +
+					       (sidecar ? "\n" + solution_line(robot, mode, opt.path_points, i, x1, x2, s) : "");
+			} catch (const std::exception &) {
+				// keep the row
+			}
+			return text;
+		}
 		std::vector<Guess> guesses;
 		for (uint64_t j : near[i])
 			guesses.push_back(stored_guess(mode, sol[j], a, b, opt.path_points));
@@ -396,7 +447,8 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		return text;
 	};
 	const auto rows_t0 = std::chrono::steady_clock::now();   // this run's rate counts from here
-	internal::fork_sample_chunks(next, n, opt.gen.jobs, opt.gen.chunk, repair_row, "repairing",
+	internal::fork_sample_chunks(next, n, opt.gen.jobs, opt.gen.chunk, repair_row,
+				     opt.remesh ? "remeshing" : "repairing",
 				     [&](uint64_t c, uint64_t e, std::vector<std::string> &rows) {
 		std::string text, side;
 		for (const std::string &r : rows) {
@@ -413,7 +465,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		if (opt.gen.progress) {
 			const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - rows_t0).count();
 			const double rate = static_cast<double>(sum.repaired_now) / std::max(el, 1e-9);
-			std::fprintf(stderr, "%s: %llu/%llu rows repaired, %.2f/s, ETA %.0f s\n", work.c_str(),
+			std::fprintf(stderr, "%s: %llu/%llu rows done, %.2f/s, ETA %.0f s\n", work.c_str(),
 				     static_cast<unsigned long long>(e), static_cast<unsigned long long>(n), rate,
 				     static_cast<double>(n - e) / std::max(rate, 1e-9));
 		}
@@ -440,8 +492,14 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		double cost = std::stod(f[ic]);
 		if (now && !stored[i].converged)
 			sum.newly_converged++;
+		if (repaired[i + 1] != lines[i + 1])
+			sum.relabelled++;
+		if (now && stored[i].converged && cost > (1 + kLowered) * stored[i].cost)
+			sum.raised++;
 		if (now && stored[i].converged && cost < (1 - kLowered) * stored[i].cost) {
 			drops.push_back(1 - cost / stored[i].cost);
+			if (opt.remesh)
+				continue;   // no neighbours to credit
 			std::string side;
 			(void)incumbent(i, side);
 			if (side == repaired[i + 1])
@@ -476,7 +534,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 		sum.solutions_replaced = new_lines.size();
 	}
 	write_file_atomically(sum.path, out);   // atomic: a temporary file, fsync'd, renamed
-	write_file_atomically(meta_path, repaired_meta(input_meta, lines_meta));
+	write_file_atomically(meta_path, repaired_meta(P, input_meta, lines_meta));
 	std::remove(work.c_str());
 	std::remove(work_meta_path.c_str());
 	std::remove(side_work.c_str());

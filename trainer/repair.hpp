@@ -33,6 +33,19 @@
 // solver's settings and numerics as repair_<line>), so a second repair
 // with the same settings does nothing.
 //
+// The remesh pass (trainer --stage remesh; RepairOptions::remesh) is the
+// same pass over the rows for another reason: a mode whose solver now
+// accepts labels only on a finer mesh than a dataset's rows were accepted
+// on (SolverHints::accept_segments; issue #35: 20 segments left labels up
+// to 7% above the optimum). Each converged row on a coarser mesh is solved
+// again from its own stored path (the sidecar as it stands: paths of
+// another solver's settings are still warm starts), and the finer
+// solution, where it converges, becomes its label and its sidecar line,
+// cheaper or dearer (the finer mesh's cost is the better estimate); the
+// other rows keep their bytes. Its files and lines: <mode>.csv.remesh,
+// <mode>.solutions.csv.remesh, remeshed_rows and remesh_<line>, beside an
+// earlier repair's, which stay.
+//
 // Generation extends a repaired dataset (its .meta keeps the repair's
 // lines: they describe its first repaired_rows rows). A repair of more
 // rows under the same settings then repairs only the rows past them, their
@@ -57,6 +70,7 @@ struct RepairOptions {
 	GenOptions gen;
 	int neighbours = 8;      // K: warm starts per row
 	int path_points = 21;    // states per stored path (a 20-segment coarse mesh's knots)
+	bool remesh = false;     // the remesh pass (above) instead: no neighbours
 };
 
 struct RepairSummary {
@@ -65,10 +79,13 @@ struct RepairSummary {
 	uint64_t solved_again = 0;     // sidecar rows solved by this run
 	uint64_t repaired_now = 0;     // rows repaired by this run (the rest resumed)
 	uint64_t lowered = 0;          // converged before and after, label lower by more than 0.5%
+	uint64_t raised = 0;           // the same, higher by more than 0.5% (remesh only)
+	uint64_t relabelled = 0;       // rows whose bytes changed
 	uint64_t lowered_by_solver = 0;     // of those, by the current solver alone
 	uint64_t lowered_by_neighbours = 0; // of those, by a neighbour's warm start
 	uint64_t newly_converged = 0;  // rows without a label before that have one now
 	uint64_t solutions_replaced = 0;   // sidecar lines now a neighbour's warm start's solution
+					   // (remesh: the finer mesh's)
 	double median_drop = 0, max_drop = 0;   // relative drops of the lowered rows
 	bool already = false;          // the dataset's meta records this repair already: nothing done
 	double solve_cpu_s = 0;        // CPU time of this run's sidecar solves (its worker processes)
@@ -77,7 +94,8 @@ struct RepairSummary {
 	std::string path;
 };
 
-// Repairs the first opt.gen.samples rows of <out>/<mode>.csv (see above).
+// Repairs (or remeshes) the first opt.gen.samples rows of <out>/<mode>.csv
+// (see above).
 // Throws std::invalid_argument for a missing or short dataset, another
 // stream's, or a row that is not this stream's sample; std::runtime_error
 // for I/O errors and for a sidecar or an in-progress repair made under other

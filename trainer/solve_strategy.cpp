@@ -326,6 +326,38 @@ private:
 		return st;
 	}
 
+	// A solution s whose replays passed, on the meshes its phases are
+	// accepted on (PhaseSetup::accept_segments): phases on coarser meshes are
+	// solved again on doubled meshes from it until they reach theirs, those
+	// whose replay fails there refined as refine() does. The finest solution
+	// whose replays pass is returned: s where no finer one does (it passed
+	// its own replays).
+	MultiPhaseSolution on_accepted_mesh(Coarse &c, MultiPhaseSolution s)
+	{
+		const std::string rejection = rejection_;   // s is accepted: no rejection to report
+		std::vector<bool> failed(c.p.setups.size(), false);
+		int iterations = s.iterations, replay_refinements = 0;
+		for (;;) {
+			std::vector<bool> finer;
+			for (size_t k = 0; k < c.p.setups.size(); k++)
+				finer.push_back(failed[k] || c.p.setups[k].segments < c.p.setups[k].accept_segments);
+			if (std::find(finer.begin(), finer.end(), true) == finer.end())
+				break;
+			if (std::find(failed.begin(), failed.end(), true) != failed.end() &&
+			    replay_refinements++ >= set_.refinements)
+				break;
+			NlpStatus res = refine_mesh(c, finer);
+			iterations += res.iterations;
+			if (!res.succeeded())
+				break;
+			MultiPhaseSolution fine = replayed(c, res, iterations, failed);
+			if (std::find(failed.begin(), failed.end(), true) == failed.end())
+				s = std::move(fine);
+		}
+		rejection_ = rejection;
+		return s;
+	}
+
 	// Mesh refinement until the replays agree, at most set_.refinements
 	// times; the result is kept if it is the cheapest so far. True if the
 	// replays agreed.
@@ -338,7 +370,7 @@ private:
 			std::vector<bool> failed;
 			MultiPhaseSolution s = replayed(c, res, iterations, failed);
 			if (std::find(failed.begin(), failed.end(), true) == failed.end()) {
-				accept(std::move(s));
+				accept(on_accepted_mesh(c, std::move(s)));
 				return true;
 			}
 			rejected_cost_ = std::min(rejected_cost_, s.cost + switch_cost_);

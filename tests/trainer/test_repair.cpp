@@ -11,8 +11,9 @@
 // the same bytes; a second repair does nothing; generation extends a
 // repaired dataset, and a repair of more rows repairs only the new ones
 // (killed and resumed, the same bytes). Warm starts that repeat a coarse optimum already
-// refined are not refined again (the repair's refine_repeats: off). Prints
-// TAP.
+// refined are not refined again (the repair's refine_repeats: off). The
+// remesh pass (the same stage's other use) moves Ambot ground rows labelled
+// on 20 segments onto 40 or more and keeps every other byte. Prints TAP.
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -95,6 +96,95 @@ void kill_part_way(Work work, const std::string &file, size_t lines)
 		usleep(1000);
 	kill(pid, SIGKILL);
 	waitpid(pid, nullptr, 0);
+}
+
+// The remesh pass on tests/trainer/remesh, the first 20 rows of Ambot
+// ground's dataset as they were labelled on 20 segments or more (rows 7
+// and 14 on 20, the rest on 40 or more) and its sidecar: the first 16
+// remeshed from their sidecar paths, then the first 8 of a copy without a
+// sidecar, solved again in full.
+void remesh_checks(const fs::path &dir)
+{
+	RobotParams ambot = load_robot("trainer/params/ambot.yaml");
+	const std::string src = "tests/trainer/remesh/ground";
+	fs::create_directories(dir / "side");
+	fs::create_directories(dir / "bare");
+	for (const char *d : {"side", "bare"})
+		for (const char *f : {".csv", ".csv.meta"})
+			fs::copy_file(src + f, dir / d / (std::string("ground") + f));
+	for (const char *f : {".solutions.csv", ".solutions.csv.meta"})
+		fs::copy_file(src + f, dir / "side" / (std::string("ground") + f));
+	const std::vector<std::string> before = lines_of(read_file((dir / "side" / "ground.csv").string())),
+				       side_before = lines_of(read_file((dir / "side" / "ground.solutions.csv").string()));
+	const std::string meta_before = read_file((dir / "side" / "ground.csv.meta").string());
+	const size_t iseg = csv_column(HYLO_MODE_GROUND, "segments"), ic = csv_column(HYLO_MODE_GROUND, "cost_j");
+	auto seg = [&](const std::string &row) { return std::stoi(csv_fields(row)[iseg]); };
+	check(before.size() == 21 && seg(before[8]) == 20 && seg(before[15]) == 20,
+	      "remesh: rows 7 and 14 of the fixture are labelled on 20 segments");
+	if (before.size() != 21)
+		return;
+
+	RepairOptions r;
+	r.remesh = true;
+	r.gen.mode = HYLO_MODE_GROUND;
+	r.gen.draws = std::stoi(internal::meta_value(meta_before, "draws"));
+	r.gen.samples = 16;
+	r.gen.jobs = 2;
+	r.gen.progress = false;
+	r.gen.out_dir = (dir / "side").string();
+	RepairSummary s = repair(ambot, r);
+	const std::vector<std::string> after = lines_of(read_file((dir / "side" / "ground.csv").string())),
+				       side_after = lines_of(read_file((dir / "side" / "ground.solutions.csv").string()));
+	bool others_same = after.size() == before.size() && side_after.size() == side_before.size();
+	for (size_t i = 0; others_same && i < after.size(); i++)
+		if (i != 8 && i != 15)
+			others_same = after[i] == before[i] && side_after[i] == side_before[i];
+	check(others_same, "remesh: the rows labelled on 40 or more segments, and the rows past N, keep their bytes "
+			   "and their sidecar lines");
+	bool finer = true;
+	for (size_t i : {8, 15}) {
+		const std::vector<std::string> f = csv_fields(after[i]);
+		finer = finer && seg(after[i]) >= 40 && f[csv_column(HYLO_MODE_GROUND, "converged")] == "1" &&
+			side_after[i] != side_before[i] && side_after[i].rfind(f[0] + "," + f[ic] + ",", 0) == 0;
+	}
+	check(finer && s.relabelled == 2,
+	      "remesh: rows 7 and 14 are labelled on 40 or more segments, their sidecar lines their new solutions",
+	      std::to_string(s.relabelled) + " relabelled");
+	// 20 segments cannot place these edges' turns: the finer labels are
+	// lower (56.07 -> 55.79 J, 55.94 -> 55.15 J on this machine).
+	check(std::stod(csv_fields(after[8])[ic]) < std::stod(csv_fields(before[8])[ic]) &&
+		      std::stod(csv_fields(after[15])[ic]) < 0.995 * std::stod(csv_fields(before[15])[ic]),
+	      "remesh: the finer mesh lowers both labels, row 14's by more than 0.5%",
+	      csv_fields(before[8])[ic] + " -> " + csv_fields(after[8])[ic] + ", " + csv_fields(before[15])[ic] +
+		      " -> " + csv_fields(after[15])[ic]);
+	const std::string meta_after = read_file((dir / "side" / "ground.csv.meta").string());
+	check(meta_after.rfind(meta_before, 0) == 0 &&
+		      meta_after.find("\nremeshed_rows: 16\nremesh_path_points: 21\n") != std::string::npos &&
+		      meta_after.find("\nremesh_accept_segments: 40\n") != std::string::npos,
+	      "remesh: the .meta keeps the generation's and the repair's lines and adds the remesh's", meta_after);
+	check(repair(ambot, r).already, "remesh: a second remesh with the same settings does nothing");
+	std::string why;
+	try {
+		GenOptions g = r.gen;
+		g.samples = 24;
+		generate(ambot, g);
+	} catch (const std::runtime_error &e) {
+		why = e.what();
+	}
+	check(why.find("made under other settings") != std::string::npos &&
+		      why.find("accept_segments: 40") != std::string::npos,
+	      "generation refuses to extend a dataset labelled on 20 segments with 40-segment labels", why);
+
+	RepairOptions b = r;
+	b.gen.out_dir = (dir / "bare").string();
+	b.gen.samples = 8;
+	RepairSummary sb = repair(ambot, b);
+	const std::vector<std::string> bare = lines_of(read_file((dir / "bare" / "ground.csv").string()));
+	check(sb.relabelled == 1 && bare.size() == 21 && seg(bare[8]) >= 40 && bare[9] == before[9] &&
+		      !fs::exists(dir / "bare" / "ground.solutions.csv"),
+	      "remesh without a sidecar: row 7 is solved again in full onto 40 or more segments, and no sidecar "
+	      "appears",
+	      std::to_string(sb.relabelled) + " relabelled");
 }
 
 }  // namespace
@@ -431,6 +521,17 @@ int main(int argc, char **argv)
 	}
 	check(why.find("not this stream's") != std::string::npos && why.find("seed: 1 vs seed: 2") != std::string::npos,
 	      "a dataset of another seed is refused", why);
+	why.clear();
+	try {
+		RepairOptions r5 = setup("remesh_di");
+		r5.remesh = true;
+		repair(di, r5);
+	} catch (const std::invalid_argument &e) {
+		why = e.what();
+	}
+	check(why.find("accepts labels on any mesh") != std::string::npos,
+	      "remesh: a mode without a mesh to accept labels on (the double integrator) is refused", why);
+	remesh_checks(dir / "remesh");
 	fs::remove_all(dir);
 	return tap_finish();
 }

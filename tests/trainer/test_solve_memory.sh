@@ -4,7 +4,9 @@
 # row 94 of the memory tests/trainer/memory solved with and without it; a
 # dataset directory trainer/datasets/<robot> with a sidecar is the memory
 # by default, --memory none turns it off; the row gets its label to the
-# last bit (its own path only ties); a missing memory and --memory without
+# last bit (its own path only ties; the label is the solver's on 40
+# segments, the path the 20-segment one it was refined from); a missing
+# memory and --memory without
 # --solve are usage errors (exit 2).
 set -u
 cd "$(dirname "$0")/../.."
