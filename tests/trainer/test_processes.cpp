@@ -35,9 +35,14 @@ bool wait_for(const fs::path &path)
 	return false;
 }
 
+// Writes this process's pid to path, whole or not at all: the file appears
+// by a rename, so a reader that sees it also sees the pid (the writer may be
+// killed at any moment after).
 void touch(const fs::path &path)
 {
-	std::ofstream(path) << getpid() << "\n";
+	const fs::path tmp = path.string() + ".tmp" + std::to_string(getpid());
+	std::ofstream(tmp) << getpid() << "\n";
+	fs::rename(tmp, path);
 }
 
 }  // namespace
