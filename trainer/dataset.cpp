@@ -146,10 +146,13 @@ bool same_stream(const std::string &a, const std::string &b)
 std::string generated_lines(const std::string &meta)
 {
 	std::string out;
-	for (const auto &kv : meta_lines(meta))
-		if (kv.first != "repaired_rows" && kv.first.rfind("repair_", 0) != 0 && kv.first != "remeshed_rows" &&
-		    kv.first.rfind("remesh_", 0) != 0)
+	for (const auto &kv : meta_lines(meta)) {
+		bool generated = true;
+		for (const MetaPass *p : {&kRepairPass, &kRemeshPass})
+			generated = generated && kv.first != p->rows_key && kv.first.rfind(p->prefix, 0) != 0;
+		if (generated)
 			out += kv.second + "\n";
+	}
 	return out;
 }
 

@@ -205,8 +205,15 @@ std::string meta_value(const std::string &meta, const std::string &key);
 std::string meta_differences(const std::string &old_meta, const std::string &new_meta);
 // Whether two metas describe the same stream of pairs, whatever labelled them.
 bool same_stream(const std::string &a, const std::string &b);
-// A dataset's .meta without a repair's or remesh's lines (repaired_rows,
-// repair_*, remeshed_rows, remesh_*): the lines generation wrote.
+// A pass over a dataset's rows after generation (trainer/repair.hpp): its
+// word, the prefix of its .meta lines, their row count's key, and its
+// in-progress files' suffix.
+struct MetaPass {
+	std::string name, prefix, rows_key, suffix;
+};
+inline const MetaPass kRepairPass{"repair", "repair_", "repaired_rows", ".repair"};
+inline const MetaPass kRemeshPass{"remesh", "remesh_", "remeshed_rows", ".remesh"};
+// A dataset's .meta without the passes' lines: the lines generation wrote.
 std::string generated_lines(const std::string &meta);
 // Where a file of rows after header resumes: the bytes to keep (the header
 // and complete rows; a torn last row dropped) and how many rows they hold.

@@ -152,22 +152,17 @@ std::vector<StoredSolution> read_sidecar(const RepairOptions &opt, uint64_t n)
 	return out;
 }
 
-// A pass's names (the repair's or the remesh's): its word, the prefix of
-// its .meta lines, their row count's key, its in-progress files' suffix.
-struct Pass {
-	std::string name, prefix, rows_key, suffix;
-};
-Pass pass_of(const RepairOptions &opt)
+// The pass the options ask for.
+const internal::MetaPass &pass_of(const RepairOptions &opt)
 {
-	return opt.remesh ? Pass{"remesh", "remesh_", "remeshed_rows", ".remesh"}
-			  : Pass{"repair", "repair_", "repaired_rows", ".repair"};
+	return opt.remesh ? internal::kRemeshPass : internal::kRepairPass;
 }
 
 // The pass's lines of a dataset's .meta (and of the in-progress file's):
 // its settings, and the trainer's solver and numerics.
 std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
 {
-	const Pass P = pass_of(opt);
+	const internal::MetaPass &P = pass_of(opt);
 	std::string out = P.rows_key + ": " + std::to_string(opt.gen.samples) + "\n";
 	if (!opt.remesh)
 		out += "repair_neighbours: " + std::to_string(opt.neighbours) + "\n";
@@ -185,7 +180,7 @@ std::string repair_lines(const RobotParams &robot, const RepairOptions &opt)
 }
 
 // meta without the lines of an earlier pass of this kind, then this one's.
-std::string repaired_meta(const Pass &P, const std::string &meta, const std::string &lines)
+std::string repaired_meta(const internal::MetaPass &P, const std::string &meta, const std::string &lines)
 {
 	std::string out;
 	std::istringstream in(meta);
@@ -196,7 +191,7 @@ std::string repaired_meta(const Pass &P, const std::string &meta, const std::str
 }
 
 // The pass's lines of meta but its row count and passes: its settings.
-std::string repair_settings(const Pass &P, const std::string &meta)
+std::string repair_settings(const internal::MetaPass &P, const std::string &meta)
 {
 	std::string out;
 	std::istringstream in(meta);
@@ -211,7 +206,7 @@ std::string repair_settings(const Pass &P, const std::string &meta)
 // keep their labels and only the rows past them are repaired, so adding
 // rows costs their repair, not every row's again. 0 (repair every row) for
 // a dataset never repaired or repaired under other settings.
-uint64_t repaired_before(const Pass &P, const std::string &meta, const std::string &lines, uint64_t n)
+uint64_t repaired_before(const internal::MetaPass &P, const std::string &meta, const std::string &lines, uint64_t n)
 {
 	const std::string rows = internal::meta_value(meta, P.rows_key);
 	const uint64_t r = rows.empty() ? 0 : std::strtoull(rows.c_str(), nullptr, 10);
@@ -261,7 +256,7 @@ RepairSummary repair(const RobotParams &robot, const RepairOptions &ro)
 	opt.gen.shard = opt.gen.shards = 1;
 	const hylo_mode mode = opt.gen.mode;
 	const uint64_t n = opt.gen.samples;
-	const Pass P = pass_of(opt);
+	const internal::MetaPass &P = pass_of(opt);
 	if ((!opt.remesh && opt.neighbours < 1) || opt.path_points < 2)
 		throw std::invalid_argument("repair needs at least one neighbour and two path points");
 	// remesh: the mesh the mode's labels are accepted on.
